@@ -1,0 +1,184 @@
+// pelage hair: one frame of a creature's fur (Van Gelder & Wilhelms 1997 sec. 3) as a PLY file.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+
+#include "commands.h"
+#include "pelage/fur/culling.h"
+#include "pelage/fur/generate.h"
+#include "pelage/fur/hair_ply.h"
+#include "pelage/fur/preset.h"
+#include "pelage/fur/roots.h"
+#include "pelage/scene/dynamic_fur.h"
+#include "pelage/scene/frame.h"
+#include "pelage/skin/deform.h"
+#include "pelage/util/error.h"
+
+namespace pelage::app {
+namespace {
+
+// Length of hair h (m): distance from its root to its end (tube: between the first and last ring
+// centres).
+double hairLength(const fur::HairBuffers& b, std::int64_t h, int sides) {
+  const int P = b.pointsPerHair;
+  const int ring = b.style == fur::HairStyle::Tube ? sides : 1;
+  Eigen::Vector3d first = Eigen::Vector3d::Zero(), last = Eigen::Vector3d::Zero();
+  for (int j = 0; j < ring; ++j) {
+    first += Eigen::Map<const Eigen::Vector3f>(b.positions.data() + (h * P + j) * 3).cast<double>();
+    last += Eigen::Map<const Eigen::Vector3f>(b.positions.data() + (h * P + P - ring + j) * 3)
+                .cast<double>();
+  }
+  return (last - first).norm() / ring;
+}
+
+// One line per coat: hairs, style, lengths, and how far the ends drop below the roots.
+void summarise(const fur::FurFrame& frame, const fur::FurParams& params) {
+  for (int c = 0; c < fur::kCoatCount; ++c) {
+    const fur::HairBuffers& b = frame.coats[static_cast<std::size_t>(c)];
+    if (b.drawn == 0) continue;
+    double lo = 1e30, hi = 0.0, sum = 0.0, drop = 0.0;
+    const int sides = params.coats[static_cast<std::size_t>(c)].tubeSides;
+    const Eigen::Map<const Eigen::Vector3f> up(params.up.data());
+    for (std::int64_t h = 0; h < b.drawn; ++h) {
+      const double L = hairLength(b, h, sides);
+      lo = std::min(lo, L);
+      hi = std::max(hi, L);
+      sum += L;
+      const int P = b.pointsPerHair;
+      const Eigen::Map<const Eigen::Vector3f> root(b.positions.data() + h * P * 3);
+      const Eigen::Map<const Eigen::Vector3f> end(b.positions.data() + (h * P + P - 1) * 3);
+      drop += static_cast<double>((end - root).dot(up));
+    }
+    const double meanRise = drop / static_cast<double>(b.drawn) * 1e3;
+    std::printf(
+        "%s: %lld %s hairs, %d points each; length %.2f to %.2f mm (mean %.2f); ends %.2f mm %s "
+        "their roots on average\n",
+        c == 0 ? "overcoat" : "undercoat", static_cast<long long>(b.drawn), fur::styleName(b.style),
+        b.pointsPerHair, lo * 1e3, hi * 1e3, sum / static_cast<double>(b.drawn) * 1e3,
+        std::abs(meanRise), meanRise < 0.0 ? "below" : "above");
+  }
+}
+
+}  // namespace
+
+void FurArgs::add(CLI::App& cmd) {
+  cmd.add_option("--fur", preset,
+                 "Fur preset: built-in name (default, fig8, fig9) or a .json file");
+  hairsOpt = cmd.add_option(
+      "--hairs", hairs, "Total hairs over the skin, both coats [0, 2e7] (overrides the preset)");
+  cmd.add_option("--style", style,
+                 "Hair style of both coats: line, polyline, curve, tube (overrides the preset)");
+  seedOpt = cmd.add_option("--seed", seed, "Random seed [0, 2^53]");
+  shareOpt = cmd.add_option("--undercoat-share", undercoatShare,
+                            "Share of the hairs in the undercoat [0, 1]");
+  lengthOpt = cmd.add_option("--length-scale", lengthScale, "Scale of every hair length [0, 10]");
+  stiffnessOpt = cmd.add_option("--stiffness", stiffness,
+                                "Stiffness of both coats [0, 1] (floppiness = 1 - stiffness)");
+}
+
+fur::FurParams FurArgs::resolve() const {
+  fur::FurParams p = fur::loadFurPreset(preset.empty() ? fur::kDefaultPreset : preset);
+  if (hairsOpt && hairsOpt->count() > 0) {
+    p.hairs = hairs;
+    p.densityPerM2 = 0.0;
+  }
+  if (!style.empty()) {
+    const fur::HairStyle s = fur::parseStyle(style, "--style");
+    for (auto& c : p.coats) c.style = s;
+  }
+  if (seedOpt && seedOpt->count() > 0) {
+    if (seed < 0 || seed > (std::int64_t(1) << 53))
+      inputError("--seed ", seed, " is out of range [0, 2^53]");
+    p.seed = static_cast<std::uint64_t>(seed);
+  }
+  if (shareOpt && shareOpt->count() > 0) p.undercoatShare = static_cast<float>(undercoatShare);
+  if (lengthOpt && lengthOpt->count() > 0) p.lengthScale = static_cast<float>(lengthScale);
+  if (stiffnessOpt && stiffnessOpt->count() > 0)
+    for (auto& c : p.coats) c.stiffness = static_cast<float>(stiffness);
+  fur::validateFurParams(p, "fur '" + p.name + "' with the command-line options");
+  return p;
+}
+
+FurScene loadFurScene(const ModelArgs& model, const PoseArgs& pose, const fur::FurParams& params) {
+  FurScene s{model.load(), {}, {}, {}};
+  anatomy::forwardKinematics(s.model.body, pose.resolve(s.model), s.state);
+  skin::deformSkin(s.model.skin, s.state, s.deformed);
+  s.roots = fur::growRoots(s.model.skin, params);
+  return s;
+}
+
+void addHairCommand(CLI::App& app) {
+  auto* cmd = app.add_subcommand(
+      "hair",
+      "Write one frame of a creature's hairs as PLY (points, normals, edges or tube faces)");
+  auto model = std::make_shared<ModelArgs>();
+  auto pose = std::make_shared<PoseArgs>();
+  auto furArgs = std::make_shared<FurArgs>();
+  auto out = std::make_shared<std::string>();
+  auto dynamics = std::make_shared<DynamicsArgs>();
+  auto distance = std::make_shared<double>(0.0);
+  auto distanceOpt = cmd->add_option(
+      "--distance", *distance,
+      "Viewing distance (m) for distance culling (sec. 3.3) [0, 10000]; without it every "
+      "hair is written");
+  model->add(*cmd);
+  pose->add(*cmd);
+  furArgs->add(*cmd);
+  dynamics->add(*cmd);
+  cmd->add_option("--out", *out, "Output .ply file")->required();
+  cmd->callback([=] {
+    if (distanceOpt->count() > 0 && !(*distance >= 0.0 && *distance <= 1e4))
+      inputError("--distance ", *distance, " is out of range [0, 10000] (metres)");
+    const fur::FurParams params = furArgs->resolve();  // before the model: bad options fail fast
+    FurScene scene = loadFurScene(*model, *pose, params);
+    const scene::Model& m = scene.model;
+    const fur::FurRoots& roots = scene.roots;
+    skin::DeformedSkin& deformed = scene.deformed;
+    fur::FurView view;
+    if (distanceOpt->count() > 0) {
+      view.culling = params.culling.enabled;
+      view.viewDistance = static_cast<float>(*distance);
+      view.referenceDistance = fur::referenceDistance(m.skin, params.culling);
+    }
+    fur::FurWorkspace ws;
+    fur::FurFrame frame;
+    if (dynamics->enabled()) {
+      // Fur dynamics (issue 7): the clip's frames from its start up to --time, then this frame's
+      // hairs from the damped ends (scene/dynamic_fur.h).
+      const fur::DynamicsParams dyn = dynamics->resolve();
+      const int clip = m.findClip(pose->clip);
+      if (clip < 0) inputError("--dynamics on needs --clip naming one of the model's clips (see `pelage info`)");
+      const scene::DynamicsClock clock = dynamics->clock();
+      const auto last = static_cast<int>(std::lround(pose->time * clock.fps));
+      const scene::Fur furModel{params, roots, 0};
+      scene::FrameState state;
+      fur::FurDynamicsState springs;
+      scene::preRollDynamics(m, furModel, dyn, clip, last, clock, springs, state);
+      scene::evaluateClipFrame(m, clip, last / clock.fps, state);
+      fur::generateDynamicFur(m.skin, roots, params, dyn, state.skin, 1.0 / clock.fps, view, springs, ws, frame);
+      std::printf("dynamic fur: frame %d of clip %s at %g fps (time %.4f s), simulated from frame %d\n", last,
+                  m.clips[static_cast<std::size_t>(clip)].name.c_str(), clock.fps, last / clock.fps,
+                  scene::preRollStart(last, clock));
+    } else {
+      fur::generateFur(m.skin, roots, params, deformed, view, ws, frame);
+    }
+    const std::string comment =
+        str("model ", m.name, ", fur ", params.name, ", seed ", params.seed, ", ", frame.drawn(),
+            " of ", roots.total(), " hairs (culling factor ", frame.cullingFactor, ")");
+    const fur::HairPlyCounts n = fur::writeHairPly(*out, frame, params, comment);
+    std::printf("%s: %s on %s (%d triangles, %.4f m^2 furred)\n", out->c_str(), params.name.c_str(),
+                m.name.c_str(), m.skin.numTriangles(), roots.furredArea);
+    if (view.culling)
+      std::printf(
+          "distance %.3f m, reference %.3f m: culling factor %.3f, %lld of %lld hairs drawn\n",
+          static_cast<double>(view.viewDistance), static_cast<double>(view.referenceDistance),
+          static_cast<double>(frame.cullingFactor), static_cast<long long>(frame.drawn()),
+          static_cast<long long>(roots.total()));
+    summarise(frame, params);
+    std::printf("wrote %lld vertices, %lld edges, %lld faces\n", static_cast<long long>(n.vertices),
+                static_cast<long long>(n.edges), static_cast<long long>(n.faces));
+  });
+}
+
+}  // namespace pelage::app

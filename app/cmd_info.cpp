@@ -1,0 +1,73 @@
+#include <cstdio>
+#include <iostream>
+#include <memory>
+
+#include <nlohmann/json.hpp>
+
+#include "commands.h"
+#include "pelage/skin/skin_mesh.h"
+
+namespace pelage::app {
+
+void addInfoCommand(CLI::App& app) {
+  auto* cmd = app.add_subcommand("info", "Print a creature's segments, skin size, area and bounds");
+  auto args = std::make_shared<ModelArgs>();
+  auto json = std::make_shared<bool>(false);
+  args->add(*cmd);
+  cmd->add_flag("--json", *json, "Print machine-readable JSON");
+  cmd->callback([args, json] {
+    const scene::Model m = args->load();
+    const skin::SkinStats s = skin::skinStats(m.skin);
+    if (*json) {
+      nlohmann::json j;
+      j["name"] = m.name;
+      j["source"] = m.source;
+      j["vertices"] = s.vertices;
+      j["triangles"] = s.triangles;
+      j["areaSquareMeters"] = s.area;
+      j["boundsMin"] = {s.boundsMin.x(), s.boundsMin.y(), s.boundsMin.z()};
+      j["boundsMax"] = {s.boundsMax.x(), s.boundsMax.y(), s.boundsMax.z()};
+      j["boundaryEdges"] = s.boundaryEdges;
+      j["nonManifoldVertices"] = s.nonManifoldVertices;
+      j["minAngleDegrees"] = s.minAngleDegrees;
+      j["regions"] = m.skin.regionNames;
+      nlohmann::json segs = nlohmann::json::array();
+      for (const auto& seg : m.body.segments) {
+        nlohmann::json e;
+        e["name"] = seg.name;
+        e["parent"] = seg.parent < 0 ? nlohmann::json(nullptr)
+                                     : nlohmann::json(m.body.segments[static_cast<std::size_t>(seg.parent)].name);
+        segs.push_back(e);
+      }
+      j["segments"] = segs;
+      j["unitScale"] = m.unitScale;
+      nlohmann::json clips = nlohmann::json::array();
+      for (const auto& c : m.clips)
+        clips.push_back({{"name", c.name}, {"durationSeconds", c.duration}, {"loop", c.loop},
+                         {"channels", c.channels.size()}});
+      j["clips"] = clips;
+      std::cout << j.dump(2) << "\n";
+      return;
+    }
+    std::printf("model      %s (%s)\n", m.name.c_str(), m.source.c_str());
+    std::printf("skin       %d vertices, %d triangles, area %.4f m^2\n", s.vertices, s.triangles, s.area);
+    std::printf("bounds     [%.4f %.4f %.4f] .. [%.4f %.4f %.4f] m\n", static_cast<double>(s.boundsMin.x()),
+                static_cast<double>(s.boundsMin.y()), static_cast<double>(s.boundsMin.z()),
+                static_cast<double>(s.boundsMax.x()), static_cast<double>(s.boundsMax.y()),
+                static_cast<double>(s.boundsMax.z()));
+    std::printf("topology   %d boundary edges, %d non-manifold vertices, min angle %.1f deg\n",
+                s.boundaryEdges, s.nonManifoldVertices, s.minAngleDegrees);
+    std::printf("regions   ");
+    for (const auto& r : m.skin.regionNames) std::printf(" %s", r.c_str());
+    std::printf("\nsegments   %d\n", m.body.size());
+    for (const auto& seg : m.body.segments)
+      std::printf("  %-20s parent %s\n", seg.name.c_str(),
+                  seg.parent < 0 ? "-" : m.body.segments[static_cast<std::size_t>(seg.parent)].name.c_str());
+    if (m.unitScale != 1.0f) std::printf("units      %g m per file unit\n", static_cast<double>(m.unitScale));
+    std::printf("clips      %zu\n", m.clips.size());
+    for (const auto& c : m.clips)
+      std::printf("  %-20s %.4f s%s\n", c.name.c_str(), static_cast<double>(c.duration), c.loop ? "" : " (clamped)");
+  });
+}
+
+}  // namespace pelage::app

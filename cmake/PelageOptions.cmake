@@ -1,0 +1,39 @@
+# Warning flags, sanitizers and a helper to declare a module library.
+
+add_library(pelage_warnings INTERFACE)
+target_compile_options(pelage_warnings INTERFACE
+  -Wall -Wextra -Wpedantic -Wshadow -Wnon-virtual-dtor -Wcast-align -Wunused -Woverloaded-virtual
+  $<$<NOT:$<BOOL:$<TARGET_PROPERTY:PELAGE_TEST>>>:-Wdouble-promotion> -Wformat=2 -Wimplicit-fallthrough
+  # GCC 12 reports false positives for std::string concatenation at -O3 (GCC bug 105329).
+  $<$<CXX_COMPILER_ID:GNU>:-Wno-restrict>)
+if(PELAGE_WERROR)
+  target_compile_options(pelage_warnings INTERFACE -Werror)
+endif()
+# Tests (targets with the property PELAGE_TEST) compare floats with double tolerances all the time;
+# promotion there is intended, so -Wdouble-promotion applies to library and app code only.
+add_library(pelage_test_warnings INTERFACE)
+target_link_libraries(pelage_test_warnings INTERFACE pelage_warnings)
+
+if(PELAGE_SANITIZE)
+  # Sanitizer instrumentation makes GCC 12 report maybe-uninitialized false positives inside
+  # library templates (OpenMesh properties, std::construct_at); the Release build keeps the warning.
+  add_compile_options(-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
+                      $<$<CXX_COMPILER_ID:GNU>:-Wno-maybe-uninitialized>)
+  add_link_options(-fsanitize=address,undefined)
+endif()
+
+if(PELAGE_FUZZ)
+  # Coverage instrumentation for every library the fuzz targets link (fuzz/CMakeLists.txt).
+  add_compile_options(-fsanitize=fuzzer-no-link)
+endif()
+
+# pelage_module(NAME SOURCES ... DEPS ...): a library target pelage_NAME with alias pelage::NAME,
+# public headers in NAME/include.
+function(pelage_module name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;PUBLIC_DEPS;PRIVATE_DEPS" ${ARGN})
+  add_library(pelage_${name} STATIC ${ARG_SOURCES})
+  add_library(pelage::${name} ALIAS pelage_${name})
+  target_include_directories(pelage_${name} PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/include
+                                            PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/src)
+  target_link_libraries(pelage_${name} PUBLIC ${ARG_PUBLIC_DEPS} PRIVATE ${ARG_PRIVATE_DEPS} pelage_warnings)
+endfunction()

@@ -1,0 +1,118 @@
+// Per-frame fur: from the deformed skin and the constant roots to GPU-ready hair buffers
+// (Van Gelder & Wilhelms 1997, sec. 4: "We do not normally explicitly store information about
+// individual hairs ... recalculating the fur from scratch"). The per-hair maths is in hair_math.h;
+// this runs it for every drawn hair, in parallel, into preallocated memory.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <new>
+#include <vector>
+
+#include "pelage/fur/culling.h"
+#include "pelage/fur/fur_params.h"
+#include "pelage/fur/hair_math.h"
+#include "pelage/fur/roots.h"
+#include "pelage/skin/deform.h"
+#include "pelage/skin/skin_mesh.h"
+
+namespace pelage::fur {
+
+// A float array aligned to 64 bytes (streaming SIMD stores), not zeroed on resize.
+class FloatBuffer {
+ public:
+  FloatBuffer() = default;
+  FloatBuffer(FloatBuffer&&) noexcept = default;
+  FloatBuffer& operator=(FloatBuffer&&) noexcept = default;
+  // Makes room for n floats, keeping nothing; allocates only when n exceeds the capacity.
+  void resize(std::size_t n);
+  float* data() { return data_.get(); }
+  const float* data() const { return data_.get(); }
+  std::size_t size() const { return size_; }
+
+ private:
+  struct Free {
+    void operator()(float* p) const { ::operator delete[](p, std::align_val_t(64)); }
+  };
+  std::unique_ptr<float[], Free> data_;
+  std::size_t size_ = 0;
+  std::size_t capacity_ = 0;
+};
+
+// One coat's hairs for one frame. Hair i (i < drawn) has P = pointsPerHair points, at
+// [i * P, (i + 1) * P) in `positions` and `normals`, each point 3 floats (x, y, z), world metres;
+// `hairIds[i]` is the hair's index into the coat's roots (CoatRoots). Point 0 is the root.
+// Shading normals: line and curve repeat the skin normal; polyline has one per point (sec. 3.7);
+// tube points are ring points with radial normals (point k * M + j: ring k, direction j).
+struct HairBuffers {
+  HairStyle style = HairStyle::Polyline;
+  int pointsPerHair = 0;
+  std::int64_t drawn = 0;
+  FloatBuffer positions;              // (capacity * P) x 3
+  FloatBuffer normals;                // (capacity * P) x 3
+  std::vector<std::int32_t> hairIds;  // capacity
+};
+
+struct FurFrame {
+  std::array<HairBuffers, kCoatCount> coats;
+  float cullingFactor = 1.0f;
+  std::int64_t drawn() const { return coats[0].drawn + coats[1].drawn; }
+};
+
+// Per-frame scratch kept between frames: packed vertex records, drawn-hair offsets, the twist
+// tables. Sized on first use.
+struct FurWorkspace {
+  std::vector<float> vertexRecords;  // nV x 12: position, fur length, normal, 0, direction, 0
+  std::array<std::vector<std::int32_t>, kCoatCount> drawnStart;  // nT + 1 each, when culling
+  // Polyline normal twist (sec. 3.7), per coat kBarycentricTableSize x 8 x (cos, sin):
+  // entry (j, i) rotates point i of hairs using table entry j by r pi (2u - 1),
+  // u = uniform01(coatSeed, kStreamNormal, 8 j + i).
+  std::array<std::vector<float>, kCoatCount> twist;
+  std::array<float, kCoatCount> twistAmount{-1.0f, -1.0f};
+  std::array<std::uint64_t, kCoatCount> twistSeed{0, 0};
+};
+
+// Points per hair of a coat: line 2, polyline 8, curve K, tube K * M.
+int pointsPerHair(const CoatParams& coat);
+
+// The per-coat constants of hair_math.h for coat `coat` of `params`.
+CoatShape makeCoatShape(const FurParams& params, int coat);
+
+// Fills `table` (2048 x 8 x 2) with the polyline twist (cos, sin) of coat seed `seed` and normal
+// randomize r.
+void makeTwistTable(std::uint64_t seed, float normalRandomize, std::vector<float>& table);
+
+// Sizes `frame` for every root of `roots` being drawn (the most a frame can draw). Allocates.
+void prepareFurFrame(const FurRoots& roots, const FurParams& params, FurFrame& frame);
+
+// Computes one frame of fur: for each coat, the drawn hairs (culling, sec. 3.3) and their points
+// and normals (sec. 3.2 to 3.8). `roots` must have been grown on `skin` with `params`' count, share
+// and seed; `params` validated. Parallel over hairs (util/parallel.h threads); the output is
+// bit-identical whatever the thread count and whichever SIMD path runs. Allocates only on the first
+// call (or when the roots or styles change size); never throws for valid inputs.
+void generateFur(const skin::SkinMesh& skin, const FurRoots& roots, const FurParams& params,
+                 const skin::DeformedSkin& deformed, const FurView& view, FurWorkspace& workspace,
+                 FurFrame& frame);
+
+// The kernel implementations: Auto picks AVX-512 (F, DQ, VL) where the CPU has it, else AVX2, else
+// Generic (the x86-64 SSE2 baseline). All give bit-identical output.
+enum class KernelPath { Auto, Generic, Avx2, Avx512 };
+// Forces a path (tests compare them); returns false (and changes nothing) if the CPU lacks it.
+bool setKernelPath(KernelPath path);
+// The path generateFur uses now (never Auto).
+KernelPath activeKernelPath();
+const char* kernelPathName(KernelPath path);
+
+// One hair computed with the scalar reference (hair_math.h with T = float), for tests and GPU
+// parity: root `rootIndex` of `coat`, P points into positions/normals (P x 3 each).
+void referenceHair(const skin::SkinMesh& skin, const FurRoots& roots, const FurParams& params,
+                   const skin::DeformedSkin& deformed, int coat, std::int64_t rootIndex,
+                   std::vector<float>& positions, std::vector<float>& normals);
+
+// The tube's triangles, the same for every hair: (K - 1) * M * 2 triangles as point indices within
+// a hair (add i * P for hair i), counter-clockwise seen from outside.
+std::vector<std::int32_t> tubeTriangles(int curvePoints, int tubeSides);
+
+}  // namespace pelage::fur

@@ -1,0 +1,30 @@
+// One frame of hairs as a binary little-endian PLY file, written atomically:
+//   element vertex: float x, y, z, nx, ny, nz; int hair (index into the coat's roots);
+//                   uchar coat (0 overcoat, 1 undercoat)
+//   element edge:   int vertex1, vertex2 joining consecutive points of each line/polyline/curve
+//   hair element face:   list uchar int vertex_indices, the triangles of each tube hair
+// Hairs keep the FurFrame order: coat 0's hairs, then coat 1's, each hair's P points in a row.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "pelage/fur/generate.h"
+
+namespace pelage::fur {
+
+struct HairPlyCounts {
+  std::int64_t vertices = 0;
+  std::int64_t edges = 0;
+  std::int64_t faces = 0;
+};
+
+// The element counts writeHairPly writes for `frame`.
+HairPlyCounts hairPlyCounts(const FurFrame& frame, const FurParams& params);
+
+// Writes `frame` to `path` (via a temporary file renamed on success; InputError naming the file on
+// any failure, leaving no partial file). `comment` lines go into the header.
+HairPlyCounts writeHairPly(const std::string& path, const FurFrame& frame, const FurParams& params,
+                           const std::string& comment = "");
+
+}  // namespace pelage::fur

@@ -1,0 +1,81 @@
+// Hair roots (Van Gelder & Wilhelms 1997, sec. 3.2): how many hairs each skin triangle gets and
+// where on the triangle they grow. Constant model: grown once for a skin and a FurParams' count,
+// share and seed; read-only during playback.
+#pragma once
+
+#include <Eigen/Core>
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "pelage/fur/fur_params.h"
+#include "pelage/skin/skin_mesh.h"
+
+namespace pelage::fur {
+
+// Sec. 3.2: "a table of 2048 random triplets of barycentric coordinates (b1, b2, b3)".
+inline constexpr int kBarycentricTableSize = 2048;
+
+// The shared barycentric table: entry j = (b1, b2, b3, 0) with b1 = 1 - sqrt(u1),
+// b2 = (1 - b1) u2, b3 = 1 - b1 - b2, u1 = uniform01(seed, kStreamBarycentricTable, 2 j),
+// u2 = uniform01(seed, kStreamBarycentricTable, 2 j + 1). Row-major kBarycentricTableSize x 4.
+std::vector<float> makeBarycentricTable(std::uint64_t seed);
+
+// The roots of one coat in creation order, grouped by triangle (roots of triangle t are
+// [triangleStart[t], triangleStart[t + 1])), so culling can draw a per-triangle prefix.
+struct CoatRoots {
+  std::vector<std::int32_t> triangleStart;  // nT + 1 (CSR offsets)
+  std::vector<std::int32_t> triangle;       // nRoots: the root's triangle
+  std::vector<std::uint16_t> tableIndex;    // nRoots: index into the barycentric table
+  // nRoots x 4: (xi.x, xi.y, xi.z, phase). xi is uniform in the unit ball (hair end randomize,
+  // sec. 3.5) from uniform01(coatSeed, kStreamHairEnd, 3 k + {0, 1, 2}); phase in [0, 1) (helix
+  // start angle, in turns) from uniform01(coatSeed, kStreamHairEnd + kPhaseStreamOffset, k).
+  std::vector<float> jitter;
+  double expectedHairs = 0.0;  // N_coat, before random rounding
+  std::int64_t size() const { return static_cast<std::int64_t>(triangle.size()); }
+};
+
+struct FurRoots {
+  std::array<CoatRoots, kCoatCount> coats;
+  std::vector<float> barycentric;  // kBarycentricTableSize x 4, shared by both coats
+  std::int32_t triangleCount = 0;  // of the skin they were grown on
+  double furredArea = 0.0;         // m^2: rest area of triangles with some fur
+  std::uint64_t seed = 0;
+  std::int64_t total() const { return coats[0].size() + coats[1].size(); }
+};
+
+// The seed of one coat's random streams: the base seed for the overcoat, a mix of it for the
+// undercoat, so the coats never share random numbers.
+std::uint64_t coatSeed(std::uint64_t seed, int coat);
+
+// Offset added to kStreamHairEnd for the helix phase stream.
+inline constexpr std::uint64_t kPhaseStreamOffset = 64;
+
+// Total N from the params: `hairs`, or density * furredArea.
+double requestedHairs(const FurParams& params, double furredArea);
+
+// Bytes the roots and the hair buffers of both coats take for `hairs` hairs (for the up-front
+// refusal of absurd counts).
+double estimateFurBytes(const FurParams& params, double hairs);
+
+// Throws InputError if the requested count is outside [0, kMaxHairs] or needs more than
+// kMaxFurBytes, with the memory estimate in the message (e.g. "2e+10 hairs need 4.4 TB").
+void checkHairBudget(const FurParams& params, double furredArea);
+
+// Grows the roots of both coats on `skin` (rest-pose areas):
+// Van Gelder & Wilhelms 1997, sec. 3.2: triangle t gets floor(alpha_t N_c + u_t) hairs, alpha_t the
+// triangle's fraction of the furred skin area, u_t = uniform01(coatSeed, kStreamAllocation, t)
+// ("random rounding"). Triangles whose three vertex fur lengths are 0 get none and do not count
+// in the area. Coat c's roots cycle through the table: root k uses entry k mod 2048.
+// Calls checkHairBudget first.
+FurRoots growRoots(const skin::SkinMesh& skin, const FurParams& params);
+
+// Rest-pose area of each triangle (m^2), nT.
+std::vector<double> triangleAreas(const skin::SkinMesh& skin);
+
+// Whether triangle t carries fur (some vertex fur length > 0).
+bool triangleHasFur(const skin::SkinMesh& skin, std::int32_t t);
+
+}  // namespace pelage::fur

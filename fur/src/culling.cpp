@@ -1,0 +1,106 @@
+#include "pelage/fur/culling.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "pelage/util/error.h"
+#include "pelage/util/parallel.h"
+#include "pelage/util/random.h"
+
+namespace pelage::fur {
+
+float cullingFactor(const FurView& view) {
+  if (!view.culling || !(view.referenceDistance > 0.0f)) return 1.0f;
+  const float c = view.viewDistance / view.referenceDistance;
+  return c > 1.0f ? c : 1.0f;
+}
+
+float faceSize(const skin::SkinMesh& skin) {
+  const int nV = skin.numVertices();
+  if (nV == 0) return 0.0f;
+  Eigen::Map<const Eigen::Matrix<float, 3, Eigen::Dynamic>> P(skin.restPositions(), 3, nV);
+  int face = -1;
+  for (std::size_t r = 0; r < skin.regionNames.size(); ++r)
+    if (skin.regionNames[r] == "face") face = static_cast<int>(r);
+  if (face >= 0) {
+    Eigen::AlignedBox3f box;
+    const std::int32_t* region = skin.regions();
+    for (int v = 0; v < nV; ++v)
+      if (region[v] == face) box.extend(P.col(v));
+    if (!box.isEmpty()) return box.sizes().maxCoeff();
+  }
+  const Eigen::Vector3f extent = P.rowwise().maxCoeff() - P.rowwise().minCoeff();
+  return 0.25f * extent.norm();
+}
+
+float defaultReferenceDistance(const skin::SkinMesh& skin, float fovYDegrees) {
+  const double halfFov = 0.5 * static_cast<double>(fovYDegrees) * 3.14159265358979323846 / 180.0;
+  const double d = static_cast<double>(faceSize(skin)) / (2.0 * std::tan(halfFov));
+  return d > 1e-6 ? static_cast<float>(d) : 1e-6f;
+}
+
+float referenceDistance(const skin::SkinMesh& skin, const CullingParams& params) {
+  return params.referenceDistance > 0.0f ? params.referenceDistance
+                                         : defaultReferenceDistance(skin, params.fovYDegrees);
+}
+
+Eigen::Vector3f creatureCenter(const skin::DeformedSkin& deformed) {
+  if (deformed.positions.empty()) return Eigen::Vector3f::Zero();
+  Eigen::AlignedBox3f box;
+  for (const Eigen::Vector3f& p : deformed.positions) box.extend(p);
+  return box.center();
+}
+
+FurView makeFurView(const skin::SkinMesh& skin, const FurParams& params,
+                    const skin::DeformedSkin& deformed, const Eigen::Vector3f& camera) {
+  FurView v;
+  v.culling = params.culling.enabled;
+  v.referenceDistance = referenceDistance(skin, params.culling);
+  v.viewDistance = (camera - creatureCenter(deformed)).norm();
+  return v;
+}
+
+std::int64_t computeDrawnStart(const CoatRoots& roots, std::uint64_t coatSeedValue, float factor,
+                               std::vector<std::int32_t>& drawnStart) {
+  const auto& start = roots.triangleStart;
+  PELAGE_CHECK(!start.empty(), "roots without triangleStart");
+  const std::int64_t nT = static_cast<std::int64_t>(start.size()) - 1;
+  if (drawnStart.size() != start.size()) drawnStart.resize(start.size());
+  // Two passes over fixed chunks (no allocation): drawn counts and chunk sums, then offsets.
+  constexpr std::int64_t kChunks = 64;
+  const std::int64_t per = (nT + kChunks - 1) / kChunks;
+  std::array<std::int64_t, kChunks + 1> chunkSum{};
+  parallelFor(kChunks, 1, [&](std::int64_t c) {
+    const std::int64_t b = c * per, e = std::min(nT, b + per);
+    std::int64_t sum = 0;
+    for (std::int64_t t = b; t < e; ++t) {
+      const std::int32_t k =
+          start[static_cast<std::size_t>(t) + 1] - start[static_cast<std::size_t>(t)];
+      std::int32_t kd = 0;
+      if (k > 0) {
+        // Van Gelder & Wilhelms 1997, sec. 3.3: the reduced allocation k / c, random rounding
+        // floor(k / c + u) so small triangles are not all rounded down to zero.
+        const float u = uniform01(coatSeedValue, kStreamCulling, static_cast<std::uint64_t>(t));
+        const auto f = static_cast<std::int32_t>(std::floor(static_cast<float>(k) / factor + u));
+        kd = std::min(k, f);
+      }
+      drawnStart[static_cast<std::size_t>(t) + 1] = kd;
+      sum += kd;
+    }
+    chunkSum[static_cast<std::size_t>(c) + 1] = sum;
+  });
+  for (std::size_t c = 1; c <= kChunks; ++c) chunkSum[c] += chunkSum[c - 1];
+  drawnStart[0] = 0;
+  parallelFor(kChunks, 1, [&](std::int64_t c) {
+    const std::int64_t b = c * per, e = std::min(nT, b + per);
+    std::int64_t run = chunkSum[static_cast<std::size_t>(c)];
+    for (std::int64_t t = b; t < e; ++t) {
+      run += drawnStart[static_cast<std::size_t>(t) + 1];
+      drawnStart[static_cast<std::size_t>(t) + 1] = static_cast<std::int32_t>(run);
+    }
+  });
+  return chunkSum[kChunks];
+}
+
+}  // namespace pelage::fur

@@ -1,0 +1,105 @@
+#include "pelage/fur/fur_params.h"
+
+#include <cmath>
+#include <limits>
+
+#include "pelage/fur/roots.h"
+#include "pelage/util/error.h"
+#include "pelage/util/log.h"
+
+namespace pelage::fur {
+namespace {
+
+void checkRange(const std::string& source, const std::string& field, double v, double lo,
+                double hi) {
+  if (!std::isfinite(v) || v < lo || v > hi)
+    inputError(source, ": ", field, " = ", v, " is out of range [", lo, ", ", hi, "]");
+}
+
+void checkColor(const std::string& source, const std::string& field, const Eigen::Vector3f& c) {
+  for (int k = 0; k < 3; ++k) checkRange(source, str(field, "[", k, "]"), c[k], 0.0, 1.0);
+}
+
+void checkCoat(const std::string& source, const std::string& name, const CoatParams& c) {
+  checkRange(source, name + ".stiffness", c.stiffness, 0.0, 1.0);
+  checkRange(source, name + ".normalRandomize", c.normalRandomize, 0.0, 1.0);
+  checkRange(source, name + ".hairEndRandomize", c.hairEndRandomize, 0.0, 2.0);
+  checkRange(source, name + ".segmentDirectionWeight", c.segmentDirectionWeight, 0.0, 1.0);
+  checkRange(source, name + ".relativeLength", c.lengthFactor, 0.0, 10.0);
+  checkRange(source, name + ".curvePoints", c.curvePoints, 2, 64);
+  checkRange(source, name + ".tubeSides", c.tubeSides, 3, 32);
+  checkRange(source, name + ".tubeRadius", c.tubeRadiusMeters, 1e-6, 0.01);
+  checkRange(source, name + ".curl.radius", c.curlRadius, 0.0, 0.5);
+  checkRange(source, name + ".curl.turns", c.curlTurns, 0.0, 20.0);
+  checkColor(source, name + ".ambient", c.material.ambient);
+  checkColor(source, name + ".diffuse", c.material.diffuse);
+  checkColor(source, name + ".specular", c.material.specular);
+  checkRange(source, name + ".shininess", c.material.shininess, 1.0, 1000.0);
+}
+
+}  // namespace
+
+const char* styleName(HairStyle style) {
+  switch (style) {
+    case HairStyle::Line:
+      return "line";
+    case HairStyle::Polyline:
+      return "polyline";
+    case HairStyle::Curve:
+      return "curve";
+    case HairStyle::Tube:
+      return "tube";
+  }
+  return "?";
+}
+
+HairStyle parseStyle(std::string_view name, const std::string& where) {
+  for (HairStyle s : {HairStyle::Line, HairStyle::Polyline, HairStyle::Curve, HairStyle::Tube})
+    if (name == styleName(s)) return s;
+  inputError(where, ": unknown hair style '", name, "' (accepted: line, polyline, curve, tube)");
+}
+
+void validateFurParams(FurParams& p, const std::string& source) {
+  checkRange(source, "hairs", p.hairs, 0.0, std::numeric_limits<double>::max());
+  checkRange(source, "density", p.densityPerM2, 0.0, 1e10);
+  checkRange(source, "undercoatShare", p.undercoatShare, 0.0, 1.0);
+  checkRange(source, "lengthScale", p.lengthScale, 0.0, 10.0);
+  checkCoat(source, "overcoat", p.coats[kOvercoat]);
+  checkCoat(source, "undercoat", p.coats[kUndercoat]);
+  const LengthRegion& r = p.lengthRegion;
+  checkRange(source, "lengthRegion.scale", r.scale, 0.0, 10.0);
+  for (int k = 0; k < 3; ++k) {
+    checkRange(source, str("lengthRegion.center[", k, "]"), r.center[k], -1e4, 1e4);
+    checkRange(source, str("lengthRegion.min[", k, "]"), r.boxMin[k], -1e4, 1e4);
+    checkRange(source, str("lengthRegion.max[", k, "]"), r.boxMax[k], -1e4, 1e4);
+  }
+  if (r.shape == RegionShape::Sphere)
+    checkRange(source, "lengthRegion.radius", r.radius, 1e-6, 1e4);
+  if (r.shape == RegionShape::Box)
+    for (int k = 0; k < 3; ++k)
+      if (r.boxMin[k] > r.boxMax[k])
+        inputError(source, ": lengthRegion.min[", k, "] = ", r.boxMin[k],
+                   " exceeds lengthRegion.max[", k, "] = ", r.boxMax[k],
+                   " (a box needs min <= max)");
+  for (int k = 0; k < 3; ++k) checkRange(source, str("up[", k, "]"), p.up[k], -1e6, 1e6);
+  const float upLength = p.up.norm();
+  if (!(upLength > 1e-6f))
+    inputError(source,
+               ": up = (0, 0, 0) has no direction (give a non-zero vector, e.g. [0, 0, 1])");
+  p.up /= upLength;
+  checkRange(source, "culling.referenceDistance", p.culling.referenceDistance, 0.0, 1e4);
+  checkRange(source, "culling.fovDegrees", p.culling.fovYDegrees, 1.0, 179.0);
+  // A total above kMaxHairs is refused with the memory it would need (a density is checked when
+  // the roots are grown, against the skin's area).
+  if (p.densityPerM2 == 0.0) checkHairBudget(p, 0.0);
+  for (int c = 0; c < kCoatCount; ++c) {
+    const float s = p.coats[static_cast<std::size_t>(c)].stiffness;
+    if (1.0f - s < 0.02f)
+      warn(str(source, ": ", c == 0 ? "overcoat" : "undercoat", ".stiffness ", s,
+               " would make floppiness ", 1.0f - s,
+               " < 0.02; using floppiness 0.02 (the paper, sec. 3.7: "
+               "\"floppiness is required to be at least .02\")"));
+  }
+}
+
+}  // namespace pelage::fur

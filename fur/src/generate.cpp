@@ -1,0 +1,399 @@
+#include "pelage/fur/generate.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstring>
+
+#include "generate_dynamic.h"
+#include "kernel.h"
+#include "pelage/util/error.h"
+#include "pelage/util/parallel.h"
+#include "pelage/util/random.h"
+
+namespace pelage::fur {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+// Drawn hairs per parallel task (a multiple of the SIMD block, so blocks and their stores stay
+// aligned).
+constexpr std::int64_t kHairsPerTask = 4096;
+static_assert(kHairsPerTask % 16 == 0);
+// Outputs above this many bytes per coat use non-temporal stores (they would not stay in cache).
+constexpr double kStreamStoreBytes = 8.0 * 1024.0 * 1024.0;
+
+std::atomic<int>& kernelPathSetting() {
+  static std::atomic<int> p{static_cast<int>(KernelPath::Auto)};
+  return p;
+}
+
+bool cpuHasAvx2() {
+  static const bool has = __builtin_cpu_supports("avx2") != 0;
+  return has;
+}
+
+bool cpuHasAvx512() {
+  static const bool has = __builtin_cpu_supports("avx512f") != 0 &&
+                          __builtin_cpu_supports("avx512dq") != 0 &&
+                          __builtin_cpu_supports("avx512vl") != 0 && cpuHasAvx2();
+  return has;
+}
+
+}  // namespace
+
+void FloatBuffer::resize(std::size_t n) {
+  if (n > capacity_) {
+    data_.reset(static_cast<float*>(
+        ::operator new[](std::max<std::size_t>(n, 1) * sizeof(float), std::align_val_t(64))));
+    capacity_ = n;
+  }
+  size_ = n;
+}
+
+int pointsPerHair(const CoatParams& coat) {
+  switch (coat.style) {
+    case HairStyle::Line:
+      return 2;
+    case HairStyle::Polyline:
+      return kPolylinePoints;
+    case HairStyle::Curve:
+      return coat.curvePoints;
+    case HairStyle::Tube:
+      return coat.curvePoints * coat.tubeSides;
+  }
+  return 0;
+}
+
+CoatShape makeCoatShape(const FurParams& params, int coat) {
+  const CoatParams& cp = params.coats[static_cast<std::size_t>(coat)];
+  CoatShape c;
+  c.style = cp.style;
+  c.points = pointsPerHair(cp);
+  c.lengthMul = params.lengthScale * cp.lengthFactor;
+  c.segmentWeight = cp.segmentDirectionWeight;
+  c.endRandomize = cp.hairEndRandomize;
+  c.floppiness = floppiness(cp.stiffness);
+  const Eigen::Vector3f up = params.up.normalized();
+  // A fixed tangent perpendicular to U for hairs that gravity leaves with no direction.
+  const Eigen::Vector3f axis =
+      std::abs(up.x()) > 0.9f ? Eigen::Vector3f::UnitY() : Eigen::Vector3f::UnitX();
+  const Eigen::Vector3f tangent = up.cross(axis).normalized();
+  for (int k = 0; k < 3; ++k) {
+    c.up[k] = up[k];
+    c.fallbackTangent[k] = tangent[k];
+  }
+  c.twist = cp.style == HairStyle::Polyline && cp.normalRandomize > 0.0f;
+  const LengthRegion& reg = params.lengthRegion;
+  c.regionShape = reg.shape;
+  c.regionScale = reg.scale;
+  c.regionRadius2 = reg.radius * reg.radius;
+  for (int k = 0; k < 3; ++k) {
+    c.regionCenter[k] = reg.center[k];
+    c.regionMin[k] = reg.boxMin[k];
+    c.regionMax[k] = reg.boxMax[k];
+  }
+  // Van Gelder & Wilhelms 1997, sec. 3.7 (Figure 3): template a(t) = 2 lambda t (1 - t),
+  // b(t) = t^2, lambda = 0.5, t_i = i / 7.
+  constexpr double lambda = 0.5;
+  double a[kPolylinePoints], b[kPolylinePoints];
+  for (int i = 0; i < kPolylinePoints; ++i) {
+    const double t = i / double(kPolylinePoints - 1);
+    a[i] = 2.0 * lambda * t * (1.0 - t);
+    b[i] = t * t;
+    c.polyA[i] = static_cast<float>(a[i]);
+    c.polyB[i] = static_cast<float>(b[i]);
+  }
+  for (int i = 0; i < kPolylinePoints; ++i) {
+    const int s = i == 0 ? 1 : i;  // point 0 uses the first segment
+    const double alpha = a[s] - a[s - 1], beta = b[s] - b[s - 1];
+    c.polyAlpha[i] = static_cast<float>(alpha);
+    c.polyBeta[i] = static_cast<float>(beta);
+    c.polyAlpha2[i] = static_cast<float>(alpha * alpha);
+    c.polyBeta2[i] = static_cast<float>(beta * beta);
+    c.polyTwoAlphaBeta[i] = static_cast<float>(2.0 * alpha * beta);
+  }
+  // Sec. 3.8: Bezier weights of R + c1 L n_p + c2 L e at t_k = k / (K - 1).
+  const int K = std::clamp(cp.curvePoints, 2, kMaxCurvePoints);
+  c.curvePoints = K;
+  c.curl = cp.curlRadius > 0.0f && (cp.style == HairStyle::Curve || cp.style == HairStyle::Tube);
+  c.curlRadius = c.curl ? cp.curlRadius : 0.0f;
+  const double turns = static_cast<double>(cp.curlTurns);
+  const double rootRadius = static_cast<double>(cp.tubeRadiusMeters);
+  for (int k = 0; k < K; ++k) {
+    const double t = k / double(K - 1);
+    c.curveC1[k] = static_cast<float>((1 - t) * (1 - t) * t);
+    c.curveC2[k] = static_cast<float>(2 * (1 - t) * t * t + t * t * t);
+    c.curveDc1[k] = static_cast<float>((1 - t) * (1 - 3 * t));
+    c.curveDc2[k] = static_cast<float>(4 * t - 3 * t * t);
+    const bool end = k == 0 || k == K - 1;
+    c.curlEnvelope[k] = end ? 0.0f : static_cast<float>(std::sin(kPi * t));
+    c.curlCos[k] = static_cast<float>(std::cos(2 * kPi * turns * t));
+    c.curlSin[k] = static_cast<float>(std::sin(2 * kPi * turns * t));
+    c.tubeRadius[k] =
+        static_cast<float>(rootRadius * (1.0 - (1.0 - static_cast<double>(kTubeTipFraction)) * t));
+  }
+  c.curveC1[K - 1] = 0.0f;  // the curve ends exactly at E
+  c.curveC2[K - 1] = 1.0f;
+  const int M = std::clamp(cp.tubeSides, 3, kMaxTubeSides);
+  c.tubeSides = M;
+  for (int j = 0; j < M; ++j) {
+    c.ringCos[j] = static_cast<float>(std::cos(2 * kPi * j / M));
+    c.ringSin[j] = static_cast<float>(std::sin(2 * kPi * j / M));
+  }
+  return c;
+}
+
+void makeTwistTable(std::uint64_t seed, float normalRandomize, std::vector<float>& table) {
+  table.resize(static_cast<std::size_t>(kBarycentricTableSize) * kPolylinePoints * 2);
+  // Van Gelder & Wilhelms 1997, sec. 3.7: "each shading normal is rotated through a random angle,
+  // with the line segment as axis": angle r pi (2u - 1).
+  for (std::int64_t j = 0; j < kBarycentricTableSize; ++j)
+    for (int i = 0; i < kPolylinePoints; ++i) {
+      const auto u = static_cast<double>(
+          uniform01(seed, kStreamNormal, static_cast<std::uint64_t>(j * kPolylinePoints + i)));
+      const double angle = static_cast<double>(normalRandomize) * kPi * (2.0 * u - 1.0);
+      table[static_cast<std::size_t>((j * kPolylinePoints + i) * 2)] =
+          static_cast<float>(std::cos(angle));
+      table[static_cast<std::size_t>((j * kPolylinePoints + i) * 2 + 1)] =
+          static_cast<float>(std::sin(angle));
+    }
+}
+
+void prepareFurFrame(const FurRoots& roots, const FurParams& params, FurFrame& frame) {
+  for (int c = 0; c < kCoatCount; ++c) {
+    HairBuffers& hb = frame.coats[static_cast<std::size_t>(c)];
+    const std::int64_t n = roots.coats[static_cast<std::size_t>(c)].size();
+    hb.style = params.coats[static_cast<std::size_t>(c)].style;
+    hb.pointsPerHair = pointsPerHair(params.coats[static_cast<std::size_t>(c)]);
+    const std::size_t floats =
+        static_cast<std::size_t>(n) * static_cast<std::size_t>(hb.pointsPerHair) * 3;
+    hb.positions.resize(floats);
+    hb.normals.resize(floats);
+    if (hb.hairIds.size() != static_cast<std::size_t>(n))
+      hb.hairIds.resize(static_cast<std::size_t>(n));
+    hb.drawn = 0;
+  }
+}
+
+bool setKernelPath(KernelPath path) {
+  if (path == KernelPath::Avx2 && !cpuHasAvx2()) return false;
+  if (path == KernelPath::Avx512 && !cpuHasAvx512()) return false;
+  kernelPathSetting() = static_cast<int>(path);
+  return true;
+}
+
+KernelPath activeKernelPath() {
+  const auto p = static_cast<KernelPath>(kernelPathSetting().load());
+  if (p != KernelPath::Auto) return p;
+  if (cpuHasAvx512()) return KernelPath::Avx512;
+  return cpuHasAvx2() ? KernelPath::Avx2 : KernelPath::Generic;
+}
+
+const char* kernelPathName(KernelPath path) {
+  switch (path) {
+    case KernelPath::Auto:
+      return "auto";
+    case KernelPath::Generic:
+      return "generic";
+    case KernelPath::Avx2:
+      return "avx2";
+    case KernelPath::Avx512:
+      return "avx512";
+  }
+  return "?";
+}
+
+namespace {
+
+// Packs position, fur length, normal and segment direction of every vertex into 48-byte records,
+// so a hair's three vertices are three contiguous reads.
+void packVertices(const skin::SkinMesh& skin, const skin::DeformedSkin& d,
+                  std::vector<float>& out) {
+  const std::int64_t nV = skin.numVertices();
+  if (out.size() != static_cast<std::size_t>(nV * detail::kVertexRecordFloats))
+    out.resize(static_cast<std::size_t>(nV * detail::kVertexRecordFloats));
+  const float* len = skin.furLengths();
+  float* o = out.data();
+  parallelForChunks(nV, 8192, [&](std::int64_t b, std::int64_t e) {
+    for (std::int64_t v = b; v < e; ++v) {
+      float* r = o + v * detail::kVertexRecordFloats;
+      const auto sv = static_cast<std::size_t>(v);
+      r[0] = d.positions[sv].x();
+      r[1] = d.positions[sv].y();
+      r[2] = d.positions[sv].z();
+      r[3] = len[v];
+      r[4] = d.normals[sv].x();
+      r[5] = d.normals[sv].y();
+      r[6] = d.normals[sv].z();
+      r[7] = 0.0f;
+      r[8] = d.directions[sv].x();
+      r[9] = d.directions[sv].y();
+      r[10] = d.directions[sv].z();
+      r[11] = 0.0f;
+    }
+  });
+}
+
+void ensureTwist(const FurParams& params, int coat, std::uint64_t seed, FurWorkspace& ws) {
+  const auto c = static_cast<std::size_t>(coat);
+  const float r = params.coats[c].normalRandomize;
+  if (ws.twistAmount[c] == r && ws.twistSeed[c] == seed && !ws.twist[c].empty()) return;
+  makeTwistTable(seed, r, ws.twist[c]);
+  ws.twistAmount[c] = r;
+  ws.twistSeed[c] = seed;
+}
+
+}  // namespace
+
+void generateFur(const skin::SkinMesh& skin, const FurRoots& roots, const FurParams& params,
+                 const skin::DeformedSkin& deformed, const FurView& view, FurWorkspace& ws,
+                 FurFrame& frame) {
+  detail::generateFurWithDynamics(skin, roots, params, deformed, view, ws, frame, {nullptr, nullptr},
+                                  true);
+}
+
+void detail::generateFurWithDynamics(
+    const skin::SkinMesh& skin, const FurRoots& roots, const FurParams& params,
+    const skin::DeformedSkin& deformed, const FurView& view, FurWorkspace& ws, FurFrame& frame,
+    const std::array<const CoatDynamicsArgs*, kCoatCount>& dynamics, bool emit) {
+  PELAGE_CHECK(roots.triangleCount == skin.numTriangles(), "roots grown on ", roots.triangleCount,
+               " triangles, skin has ", skin.numTriangles());
+  PELAGE_CHECK(deformed.positions.size() == static_cast<std::size_t>(skin.numVertices()) &&
+                   deformed.normals.size() == deformed.positions.size() &&
+                   deformed.directions.size() == deformed.positions.size(),
+               "deformed skin does not match the skin");
+  bool sized = true;
+  for (int c = 0; c < kCoatCount; ++c) {
+    const HairBuffers& hb = frame.coats[static_cast<std::size_t>(c)];
+    const auto& cp = params.coats[static_cast<std::size_t>(c)];
+    sized = sized && hb.style == cp.style && hb.pointsPerHair == pointsPerHair(cp) &&
+            hb.hairIds.size() ==
+                static_cast<std::size_t>(roots.coats[static_cast<std::size_t>(c)].size());
+  }
+  if (!sized && emit) prepareFurFrame(roots, params, frame);
+  packVertices(skin, deformed, ws.vertexRecords);
+  const float factor = emit ? cullingFactor(view) : 1.0f;
+  if (emit) frame.cullingFactor = factor;
+  const KernelPath path = activeKernelPath();
+  for (int c = 0; c < kCoatCount; ++c) {
+    const auto ci = static_cast<std::size_t>(c);
+    const CoatRoots& cr = roots.coats[ci];
+    if (!emit && !dynamics[ci]) continue;
+    HairBuffers& hb = frame.coats[ci];
+    const std::uint64_t seed = coatSeed(roots.seed, c);
+    const CoatShape shape = makeCoatShape(params, c);
+    if (shape.twist) ensureTwist(params, c, seed, ws);
+    std::int64_t drawn = cr.size();
+    const std::int32_t* drawnStart = cr.triangleStart.data();
+    if (factor > 1.0f) {
+      drawn = computeDrawnStart(cr, seed, factor, ws.drawnStart[ci]);
+      drawnStart = ws.drawnStart[ci].data();
+    }
+    if (emit) hb.drawn = drawn;
+    if (drawn == 0) continue;
+    detail::CoatKernelArgs a;
+    a.shape = &shape;
+    a.vertices = ws.vertexRecords.data();
+    a.triangles = skin.triangles.data();
+    a.triangleStart = cr.triangleStart.data();
+    a.drawnStart = drawnStart;
+    a.triangleCount = roots.triangleCount;
+    a.allDrawn = drawnStart == cr.triangleStart.data();
+    a.rootTriangle = cr.triangle.data();
+    a.tableIndex = cr.tableIndex.data();
+    a.jitter = cr.jitter.data();
+    a.barycentric = roots.barycentric.data();
+    a.twist = shape.twist ? ws.twist[ci].data() : nullptr;
+    a.positions = emit ? hb.positions.data() : nullptr;
+    a.normals = emit ? hb.normals.data() : nullptr;
+    a.hairIds = emit ? hb.hairIds.data() : nullptr;
+    a.dynamics = dynamics[ci];
+    a.emit = emit;
+    const double bytes = static_cast<double>(drawn) * shape.points * 24.0;
+    // Streaming needs 32-byte aligned rows: polyline-like layouts (P a multiple of 8) and lines
+    // (a full 8-line block is six aligned vectors).
+    a.streamStores = emit && (shape.points % 8 == 0 || shape.style == HairStyle::Line) &&
+                     bytes > kStreamStoreBytes;
+    auto run = path == KernelPath::Avx512 ? detail::runCoatRangeAvx512
+               : path == KernelPath::Avx2 ? detail::runCoatRangeAvx2
+                                          : detail::runCoatRangeGeneric;
+    parallelForChunks(drawn, kHairsPerTask, [&](std::int64_t b, std::int64_t e) { run(a, b, e); });
+  }
+}
+
+namespace {
+struct VectorSink {
+  std::vector<float>& positions;
+  std::vector<float>& normals;
+  void operator()(int i, const Vec3<float>& p, const Vec3<float>& n) {
+    const auto o = static_cast<std::size_t>(3 * i);
+    positions[o] = p.x;
+    positions[o + 1] = p.y;
+    positions[o + 2] = p.z;
+    normals[o] = n.x;
+    normals[o + 1] = n.y;
+    normals[o + 2] = n.z;
+  }
+};
+}  // namespace
+
+void referenceHair(const skin::SkinMesh& skin, const FurRoots& roots, const FurParams& params,
+                   const skin::DeformedSkin& deformed, int coat, std::int64_t rootIndex,
+                   std::vector<float>& positions, std::vector<float>& normals) {
+  const auto ci = static_cast<std::size_t>(coat);
+  const CoatRoots& cr = roots.coats[ci];
+  PELAGE_CHECK(rootIndex >= 0 && rootIndex < cr.size(), "root ", rootIndex, " of ", cr.size());
+  const CoatShape shape = makeCoatShape(params, coat);
+  const auto r = static_cast<std::size_t>(rootIndex);
+  const std::int32_t t = cr.triangle[r];
+  const float* b = roots.barycentric.data() + 4 * cr.tableIndex[r];
+  HairInput<float> in{};
+  auto mix = [&](auto get) {
+    const std::int32_t* tv = skin.triangles.data() + 3 * static_cast<std::int64_t>(t);
+    return barycentricMix(b[0], b[1], b[2], get(tv[0]), get(tv[1]), get(tv[2]));
+  };
+  const float* len = skin.furLengths();
+  for (int k = 0; k < 3; ++k) {
+    const float rk =
+        mix([&](std::int32_t v) { return deformed.positions[static_cast<std::size_t>(v)][k]; });
+    const float nk =
+        mix([&](std::int32_t v) { return deformed.normals[static_cast<std::size_t>(v)][k]; });
+    const float sk =
+        mix([&](std::int32_t v) { return deformed.directions[static_cast<std::size_t>(v)][k]; });
+    (k == 0 ? in.root.x : k == 1 ? in.root.y : in.root.z) = rk;
+    (k == 0 ? in.normalSum.x : k == 1 ? in.normalSum.y : in.normalSum.z) = nk;
+    (k == 0 ? in.directionSum.x : k == 1 ? in.directionSum.y : in.directionSum.z) = sk;
+  }
+  in.length = mix([&](std::int32_t v) { return len[v]; });
+  const float* j = cr.jitter.data() + 4 * r;
+  in.xi = {j[0], j[1], j[2]};
+  in.phase = j[3];
+  HairTwist<float> twist{};
+  if (shape.twist) {
+    std::vector<float> table;
+    makeTwistTable(coatSeed(roots.seed, coat), params.coats[ci].normalRandomize, table);
+    for (int i = 0; i < kPolylinePoints; ++i) {
+      twist.cosAngle[i] = table[static_cast<std::size_t>(16 * cr.tableIndex[r] + 2 * i)];
+      twist.sinAngle[i] = table[static_cast<std::size_t>(16 * cr.tableIndex[r] + 2 * i + 1)];
+    }
+  }
+  positions.assign(static_cast<std::size_t>(3 * shape.points), 0.0f);
+  normals.assign(static_cast<std::size_t>(3 * shape.points), 0.0f);
+  VectorSink sink{positions, normals};
+  buildHair(shape, in, twist, sink);
+}
+
+std::vector<std::int32_t> tubeTriangles(int curvePoints, int tubeSides) {
+  std::vector<std::int32_t> tri;
+  const int K = curvePoints, M = tubeSides;
+  tri.reserve(static_cast<std::size_t>((K - 1) * M * 6));
+  for (int k = 0; k + 1 < K; ++k)
+    for (int j = 0; j < M; ++j) {
+      const int a = k * M + j, b = k * M + (j + 1) % M;
+      const int c = (k + 1) * M + j, d = (k + 1) * M + (j + 1) % M;
+      tri.insert(tri.end(), {a, c, d, a, d, b});
+    }
+  return tri;
+}
+
+}  // namespace pelage::fur

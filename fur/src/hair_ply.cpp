@@ -1,0 +1,132 @@
+#include "pelage/fur/hair_ply.h"
+
+#include <bit>
+#include <cstring>
+#include <limits>
+#include <sstream>
+#include <vector>
+
+#include "pelage/util/atomic_file.h"
+#include "pelage/util/error.h"
+
+namespace pelage::fur {
+namespace {
+
+// Buffers binary output and hands it to the writer in large pieces.
+class Chunked {
+ public:
+  explicit Chunked(AtomicFileWriter& w) : w_(w) { buf_.reserve(kSize); }
+  template <class T>
+  void put(const T& v) {
+    putBytes(&v, sizeof(T));
+  }
+  void putBytes(const void* data, std::size_t n) {
+    if (buf_.size() + n > kSize) flush();
+    const auto* p = static_cast<const char*>(data);
+    buf_.insert(buf_.end(), p, p + n);
+  }
+  void flush() {
+    if (!buf_.empty()) w_.write(buf_.data(), buf_.size());
+    buf_.clear();
+  }
+
+ private:
+  static constexpr std::size_t kSize = 1 << 22;
+  AtomicFileWriter& w_;
+  std::vector<char> buf_;
+};
+
+}  // namespace
+
+HairPlyCounts hairPlyCounts(const FurFrame& frame, const FurParams& params) {
+  HairPlyCounts n;
+  for (int c = 0; c < kCoatCount; ++c) {
+    const HairBuffers& hb = frame.coats[static_cast<std::size_t>(c)];
+    const std::int64_t P = hb.pointsPerHair;
+    n.vertices += hb.drawn * P;
+    if (hb.style == HairStyle::Tube) {
+      const CoatParams& cp = params.coats[static_cast<std::size_t>(c)];
+      n.faces += hb.drawn * (cp.curvePoints - 1) * cp.tubeSides * 2;
+    } else {
+      n.edges += hb.drawn * (P - 1);
+    }
+  }
+  return n;
+}
+
+HairPlyCounts writeHairPly(const std::string& path, const FurFrame& frame, const FurParams& params,
+                           const std::string& comment) {
+  static_assert(std::numeric_limits<float>::is_iec559 && sizeof(float) == 4);
+  static_assert(std::endian::native == std::endian::little,
+                "PLY writer assumes a little-endian host");
+  const HairPlyCounts n = hairPlyCounts(frame, params);
+  if (n.vertices > std::numeric_limits<std::int32_t>::max())
+    inputError(path, ": ", n.vertices,
+               " hair points exceed the PLY int index range (at most 2147483647)");
+  bool anyTube = false, anyStrand = false;
+  for (const HairBuffers& hb : frame.coats)
+    if (hb.drawn > 0) (hb.style == HairStyle::Tube ? anyTube : anyStrand) = true;
+  std::ostringstream h;
+  h << "ply\nformat binary_little_endian 1.0\ncomment pelage hairs (Van Gelder & Wilhelms 1997 "
+       "fur)\n";
+  std::istringstream lines(comment);
+  for (std::string line; std::getline(lines, line);) h << "comment " << line << "\n";
+  h << "element vertex " << n.vertices << "\nproperty float x\nproperty float y\nproperty float z\n"
+    << "property float nx\nproperty float ny\nproperty float nz\nproperty int hair\nproperty uchar "
+       "coat\n";
+  if (anyStrand || !anyTube)
+    h << "element edge " << n.edges << "\nproperty int vertex1\nproperty int vertex2\n";
+  if (anyTube) h << "element face " << n.faces << "\nproperty list uchar int vertex_indices\n";
+  h << "end_header\n";
+
+  AtomicFileWriter w(path);
+  w.write(h.str());
+  Chunked out(w);
+  for (int c = 0; c < kCoatCount; ++c) {
+    const HairBuffers& hb = frame.coats[static_cast<std::size_t>(c)];
+    const std::int64_t P = hb.pointsPerHair;
+    const auto coat = static_cast<std::uint8_t>(c);
+    for (std::int64_t i = 0; i < hb.drawn; ++i)
+      for (std::int64_t k = 0; k < P; ++k) {
+        char rec[29];  // 6 floats, int, uchar: little-endian like the host
+        std::memcpy(rec, hb.positions.data() + (i * P + k) * 3, 12);
+        std::memcpy(rec + 12, hb.normals.data() + (i * P + k) * 3, 12);
+        std::memcpy(rec + 24, &hb.hairIds[static_cast<std::size_t>(i)], 4);
+        rec[28] = static_cast<char>(coat);
+        out.putBytes(rec, sizeof rec);
+      }
+  }
+  std::int32_t base = 0;
+  for (const HairBuffers& hb : frame.coats) {  // edges
+    const auto P = static_cast<std::int32_t>(hb.pointsPerHair);
+    if (hb.style != HairStyle::Tube)
+      for (std::int64_t i = 0; i < hb.drawn; ++i)
+        for (std::int32_t k = 0; k + 1 < P; ++k) {
+          const std::int32_t v = base + static_cast<std::int32_t>(i) * P + k;
+          out.put(v);
+          out.put(static_cast<std::int32_t>(v + 1));
+        }
+    base += static_cast<std::int32_t>(hb.drawn * P);
+  }
+  base = 0;
+  for (int c = 0; c < kCoatCount; ++c) {  // faces
+    const HairBuffers& hb = frame.coats[static_cast<std::size_t>(c)];
+    const auto P = static_cast<std::int32_t>(hb.pointsPerHair);
+    if (hb.style == HairStyle::Tube) {
+      const CoatParams& cp = params.coats[static_cast<std::size_t>(c)];
+      const std::vector<std::int32_t> pattern = tubeTriangles(cp.curvePoints, cp.tubeSides);
+      for (std::int64_t i = 0; i < hb.drawn; ++i)
+        for (std::size_t t = 0; t < pattern.size(); t += 3) {
+          out.put(std::uint8_t{3});
+          for (std::size_t k = 0; k < 3; ++k)
+            out.put(static_cast<std::int32_t>(base + i * P + pattern[t + k]));
+        }
+    }
+    base += static_cast<std::int32_t>(hb.drawn * P);
+  }
+  out.flush();
+  w.commit();
+  return n;
+}
+
+}  // namespace pelage::fur

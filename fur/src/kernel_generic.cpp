@@ -1,0 +1,91 @@
+// The generic (x86-64 baseline / any CPU) build of the hair kernel: lane-wise loops, scalar gathers
+// and stores. Bit-identical to the AVX2 build.
+#include "kernel_impl.h"
+#include "simd_generic.h"
+
+namespace pelage::fur::detail {
+namespace {
+
+struct GenericBackend {
+  using F = generic::F;
+  using FrameF = generic::F;
+  static constexpr int kLanes = detail::kLanes;
+  static constexpr int kFrameLanes = detail::kLanes;
+
+  static const HairFrame<F>& frameLanes(const HairFrame<F>& f, int) { return f; }
+
+  static void load(const CoatKernelArgs& a, const std::int32_t* roots, const std::int32_t* tris,
+                   HairInput<F>& in) {
+    for (int l = 0; l < kLanes; ++l) {
+      const std::int32_t r = roots[l];
+      const float* v[3];
+      triangleRecords(a, tris[l], v);
+      const float* b = a.barycentric + 4 * static_cast<std::int64_t>(a.tableIndex[r]);
+      float mixed[12];
+      for (int k = 0; k < 12; ++k)
+        mixed[k] = barycentricMix(b[0], b[1], b[2], v[0][k], v[1][k], v[2][k]);
+      in.root.x.v[l] = mixed[0];
+      in.root.y.v[l] = mixed[1];
+      in.root.z.v[l] = mixed[2];
+      in.length.v[l] = mixed[3];
+      in.normalSum.x.v[l] = mixed[4];
+      in.normalSum.y.v[l] = mixed[5];
+      in.normalSum.z.v[l] = mixed[6];
+      in.directionSum.x.v[l] = mixed[8];
+      in.directionSum.y.v[l] = mixed[9];
+      in.directionSum.z.v[l] = mixed[10];
+      const float* j = a.jitter + 4 * static_cast<std::int64_t>(r);
+      in.xi.x.v[l] = j[0];
+      in.xi.y.v[l] = j[1];
+      in.xi.z.v[l] = j[2];
+      in.phase.v[l] = j[3];
+    }
+  }
+
+  static void loadTwist(const CoatKernelArgs& a, const std::int32_t* roots, HairTwist<F>& twist) {
+    for (int l = 0; l < kLanes; ++l) {
+      const float* tw = a.twist + 16 * static_cast<std::int64_t>(a.tableIndex[roots[l]]);
+      for (int p = 0; p < kPolylinePoints; ++p) {
+        twist.cosAngle[p].v[l] = tw[2 * p];
+        twist.sinAngle[p].v[l] = tw[2 * p + 1];
+      }
+    }
+  }
+
+  // Writes point i of every real lane straight to its hair's place.
+  struct Sink {
+    const CoatKernelArgs& a;
+    std::int64_t blockStart;
+    int count;
+    Sink(const CoatKernelArgs& args, std::int64_t start, int n)
+        : a(args), blockStart(start), count(n) {}
+    void operator()(int i, const Vec3<F>& p, const Vec3<F>& n) {
+      const std::int64_t P = a.shape->points;
+      for (int l = 0; l < count; ++l) {
+        const std::int64_t o = ((blockStart + l) * P + i) * 3;
+        a.positions[o] = p.x.v[l];
+        a.positions[o + 1] = p.y.v[l];
+        a.positions[o + 2] = p.z.v[l];
+        a.normals[o] = n.x.v[l];
+        a.normals[o + 1] = n.y.v[l];
+        a.normals[o + 2] = n.z.v[l];
+      }
+    }
+    void finish() {}
+  };
+
+  template <int P>
+  using FixedSink = Sink;
+
+  static void storeIds(std::int32_t* dst, const std::int32_t* roots, int count) {
+    for (int l = 0; l < count; ++l) dst[l] = roots[l];
+  }
+};
+
+}  // namespace
+
+void runCoatRangeGeneric(const CoatKernelArgs& args, std::int64_t begin, std::int64_t end) {
+  runCoatRange<GenericBackend>(args, begin, end);
+}
+
+}  // namespace pelage::fur::detail

@@ -1,0 +1,203 @@
+#include "pelage/fur/preset.h"
+
+#include <filesystem>
+
+#include "pelage/models/builtin.h"
+#include "pelage/util/atomic_file.h"
+#include "pelage/util/error.h"
+#include "pelage/util/json_reader.h"
+
+namespace pelage::fur {
+namespace {
+
+constexpr const char* kPresetDir = "presets/";
+
+float num(const JsonReader& j, const char* key, float fallback, double lo, double hi) {
+  return static_cast<float>(j.number(key, fallback, lo, hi));
+}
+
+Eigen::Vector3f color(const JsonReader& j, const char* key, const Eigen::Vector3f& fallback) {
+  if (!j.has(key)) return fallback;
+  const JsonReader c = j.at(key);
+  if (!c.isArray() || c.size() != 3)
+    c.fail("expected an array of 3 numbers in [0, 1] (linear RGB)");
+  Eigen::Vector3f v;
+  for (std::size_t k = 0; k < 3; ++k)
+    v[static_cast<int>(k)] = static_cast<float>(c.at(k).asNumber(0.0, 1.0));
+  return v;
+}
+
+CoatParams parseCoat(const JsonReader& j, const CoatParams& defaults) {
+  j.rejectUnknown({"style", "stiffness", "normalRandomize", "hairEndRandomize",
+                   "segmentDirectionWeight", "relativeLength", "ambient", "diffuse", "specular",
+                   "shininess", "curvePoints", "tubeSides", "tubeRadius", "curl"});
+  CoatParams c = defaults;
+  if (j.has("style")) c.style = parseStyle(j.string("style"), j.at("style").where());
+  c.stiffness = num(j, "stiffness", c.stiffness, 0.0, 1.0);
+  c.normalRandomize = num(j, "normalRandomize", c.normalRandomize, 0.0, 1.0);
+  c.hairEndRandomize = num(j, "hairEndRandomize", c.hairEndRandomize, 0.0, 2.0);
+  c.segmentDirectionWeight = num(j, "segmentDirectionWeight", c.segmentDirectionWeight, 0.0, 1.0);
+  c.lengthFactor = num(j, "relativeLength", c.lengthFactor, 0.0, 10.0);
+  c.material.ambient = color(j, "ambient", c.material.ambient);
+  c.material.diffuse = color(j, "diffuse", c.material.diffuse);
+  c.material.specular = color(j, "specular", c.material.specular);
+  c.material.shininess = num(j, "shininess", c.material.shininess, 1.0, 1000.0);
+  c.curvePoints = static_cast<int>(j.integer("curvePoints", c.curvePoints, 2, 64));
+  c.tubeSides = static_cast<int>(j.integer("tubeSides", c.tubeSides, 3, 32));
+  c.tubeRadiusMeters = num(j, "tubeRadius", c.tubeRadiusMeters, 1e-6, 0.01);
+  if (auto curl = j.find("curl")) {
+    curl->rejectUnknown({"radius", "turns"});
+    c.curlRadius = num(*curl, "radius", c.curlRadius, 0.0, 0.5);
+    c.curlTurns = num(*curl, "turns", c.curlTurns, 0.0, 20.0);
+  }
+  return c;
+}
+
+LengthRegion parseRegion(const JsonReader& j) {
+  j.rejectUnknown({"sphere", "box", "scale"});
+  LengthRegion r;
+  r.scale = num(j, "scale", 1.0f, 0.0, 10.0);
+  if (j.has("sphere") == j.has("box")) j.fail("give exactly one of 'sphere' or 'box'");
+  if (auto s = j.find("sphere")) {
+    s->rejectUnknown({"center", "radius"});
+    r.shape = RegionShape::Sphere;
+    r.center = s->vec3("center");
+    r.radius = num(*s, "radius", 0.0f, 1e-6, 1e4);
+    if (!s->has("radius")) s->fail("missing 'radius' (metres, [1e-06, 10000])");
+  } else {
+    const JsonReader b = j.at("box");
+    b.rejectUnknown({"min", "max"});
+    r.shape = RegionShape::Box;
+    r.boxMin = b.vec3("min");
+    r.boxMax = b.vec3("max");
+  }
+  return r;
+}
+
+std::optional<std::string> builtinPresetText(const std::string& name) {
+  const auto text = models::builtinFile(std::string(kPresetDir) + name + ".json");
+  if (!text) return std::nullopt;
+  return std::string(*text);
+}
+
+nlohmann::json colorJson(const Eigen::Vector3f& c) {
+  return {c.x(), c.y(), c.z()};
+}
+
+nlohmann::json coatJson(const CoatParams& c) {
+  nlohmann::json j;
+  j["style"] = styleName(c.style);
+  j["stiffness"] = c.stiffness;
+  j["normalRandomize"] = c.normalRandomize;
+  j["hairEndRandomize"] = c.hairEndRandomize;
+  j["segmentDirectionWeight"] = c.segmentDirectionWeight;
+  j["relativeLength"] = c.lengthFactor;
+  j["ambient"] = colorJson(c.material.ambient);
+  j["diffuse"] = colorJson(c.material.diffuse);
+  j["specular"] = colorJson(c.material.specular);
+  j["shininess"] = c.material.shininess;
+  j["curvePoints"] = c.curvePoints;
+  j["tubeSides"] = c.tubeSides;
+  j["tubeRadius"] = c.tubeRadiusMeters;
+  j["curl"] = {{"radius", c.curlRadius}, {"turns", c.curlTurns}};
+  return j;
+}
+
+}  // namespace
+
+std::vector<std::string> builtinPresetNames() {
+  std::vector<std::string> names;
+  for (const std::string& f : models::builtinFileNames()) {
+    if (f.rfind(kPresetDir, 0) != 0 || f.size() < 5 || f.substr(f.size() - 5) != ".json") continue;
+    names.push_back(
+        f.substr(std::string(kPresetDir).size(), f.size() - std::string(kPresetDir).size() - 5));
+  }
+  return names;
+}
+
+namespace {
+FurParams parsePreset(const nlohmann::json& doc, const std::string& source) {
+  const JsonReader j(doc, source);
+  if (!j.isObject()) j.fail("expected a JSON object with the fur parameters");
+  j.rejectUnknown({"name", "description", "hairs", "density", "undercoatShare", "seed",
+                   "lengthScale", "lengthRegion", "up", "culling", "overcoat", "undercoat"});
+  FurParams p;
+  p.name = j.string("name", std::filesystem::path(source).stem().string());
+  if (j.has("description")) (void)j.string("description");
+  if (j.has("hairs") && j.has("density"))
+    j.fail("give either 'hairs' (a total) or 'density' (hairs per square metre), not both");
+  p.hairs = j.number("hairs", p.hairs, 0.0, kMaxHairs);
+  p.densityPerM2 = j.number("density", 0.0, 0.0, 1e10);
+  p.undercoatShare = num(j, "undercoatShare", p.undercoatShare, 0.0, 1.0);
+  p.seed = static_cast<std::uint64_t>(j.integer("seed", 1, 0, std::int64_t(1) << 53));
+  p.lengthScale = num(j, "lengthScale", p.lengthScale, 0.0, 10.0);
+  if (auto r = j.find("lengthRegion")) p.lengthRegion = parseRegion(*r);
+  p.up = j.vec3("up", p.up);
+  if (auto c = j.find("culling")) {
+    c->rejectUnknown({"enabled", "referenceDistance", "fovDegrees"});
+    p.culling.enabled = c->boolean("enabled", p.culling.enabled);
+    p.culling.referenceDistance =
+        num(*c, "referenceDistance", p.culling.referenceDistance, 0.0, 1e4);
+    p.culling.fovYDegrees = num(*c, "fovDegrees", p.culling.fovYDegrees, 1.0, 179.0);
+  }
+  if (auto c = j.find("overcoat")) p.coats[kOvercoat] = parseCoat(*c, p.coats[kOvercoat]);
+  // The undercoat starts from the overcoat's values: a preset states only what differs.
+  CoatParams under = p.coats[kOvercoat];
+  under.lengthFactor = 0.3f;  // the paper's favourite relative length (sec. 4)
+  p.coats[kUndercoat] = j.has("undercoat") ? parseCoat(j.at("undercoat"), under) : under;
+  validateFurParams(p, source);
+  return p;
+}
+}  // namespace
+
+FurParams parseFurPreset(const std::string& jsonText, const std::string& source) {
+  return parsePreset(JsonReader::parseText(jsonText, source), source);
+}
+
+FurParams loadFurPreset(const std::string& nameOrPath) {
+  const bool looksLikePath = nameOrPath.find('/') != std::string::npos ||
+                             std::filesystem::path(nameOrPath).extension() == ".json";
+  if (!looksLikePath) {
+    if (auto text = builtinPresetText(nameOrPath))
+      return parseFurPreset(*text, "built-in preset " + nameOrPath);
+    if (!std::filesystem::exists(nameOrPath)) {
+      std::string list;
+      for (const std::string& n : builtinPresetNames()) list += (list.empty() ? "" : ", ") + n;
+      inputError("unknown fur preset '", nameOrPath, "' (built-in: ", list,
+                 "; or give a .json file)");
+    }
+  }
+  return parsePreset(JsonReader::parseFile(nameOrPath), nameOrPath);
+}
+
+std::string furPresetJson(const FurParams& p) {
+  nlohmann::json j;
+  j["name"] = p.name;
+  if (p.densityPerM2 > 0.0)
+    j["density"] = p.densityPerM2;
+  else
+    j["hairs"] = p.hairs;
+  j["undercoatShare"] = p.undercoatShare;
+  j["seed"] = p.seed;
+  j["lengthScale"] = p.lengthScale;
+  const LengthRegion& r = p.lengthRegion;
+  if (r.shape == RegionShape::Sphere)
+    j["lengthRegion"] = {{"sphere", {{"center", colorJson(r.center)}, {"radius", r.radius}}},
+                         {"scale", r.scale}};
+  if (r.shape == RegionShape::Box)
+    j["lengthRegion"] = {{"box", {{"min", colorJson(r.boxMin)}, {"max", colorJson(r.boxMax)}}},
+                         {"scale", r.scale}};
+  j["up"] = colorJson(p.up);
+  j["culling"] = {{"enabled", p.culling.enabled},
+                  {"referenceDistance", p.culling.referenceDistance},
+                  {"fovDegrees", p.culling.fovYDegrees}};
+  j["overcoat"] = coatJson(p.coats[kOvercoat]);
+  j["undercoat"] = coatJson(p.coats[kUndercoat]);
+  return j.dump(2) + "\n";
+}
+
+void saveFurPreset(const std::string& path, const FurParams& params) {
+  writeFileAtomically(path, furPresetJson(params));
+}
+
+}  // namespace pelage::fur

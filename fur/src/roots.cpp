@@ -1,0 +1,187 @@
+#include "pelage/fur/roots.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include "pelage/fur/generate.h"
+#include "pelage/util/error.h"
+#include "pelage/util/parallel.h"
+#include "pelage/util/random.h"
+
+namespace pelage::fur {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// "4.4 TB", "512.0 MB": decimal units, one decimal.
+std::string humanBytes(double bytes) {
+  const char* units[] = {"B", "KB", "MB", "GB", "TB", "PB", "EB"};
+  int u = 0;
+  while (bytes >= 1000.0 && u < 6) {
+    bytes /= 1000.0;
+    ++u;
+  }
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.1f %s", bytes, units[u]);
+  return buf;
+}
+
+// Bytes one root of a coat keeps: triangle, table index, jitter; plus its drawn slot: P points of
+// position and normal, and the hair id.
+double bytesPerHair(const CoatParams& coat) {
+  const double rootBytes = sizeof(std::int32_t) + sizeof(std::uint16_t) + 4 * sizeof(float);
+  return rootBytes + static_cast<double>(pointsPerHair(coat)) * 6 * sizeof(float) +
+         sizeof(std::int32_t);
+}
+
+}  // namespace
+
+std::vector<float> makeBarycentricTable(std::uint64_t seed) {
+  std::vector<float> table(static_cast<std::size_t>(kBarycentricTableSize) * 4);
+  // Van Gelder & Wilhelms 1997, sec. 3.2: b1 = 1 - sqrt(u1) (triangular on [0, 1], peak at 0),
+  // b2 = (1 - b1) u2 (uniform on [0, 1 - b1]), b3 = 1 - b1 - b2.
+  for (std::uint64_t j = 0; j < kBarycentricTableSize; ++j) {
+    const double u1 = uniform01(seed, kStreamBarycentricTable, 2 * j);
+    const double u2 = uniform01(seed, kStreamBarycentricTable, 2 * j + 1);
+    const double b1 = 1.0 - std::sqrt(u1);
+    const double b2 = (1.0 - b1) * u2;
+    const double b3 = 1.0 - b1 - b2;
+    float* e = table.data() + 4 * j;
+    e[0] = static_cast<float>(b1);
+    e[1] = static_cast<float>(b2);
+    e[2] = static_cast<float>(b3);
+    e[3] = 0.0f;
+  }
+  return table;
+}
+
+std::uint64_t coatSeed(std::uint64_t seed, int coat) {
+  return coat == 0 ? seed
+                   : mix64(seed ^ (0x9e3779b97f4a7c15ull * static_cast<std::uint64_t>(coat)));
+}
+
+double requestedHairs(const FurParams& params, double furredArea) {
+  return params.densityPerM2 > 0.0 ? params.densityPerM2 * furredArea : params.hairs;
+}
+
+double estimateFurBytes(const FurParams& params, double hairs) {
+  const double share = static_cast<double>(params.undercoatShare);
+  return hairs * (1.0 - share) * bytesPerHair(params.coats[0]) +
+         hairs * share * bytesPerHair(params.coats[1]);
+}
+
+void checkHairBudget(const FurParams& params, double furredArea) {
+  const double n = requestedHairs(params, furredArea);
+  const double bytes = estimateFurBytes(params, n);
+  if (std::isfinite(n) && n >= 0.0 && n <= kMaxHairs && bytes <= kMaxFurBytes) return;
+  std::string origin;
+  if (params.densityPerM2 > 0.0)
+    origin = str(" (density ", params.densityPerM2, " hairs/m^2 over ", furredArea,
+                 " m^2 of furred skin)");
+  inputError("fur '", params.name, "': ", n, " hairs", origin, " need ", humanBytes(bytes), " (",
+             styleName(params.coats[0].style), " overcoat, ", styleName(params.coats[1].style),
+             " undercoat); accepted: 0 to ", kMaxHairs, " hairs using at most ",
+             humanBytes(kMaxFurBytes));
+}
+
+std::vector<double> triangleAreas(const skin::SkinMesh& skin) {
+  const std::int64_t nT = skin.numTriangles();
+  std::vector<double> area(static_cast<std::size_t>(nT));
+  const float* p = skin.restPositions();
+  const std::int32_t* tri = skin.triangles.data();
+  parallelFor(nT, 8192, [&](std::int64_t t) {
+    const Eigen::Vector3d a = Eigen::Map<const Eigen::Vector3f>(p + 3 * tri[3 * t]).cast<double>();
+    const Eigen::Vector3d b =
+        Eigen::Map<const Eigen::Vector3f>(p + 3 * tri[3 * t + 1]).cast<double>();
+    const Eigen::Vector3d c =
+        Eigen::Map<const Eigen::Vector3f>(p + 3 * tri[3 * t + 2]).cast<double>();
+    area[static_cast<std::size_t>(t)] = 0.5 * (b - a).cross(c - a).norm();
+  });
+  return area;
+}
+
+bool triangleHasFur(const skin::SkinMesh& skin, std::int32_t t) {
+  const float* len = skin.furLengths();
+  const std::int32_t* v = skin.triangles.data() + 3 * static_cast<std::int64_t>(t);
+  return len[v[0]] > 0.0f || len[v[1]] > 0.0f || len[v[2]] > 0.0f;
+}
+
+FurRoots growRoots(const skin::SkinMesh& skin, const FurParams& params) {
+  const std::int32_t nT = skin.numTriangles();
+  const std::vector<double> area = triangleAreas(skin);
+  std::vector<char> furred(static_cast<std::size_t>(nT));
+  double furredArea = 0.0;
+  for (std::int32_t t = 0; t < nT; ++t) {
+    furred[static_cast<std::size_t>(t)] = triangleHasFur(skin, t) ? 1 : 0;
+    if (furred[static_cast<std::size_t>(t)]) furredArea += area[static_cast<std::size_t>(t)];
+  }
+  checkHairBudget(params, furredArea);
+  const double total = requestedHairs(params, furredArea);
+
+  FurRoots roots;
+  roots.triangleCount = nT;
+  roots.furredArea = furredArea;
+  roots.seed = params.seed;
+  roots.barycentric = makeBarycentricTable(params.seed);
+  for (int c = 0; c < kCoatCount; ++c) {
+    CoatRoots& cr = roots.coats[static_cast<std::size_t>(c)];
+    const std::uint64_t seed = coatSeed(params.seed, c);
+    // The lead's design: the coats are separate root sets, N_over = N (1 - share), N_under = N
+    // share.
+    const double share = static_cast<double>(params.undercoatShare);
+    const double nc = c == kOvercoat ? total * (1.0 - share) : total * share;
+    cr.expectedHairs = nc;
+    // Van Gelder & Wilhelms 1997, sec. 3.2: floor(alpha N + u) hairs per triangle ("random
+    // rounding"), alpha = area / furred area; no-fur triangles get none.
+    std::vector<std::int32_t> count(static_cast<std::size_t>(nT), 0);
+    if (furredArea > 0.0 && nc > 0.0) {
+      parallelFor(nT, 8192, [&](std::int64_t t) {
+        const auto ts = static_cast<std::size_t>(t);
+        if (!furred[ts]) return;
+        const double u = uniform01(seed, kStreamAllocation, static_cast<std::uint64_t>(t));
+        count[ts] = static_cast<std::int32_t>(std::floor(area[ts] / furredArea * nc + u));
+      });
+    }
+    cr.triangleStart.assign(static_cast<std::size_t>(nT) + 1, 0);
+    std::int64_t sum = 0;
+    for (std::int32_t t = 0; t < nT; ++t) {
+      sum += count[static_cast<std::size_t>(t)];
+      PELAGE_CHECK(sum <= std::numeric_limits<std::int32_t>::max(), "root count overflow");
+      cr.triangleStart[static_cast<std::size_t>(t) + 1] = static_cast<std::int32_t>(sum);
+    }
+    const auto n = static_cast<std::size_t>(sum);
+    cr.triangle.resize(n);
+    cr.tableIndex.resize(n);
+    cr.jitter.resize(4 * n);
+    parallelForChunks(nT, 4096, [&](std::int64_t tb, std::int64_t te) {
+      for (std::int64_t t = tb; t < te; ++t)
+        for (std::int64_t k = cr.triangleStart[static_cast<std::size_t>(t)];
+             k < cr.triangleStart[static_cast<std::size_t>(t) + 1]; ++k) {
+          const auto ks = static_cast<std::size_t>(k);
+          cr.triangle[ks] = static_cast<std::int32_t>(t);
+          // Sec. 3.2: "generated by cycling through the values in this table".
+          cr.tableIndex[ks] = static_cast<std::uint16_t>(k % kBarycentricTableSize);
+          // Sec. 3.5 hair end randomize: xi uniform in the unit ball (direction uniform on the
+          // sphere, radius cbrt(u3)).
+          const auto uk = static_cast<std::uint64_t>(k);
+          const auto u = [&](std::uint64_t i) {
+            return static_cast<double>(uniform01(seed, kStreamHairEnd, i));
+          };
+          const double z = 2.0 * u(3 * uk) - 1.0;
+          const double phi = 2.0 * kPi * u(3 * uk + 1);
+          const double rad = std::cbrt(u(3 * uk + 2));
+          const double s = std::sqrt(std::max(0.0, 1.0 - z * z));
+          float* j = cr.jitter.data() + 4 * ks;
+          j[0] = static_cast<float>(rad * s * std::cos(phi));
+          j[1] = static_cast<float>(rad * s * std::sin(phi));
+          j[2] = static_cast<float>(rad * z);
+          j[3] = uniform01(seed, kStreamHairEnd + kPhaseStreamOffset, uk);
+        }
+    });
+  }
+  return roots;
+}
+
+}  // namespace pelage::fur

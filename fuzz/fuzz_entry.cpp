@@ -1,0 +1,109 @@
+#include "fuzz_entry.h"
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+
+#include "pelage/anatomy/creature.h"
+#include "pelage/anatomy/pose_file.h"
+#include "pelage/animation/clip_file.h"
+#include "pelage/animation/gltf_import.h"
+#include "pelage/fur/preset.h"
+#include "pelage/models/builtin.h"
+#include "pelage/skin/mesh_io.h"
+#include "pelage/util/error.h"
+
+namespace pelage::fuzz {
+namespace {
+
+constexpr const char* kMeshExtensions[] = {"obj", "ply", "off", "stl"};
+
+// The built-in monkey's body: clip and pose files name its segments.
+const anatomy::Body& monkeyBody() {
+  static const anatomy::Body body = [] {
+    auto text = models::builtinFile("monkey.json");
+    if (!text) throw std::logic_error("built-in monkey.json missing");
+    return anatomy::parseCreature(std::string(*text), "monkey.json").body;
+  }();
+  return body;
+}
+
+// Readers that take a path get the input through a file in a private temporary folder.
+class ScratchFile {
+ public:
+  explicit ScratchFile(const std::string& extension) {
+    std::filesystem::path dir = std::filesystem::exists("/dev/shm") ? "/dev/shm" : std::filesystem::temp_directory_path();
+    path_ = (dir / ("pelage_fuzz_" + std::to_string(::getpid()) + "." + extension)).string();
+  }
+  ~ScratchFile() { std::remove(path_.c_str()); }
+  ScratchFile(const ScratchFile&) = delete;
+  ScratchFile& operator=(const ScratchFile&) = delete;
+  const std::string& write(const std::uint8_t* data, std::size_t size) {
+    std::ofstream out(path_, std::ios::binary | std::ios::trunc);
+    out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
+    if (!out) throw std::runtime_error("cannot write " + path_);
+    return path_;
+  }
+
+ private:
+  std::string path_;
+};
+
+void runCreature(const std::uint8_t* data, std::size_t size) {
+  anatomy::parseCreature(std::string(reinterpret_cast<const char*>(data), size), "fuzz.json");
+}
+void runPreset(const std::uint8_t* data, std::size_t size) {
+  fur::FurParams params = fur::parseFurPreset(std::string(reinterpret_cast<const char*>(data), size), "fuzz.json");
+  // A preset that loads must also round-trip through the writer.
+  fur::parseFurPreset(fur::furPresetJson(params), "round trip");
+}
+void runClip(const std::uint8_t* data, std::size_t size) {
+  animation::parseClip(monkeyBody(), std::string(reinterpret_cast<const char*>(data), size), "fuzz.json");
+}
+void runPose(const std::uint8_t* data, std::size_t size) {
+  anatomy::parsePose(monkeyBody(), std::string(reinterpret_cast<const char*>(data), size), "fuzz.json");
+}
+void runGltf(const std::uint8_t* data, std::size_t size) {
+  const bool glb = size >= 4 && data[0] == 'g' && data[1] == 'l' && data[2] == 'T' && data[3] == 'F';
+  ScratchFile file(glb ? "glb" : "gltf");
+  animation::importGltf(file.write(data, size));
+}
+void runMesh(const std::uint8_t* data, std::size_t size) {
+  if (size == 0) return;
+  ScratchFile file(kMeshExtensions[data[0] % 4]);
+  skin::readStaticMesh(file.write(data + 1, size - 1));
+}
+
+}  // namespace
+
+const std::vector<std::string>& targetNames() {
+  static const std::vector<std::string> names = {"creature", "preset", "clip", "pose", "gltf", "mesh"};
+  return names;
+}
+
+bool runTarget(std::string_view name, const std::uint8_t* data, std::size_t size) {
+  try {
+    if (name == "creature") runCreature(data, size);
+    else if (name == "preset") runPreset(data, size);
+    else if (name == "clip") runClip(data, size);
+    else if (name == "pose") runPose(data, size);
+    else if (name == "gltf") runGltf(data, size);
+    else if (name == "mesh") runMesh(data, size);
+    else throw std::invalid_argument("unknown fuzz target " + std::string(name));
+    return true;
+  } catch (const InputError&) {
+    return false;
+  }
+}
+
+std::string meshInput(std::string_view extension, std::string_view fileBytes) {
+  for (int i = 0; i < 4; ++i) {
+    if (extension == kMeshExtensions[i]) return std::string(1, static_cast<char>(i)) + std::string(fileBytes);
+  }
+  throw std::invalid_argument("unknown mesh extension " + std::string(extension));
+}
+
+}  // namespace pelage::fuzz

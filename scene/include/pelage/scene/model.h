@@ -1,0 +1,52 @@
+// Loading a creature from what the user names: the built-in monkey, a creature JSON file, a glTF 2.0
+// creature (.gltf/.glb, with its animations as clips), or a static mesh (OBJ/PLY/OFF/STL). A Model
+// is constant during playback.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "pelage/anatomy/body.h"
+#include "pelage/anatomy/creature.h"
+#include "pelage/animation/clip.h"
+#include "pelage/skin/skin_mesh.h"
+
+namespace pelage::scene {
+
+struct Model {
+  std::string name;    // e.g. "monkey", or the file's stem
+  std::string source;  // "built-in monkey" or the path
+  anatomy::Body body;
+  skin::SkinMesh skin;
+  // Animation clips: a glTF file's animations, or the procedural clips of a creature with the
+  // built-in monkey's segments (walk, tumble, hang, shake, idle).
+  std::vector<animation::Clip> clips;
+  float unitScale = 1.0f;  // metres per unit of the source file (glTF: detected or given)
+
+  // Index of the clip called `name`, or -1.
+  int findClip(std::string_view clipName) const { return animation::findClip(clips, clipName); }
+};
+
+struct LoadOptions {
+  // Skin triangles for creatures built from shapes; 0 = the creature's default. Range [2000, 2e6].
+  int triangles = 0;
+  // glTF only (InputError when given for another kind of model):
+  float unitScale = 0.0f;  // metres per file unit; 0 = detect from the bounding box
+  std::optional<std::vector<std::string>> noFurRegions;  // region patterns without fur; nullopt = defaults
+  std::string segmentDirections;  // per-joint direction side file; "" = <model>.directions.json if present
+};
+
+// The built-in creature's name.
+inline constexpr const char* kDefaultModel = "monkey";
+
+// Loads `spec`: "" or "monkey" (built-in), a .json creature, a .gltf/.glb creature, or a
+// .obj/.ply/.off/.stl mesh.
+// Throws InputError naming the file for anything missing or malformed.
+Model loadModel(const std::string& spec, const LoadOptions& options = {});
+
+// The built-in creature description.
+anatomy::Creature builtinCreature(const std::string& name);
+
+}  // namespace pelage::scene

@@ -1,0 +1,43 @@
+#include "pelage/scene/dynamic_fur.h"
+
+#include <algorithm>
+
+#include "pelage/util/error.h"
+
+namespace pelage::scene {
+
+int preRollStart(int firstFrame, const DynamicsClock& clock) {
+  if (clock.preRollFrames < 0) return 0;
+  return std::max(0, firstFrame - clock.preRollFrames);
+}
+
+void preRollDynamics(const Model& model, const Fur& fur, const fur::DynamicsParams& dynamics, int clip,
+                     int firstFrame, const DynamicsClock& clock, fur::FurDynamicsState& state,
+                     FrameState& scratch) {
+  PELAGE_CHECK(clock.fps >= 1.0 && clock.fps <= 1000.0, "fps ", clock.fps);
+  fur::resetFurDynamics(fur.roots, state);
+  for (int f = preRollStart(firstFrame, clock); f < firstFrame; ++f) {
+    evaluateClipFrame(model, clip, f / clock.fps, scratch);
+    stepClipDynamics(model, fur, dynamics, clock, Eigen::Vector3f::Zero(), false, state, scratch);
+  }
+}
+
+void stepClipDynamics(const Model& model, const Fur& fur, const fur::DynamicsParams& dynamics,
+                      const DynamicsClock& clock, const Eigen::Vector3f& cameraEye, bool cpuHairs,
+                      fur::FurDynamicsState& state, FrameState& frame) {
+  const double dt = 1.0 / clock.fps;
+  if (!cpuHairs) {
+    fur::stepFurDynamics(model.skin, fur.roots, fur.params, dynamics, frame.skin, dt, state,
+                         frame.furWorkspace);
+    return;
+  }
+  frame.furView = fur::makeFurView(model.skin, fur.params, frame.skin, cameraEye);
+  frame.cullFactor = fur::cullingFactor(frame.furView);
+  fur::generateDynamicFur(model.skin, fur.roots, fur.params, dynamics, frame.skin, dt, frame.furView, state,
+                          frame.furWorkspace, frame.fur);
+  for (int c = 0; c < fur::kCoatCount; ++c)
+    frame.drawnHairs[static_cast<std::size_t>(c)] = frame.fur.coats[static_cast<std::size_t>(c)].drawn;
+  frame.cpuFur = true;
+}
+
+}  // namespace pelage::scene

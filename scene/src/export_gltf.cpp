@@ -1,0 +1,234 @@
+#include "pelage/scene/export_gltf.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <bit>
+#include <limits>
+#include <vector>
+
+#include "hair_curves.h"
+#include "pelage/util/atomic_file.h"
+#include "pelage/util/error.h"
+
+namespace pelage::scene {
+namespace {
+
+constexpr int kFloat = 5126, kUint = 5125;
+constexpr int kArrayBuffer = 34962, kElementArrayBuffer = 34963;
+constexpr int kModeLines = 1, kModeTriangles = 4;
+
+struct CoatPart {
+  int coat = 0;
+  detail::CurveLayout layout;
+  std::int64_t hairs = 0;
+  std::int64_t vertices = 0;  // hairs * K
+  std::int64_t segments = 0;  // hairs * (K - 1)
+};
+
+std::vector<CoatPart> coatParts(const fur::FurParams& params, const FrameState& state) {
+  std::vector<CoatPart> parts;
+  if (!state.cpuFur) return parts;
+  for (int c = 0; c < fur::kCoatCount; ++c) {
+    const fur::HairBuffers& b = state.fur.coats[static_cast<std::size_t>(c)];
+    if (b.drawn == 0) continue;
+    CoatPart p;
+    p.coat = c;
+    p.layout = detail::curveLayout(params.coats[static_cast<std::size_t>(c)]);
+    p.hairs = b.drawn;
+    p.vertices = b.drawn * p.layout.centerPoints;
+    p.segments = b.drawn * (p.layout.centerPoints - 1);
+    parts.push_back(p);
+  }
+  return parts;
+}
+
+// Appends little-endian binary data to the file in large pieces.
+class Bin {
+ public:
+  explicit Bin(AtomicFileWriter& w) : w_(w) { buf_.reserve(kSize); }
+  void put(const void* data, std::size_t n) {
+    if (n >= kSize) {
+      flush();
+      w_.write(data, n);
+      return;
+    }
+    if (buf_.size() + n > kSize) flush();
+    const auto* p = static_cast<const char*>(data);
+    buf_.insert(buf_.end(), p, p + n);
+  }
+  void putU32(std::uint32_t v) { put(&v, 4); }
+  void flush() {
+    if (!buf_.empty()) w_.write(buf_.data(), buf_.size());
+    buf_.clear();
+  }
+
+ private:
+  static constexpr std::size_t kSize = 1 << 22;
+  AtomicFileWriter& w_;
+  std::vector<char> buf_;
+};
+
+nlohmann::json vec(const Eigen::Vector3f& v) {
+  return nlohmann::json::array({v.x(), v.y(), v.z()});
+}
+
+nlohmann::json material(const std::string& name, const Eigen::Vector3f& color) {
+  return {{"name", name},
+          {"pbrMetallicRoughness",
+           {{"baseColorFactor", {color.x(), color.y(), color.z(), 1.0f}}, {"metallicFactor", 0.0f}, {"roughnessFactor", 0.8f}}}};
+}
+
+}  // namespace
+
+GlbCounts glbCounts(const Model& model, const fur::FurParams& params, const FrameState& state) {
+  GlbCounts n;
+  n.skinVertices = model.skin.numVertices();
+  n.skinTriangles = model.skin.numTriangles();
+  for (const CoatPart& p : coatParts(params, state)) {
+    const auto c = static_cast<std::size_t>(p.coat);
+    n.hairs[c] = p.hairs;
+    n.hairVertices[c] = p.vertices;
+    n.segments[c] = p.segments;
+  }
+  return n;
+}
+
+GlbCounts writeFrameGlb(const std::string& path, const Model& model, const fur::FurParams& params,
+                        const FrameState& state, const std::string& generator) {
+  static_assert(std::endian::native == std::endian::little && std::numeric_limits<float>::is_iec559);
+  const skin::SkinMesh& skin = model.skin;
+  const std::size_t nV = static_cast<std::size_t>(skin.numVertices());
+  PELAGE_CHECK(state.skin.positions.size() == nV && state.skin.normals.size() == nV, "frame not evaluated");
+  const std::vector<CoatPart> parts = coatParts(params, state);
+  GlbCounts counts = glbCounts(model, params, state);
+
+  // Buffer layout: skin positions, normals, indices; then per coat positions, indices.
+  nlohmann::json views = nlohmann::json::array(), accessors = nlohmann::json::array();
+  std::uint64_t offset = 0;
+  auto addView = [&](std::uint64_t bytes, int target) {
+    views.push_back({{"buffer", 0}, {"byteOffset", offset}, {"byteLength", bytes}, {"target", target}});
+    offset += bytes;
+    return static_cast<int>(views.size()) - 1;
+  };
+  auto addAccessor = [&](int view, int componentType, std::int64_t count, const char* type) {
+    accessors.push_back({{"bufferView", view}, {"componentType", componentType}, {"count", count}, {"type", type}});
+    return static_cast<int>(accessors.size()) - 1;
+  };
+  auto setBounds = [&](int accessor, const Eigen::AlignedBox3f& box) {
+    accessors[static_cast<std::size_t>(accessor)]["min"] = vec(box.min());
+    accessors[static_cast<std::size_t>(accessor)]["max"] = vec(box.max());
+  };
+
+  nlohmann::json meshes = nlohmann::json::array(), nodes = nlohmann::json::array();
+  nlohmann::json materials = nlohmann::json::array();
+  materials.push_back(material("skin", skin.color));
+  const int skinPos = addAccessor(addView(nV * 12, kArrayBuffer), kFloat, static_cast<std::int64_t>(nV), "VEC3");
+  setBounds(skinPos, state.skinBounds);
+  const int skinNrm = addAccessor(addView(nV * 12, kArrayBuffer), kFloat, static_cast<std::int64_t>(nV), "VEC3");
+  const int skinIdx = addAccessor(addView(skin.triangles.size() * 4, kElementArrayBuffer), kUint,
+                                  static_cast<std::int64_t>(skin.triangles.size()), "SCALAR");
+  meshes.push_back({{"name", "skin"},
+                    {"primitives",
+                     {{{"attributes", {{"POSITION", skinPos}, {"NORMAL", skinNrm}}},
+                       {"indices", skinIdx},
+                       {"material", 0},
+                       {"mode", kModeTriangles}}}}});
+  nodes.push_back({{"name", "skin"}, {"mesh", 0}});
+
+  // Hair bounds: one pass over the points (the accessor needs min/max).
+  std::vector<float> line;
+  for (const CoatPart& p : parts) {
+    const fur::HairBuffers& b = state.fur.coats[static_cast<std::size_t>(p.coat)];
+    const fur::CoatParams& cp = params.coats[static_cast<std::size_t>(p.coat)];
+    const int K = p.layout.centerPoints;
+    line.resize(static_cast<std::size_t>(K) * 3);
+    Eigen::AlignedBox3f box;
+    for (std::int64_t h = 0; h < p.hairs; ++h) {
+      detail::hairCenterLine(b, p.layout, h, line.data());
+      for (int k = 0; k < K; ++k) box.extend(Eigen::Vector3f(line[static_cast<std::size_t>(k) * 3],
+                                                             line[static_cast<std::size_t>(k) * 3 + 1],
+                                                             line[static_cast<std::size_t>(k) * 3 + 2]));
+    }
+    const std::string name = p.coat == fur::kOvercoat ? "overcoat" : "undercoat";
+    if (p.vertices > std::numeric_limits<std::uint32_t>::max())
+      inputError(path, ": coat ", name, " has ", p.vertices, " hair vertices, more than a glTF index can address");
+    const int pos = addAccessor(addView(static_cast<std::uint64_t>(p.vertices) * 12, kArrayBuffer), kFloat, p.vertices, "VEC3");
+    setBounds(pos, box);
+    const int idx = addAccessor(addView(static_cast<std::uint64_t>(p.segments) * 8, kElementArrayBuffer), kUint,
+                                p.segments * 2, "SCALAR");
+    materials.push_back(material(name, cp.material.diffuse));
+    meshes.push_back({{"name", name},
+                      {"primitives",
+                       {{{"attributes", {{"POSITION", pos}}},
+                         {"indices", idx},
+                         {"material", static_cast<int>(materials.size()) - 1},
+                         {"mode", kModeLines}}}}});
+    nodes.push_back({{"name", name}, {"mesh", static_cast<int>(meshes.size()) - 1}});
+  }
+  const std::uint64_t binBytes = offset;  // every view is a multiple of 4 bytes
+  nlohmann::json sceneNodes = nlohmann::json::array();
+  for (std::size_t i = 0; i < nodes.size(); ++i) sceneNodes.push_back(i);
+  nlohmann::json root = {{"asset", {{"version", "2.0"}, {"generator", generator}}},
+                         {"scene", 0},
+                         {"scenes", {{{"name", model.name}, {"nodes", sceneNodes}}}},
+                         {"nodes", nodes},
+                         {"meshes", meshes},
+                         {"materials", materials},
+                         {"accessors", accessors},
+                         {"bufferViews", views},
+                         {"buffers", {{{"byteLength", binBytes}}}}};
+  std::string json = root.dump();
+  while (json.size() % 4 != 0) json += ' ';
+  const std::uint64_t total = 12 + 8 + json.size() + 8 + binBytes;
+  if (total > std::numeric_limits<std::uint32_t>::max())
+    inputError(path, ": the frame needs ", total, " bytes, over glTF binary's 4 GiB limit (fewer hairs, or "
+               "--format usda/ply)");
+  counts.bytes = total;
+
+  AtomicFileWriter w(path);
+  Bin bin(w);
+  bin.putU32(0x46546C67u);  // "glTF"
+  bin.putU32(2);
+  bin.putU32(static_cast<std::uint32_t>(total));
+  bin.putU32(static_cast<std::uint32_t>(json.size()));
+  bin.putU32(0x4E4F534Au);  // "JSON"
+  bin.put(json.data(), json.size());
+  bin.putU32(static_cast<std::uint32_t>(binBytes));
+  bin.putU32(0x004E4942u);  // "BIN\0"
+  bin.put(state.skin.positions.data(), nV * 12);
+  bin.put(state.skin.normals.data(), nV * 12);
+  bin.put(skin.triangles.data(), skin.triangles.size() * 4);
+  std::vector<std::uint32_t> idx;
+  for (const CoatPart& p : parts) {
+    const fur::HairBuffers& b = state.fur.coats[static_cast<std::size_t>(p.coat)];
+    const int K = p.layout.centerPoints;
+    if (p.layout.ringSides == 1) {
+      bin.put(b.positions.data(), static_cast<std::size_t>(p.vertices) * 12);
+    } else {
+      line.resize(static_cast<std::size_t>(K) * 3);
+      for (std::int64_t h = 0; h < p.hairs; ++h) {
+        detail::hairCenterLine(b, p.layout, h, line.data());
+        bin.put(line.data(), line.size() * 4);
+      }
+    }
+    idx.clear();
+    for (std::int64_t h = 0; h < p.hairs; ++h) {
+      const auto base = static_cast<std::uint32_t>(h * K);
+      for (int k = 0; k + 1 < K; ++k) {
+        idx.push_back(base + static_cast<std::uint32_t>(k));
+        idx.push_back(base + static_cast<std::uint32_t>(k + 1));
+      }
+      if (idx.size() >= (1u << 20)) {
+        bin.put(idx.data(), idx.size() * 4);
+        idx.clear();
+      }
+    }
+    bin.put(idx.data(), idx.size() * 4);
+  }
+  bin.flush();
+  w.commit();
+  return counts;
+}
+
+}  // namespace pelage::scene

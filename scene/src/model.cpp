@@ -1,0 +1,87 @@
+#include "pelage/scene/model.h"
+
+#include <algorithm>
+#include <filesystem>
+
+#include "pelage/animation/gltf_import.h"
+#include "pelage/animation/procedural.h"
+#include "pelage/models/builtin.h"
+#include "pelage/skin/build_from_shapes.h"
+#include "pelage/skin/mesh_io.h"
+#include "pelage/util/error.h"
+
+namespace pelage::scene {
+namespace {
+
+std::string lowerExtension(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
+
+Model fromCreature(const anatomy::Creature& c, const LoadOptions& options) {
+  Model m;
+  m.name = c.name;
+  m.source = c.source;
+  m.body = c.body;
+  skin::SkinBuildOptions opt;
+  opt.triangles = options.triangles > 0 ? options.triangles : c.defaultTriangles;
+  m.skin = skin::buildSkin(c, opt);
+  // Creatures with the monkey's skeleton (the built-in one, or a user's variant of it) get the
+  // procedural clips, baked for this body.
+  if (animation::missingMonkeySegment(m.body).empty()) m.clips = animation::monkeyClips(c);
+  return m;
+}
+
+Model fromGltf(const std::string& path, const LoadOptions& options) {
+  animation::GltfImportOptions opt;
+  opt.unitScale = options.unitScale;
+  opt.noFurRegions = options.noFurRegions;
+  opt.segmentDirections = options.segmentDirections;
+  animation::GltfCreature g = animation::importGltf(path, opt);
+  Model m;
+  m.name = g.name;
+  m.source = path;
+  m.body = std::move(g.body);
+  m.skin = std::move(g.skin);
+  m.clips = std::move(g.clips);
+  m.unitScale = g.unitScale;
+  return m;
+}
+
+}  // namespace
+
+anatomy::Creature builtinCreature(const std::string& name) {
+  const auto text = models::builtinFile(name + ".json");
+  if (!text) inputError("unknown built-in model '", name, "' (built-in: monkey)");
+  return anatomy::parseCreature(std::string(*text), "built-in " + name);
+}
+
+Model loadModel(const std::string& spec, const LoadOptions& options) {
+  if (options.triangles != 0 && (options.triangles < 2000 || options.triangles > 2000000))
+    inputError("--triangles ", options.triangles, " is out of range [2000, 2000000]");
+  const std::string ext = lowerExtension(spec);
+  const bool gltf = ext == ".gltf" || ext == ".glb";
+  if (!gltf && (options.unitScale != 0.0f || options.noFurRegions || !options.segmentDirections.empty()))
+    inputError("--unit-scale, --no-fur and --directions apply to glTF models (.gltf/.glb) only");
+  if (gltf) return fromGltf(spec, options);
+  if (spec.empty() || spec == kDefaultModel) return fromCreature(builtinCreature(kDefaultModel), options);
+  if (ext == ".json") return fromCreature(anatomy::loadCreature(spec), options);
+  if (ext == ".obj" || ext == ".ply" || ext == ".off" || ext == ".stl") {
+    Model m;
+    m.name = std::filesystem::path(spec).stem().string();
+    m.source = spec;
+    m.skin = skin::readStaticMesh(spec);
+    anatomy::SegmentSpec root;
+    root.name = "root";
+    m.body = anatomy::makeBody({root}, spec);
+    return m;
+  }
+  if (!std::filesystem::exists(spec))
+    inputError(spec, ": no such file, and not a built-in model (built-in: monkey)");
+  inputError(spec, ": unsupported model format '", ext,
+             "' (accepted: monkey, .json creature, .gltf/.glb, .obj .ply .off .stl mesh)");
+}
+
+}  // namespace pelage::scene

@@ -1,0 +1,73 @@
+#!/usr/bin/env bash
+# Fuzzes every input reader with libFuzzer under ASan + UBSan for a bounded time.
+# Usage: scripts/fuzz.sh [SECONDS_PER_TARGET=60] [TARGET...]
+#        scripts/fuzz.sh ci      (CI: a fixed seed and a fixed number of runs per target, about a
+#                                 minute each on 2 cores, so a CI result is reproducible)
+# Builds build-fuzz with clang (installs clang-14 and its runtime if missing), seeds each target's
+# corpus with the project's files (fuzz/corpus/, models/) and the shared glTF models, and runs each
+# target for SECONDS. A crash, leak, sanitizer report or timeout leaves the input in
+# build-fuzz/artifacts/<target>/ and makes the script fail: add that file to
+# fuzz/regressions/<target>/ (tests/fuzz replays them in every build) and fix the bug.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+seconds="${1:-60}"
+shift || true
+ci=0
+if [ "$seconds" = ci ]; then ci=1; seconds=0; fi
+# Runs per target in CI mode (about 40-60 s each at the rates measured on a 2-core VM).
+declare -A ci_runs=([creature]=200000 [preset]=300000 [clip]=300000 [pose]=500000 [gltf]=4000 [mesh]=20000)
+targets=("$@")
+[ ${#targets[@]} -eq 0 ] && targets=(creature preset clip pose gltf mesh)
+build=build-fuzz
+
+if ! command -v clang++-14 >/dev/null || ! ls /usr/lib/llvm-14/lib/clang/*/lib/linux/libclang_rt.fuzzer-x86_64.a >/dev/null 2>&1; then
+  echo "fuzz: installing clang-14 and libclang-rt-14-dev"
+  sudo=""; [ "$(id -u)" -ne 0 ] && sudo="sudo"
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends clang-14 libclang-rt-14-dev >/dev/null
+fi
+
+CC=clang-14 CXX=clang++-14 cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DPELAGE_FUZZ=ON -DPELAGE_SANITIZE=ON -DPELAGE_BUILD_VIEWER=OFF -DPELAGE_BUILD_TESTS=OFF \
+  -DPELAGE_BUILD_BENCH=OFF >/dev/null
+cmake --build "$build" -j "$(nproc)" --target $(printf 'fuzz_%s ' "${targets[@]}")
+
+shared=../shared/models
+seed() {  # seed TARGET FILE...: copies existing files into the target's working corpus
+  local dir="$build/corpus/$1"; shift
+  for f in "$@"; do [ -f "$f" ] && cp "$f" "$dir/"; done
+  return 0
+}
+failed=()
+for t in "${targets[@]}"; do
+  [ $ci -eq 1 ] && rm -rf "$build/corpus/$t"
+  mkdir -p "$build/corpus/$t" "$build/artifacts/$t"
+  seed "$t" fuzz/corpus/"$t"/* fuzz/regressions/"$t"/*
+  case "$t" in
+    creature) seed "$t" models/*.json tests/scene/*.json ;;
+    preset)   seed "$t" models/presets/*.json ;;
+    gltf)     seed "$t" "$shared"/RiggedSimple/*.glb "$shared"/SimpleSkin/*.gltf "$shared"/RiggedFigure/*.glb \
+                        "$shared"/Fox/*.glb ;;
+  esac
+  if [ $ci -eq 1 ]; then
+    budget=(-seed=1 -runs="${ci_runs[$t]}")
+    echo "== fuzz_$t: ${ci_runs[$t]} runs (seed 1), $(ls "$build/corpus/$t" | wc -l) seed files"
+  else
+    budget=(-max_total_time="$seconds")
+    echo "== fuzz_$t: ${seconds}s, $(ls "$build/corpus/$t" | wc -l) seed files"
+  fi
+  if ! ASAN_OPTIONS=detect_leaks=1:allocator_may_return_null=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+      "$build/bin/fuzz_$t" "$build/corpus/$t" "${budget[@]}" -timeout=20 -rss_limit_mb=4096 \
+      -max_len=1048576 -artifact_prefix="$build/artifacts/$t/" -print_final_stats=1 \
+      >"$build/fuzz_$t.log" 2>&1; then
+    failed+=("$t")
+    echo "fuzz_$t FOUND A PROBLEM (log: $build/fuzz_$t.log, input in $build/artifacts/$t/):"
+    grep -E "ERROR|SUMMARY|runtime error|Test unit written" "$build/fuzz_$t.log" | head -8
+  fi
+  grep -E "^stat::number_of_executed_units|^stat::peak_rss_mb" "$build/fuzz_$t.log" | tr '\n' ' '; echo
+done
+if [ ${#failed[@]} -gt 0 ]; then
+  echo "fuzz: problems found by: ${failed[*]}" >&2
+  exit 1
+fi
+echo "fuzz: no problems found"

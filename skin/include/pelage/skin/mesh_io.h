@@ -1,0 +1,25 @@
+// Static meshes in and out through OpenMesh's reader/writer (OBJ, PLY, OFF, STL).
+#pragma once
+
+#include <Eigen/Core>
+
+#include <string>
+#include <vector>
+
+#include "pelage/skin/skin_mesh.h"
+
+namespace pelage::skin {
+
+// Reads a static mesh (OBJ/PLY/OFF/STL) as a skin bound rigidly to segment 0, polygons
+// triangulated, fur length `furLengthMeters` everywhere (if <= 0: 3% of the bounding-box diagonal).
+// Throws InputError naming the file for a missing/unreadable/empty/non-finite mesh.
+SkinMesh readStaticMesh(const std::string& path, float furLengthMeters = -1.0f);
+
+// Writes the skin with the given vertex positions and normals (nV each) to an OBJ or PLY file
+// (chosen by extension), atomically. Throws InputError on an unsupported extension or a write
+// failure.
+void writeSkin(const std::string& path, const SkinMesh& skin,
+               const std::vector<Eigen::Vector3f>& positions,
+               const std::vector<Eigen::Vector3f>& normals);
+
+}  // namespace pelage::skin

@@ -1,0 +1,129 @@
+// Per-frame fur (generate.h) on small skins: the kernels equal the scalar reference bit for bit,
+// the output does not depend on the thread count or the SIMD path, buffer layout and reuse.
+// The same checks on the default monkey are in monkey_fur_test.cpp (slow).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "fur/fur_test_support.h"
+#include "pelage/fur/generate.h"
+#include "pelage/fur/preset.h"
+#include "pelage/util/parallel.h"
+
+namespace pelage::fur {
+namespace {
+
+TEST(Generate, EveryStyleMatchesTheReferenceAndIsDeterministic) {
+  // A small curved skin (normals in every direction, varying lengths, a bare-direction cap).
+  const skin::SkinMesh s = test::makeSphere(0.1f, 24, 48);
+  skin::DeformedSkin d;
+  skin::restSkin(s, d);
+  test::checkStylesAgainstReference(s, d, 6000, Eigen::Vector3f(0.0f, 0.0f, 0.1f));
+}
+
+TEST(Generate, DegenerateHairPlanesMatchTheReferenceOnEveryPath) {
+  // Sec. 3.7 fallbacks inside SIMD blocks: on the left half of a flat grid the vertices have no
+  // segment direction, so with no end randomize the hairs stand straight up (d~ = n = U, e = U):
+  // R, W and E are collinear and the hair plane (and the tube's ring frame) take their fallbacks;
+  // on the right half (direction +X) the planes are regular. Blocks mix both kinds of hair, and
+  // every kernel path must still equal the scalar reference bit for bit.
+  skin::SkinMesh s = test::makeGrid(12, 0.01f, 0.01f, Eigen::Vector3f(1, 0, 0));
+  for (auto v : s.mesh.vertices())
+    if (s.mesh.point(v)[0] < 0.055f)
+      s.mesh.property(s.segmentDirection, v) = OpenMesh::Vec3f(0, 0, 0);
+  for (HairStyle style :
+       {HairStyle::Line, HairStyle::Polyline, HairStyle::Curve, HairStyle::Tube}) {
+    SCOPED_TRACE(styleName(style));
+    FurParams p = test::simpleParams(style, 3000);
+    p.coats[0].segmentDirectionWeight = 0.5f;
+    p.coats[0].normalRandomize = 0.3f;
+    const test::RestFur rf = test::restFur(s, p);
+    std::int64_t degenerate = 0;
+    for (KernelPath path : {KernelPath::Generic, KernelPath::Avx2, KernelPath::Avx512}) {
+      if (!setKernelPath(path)) continue;
+      SCOPED_TRACE(kernelPathName(path));
+      const FurFrame f = test::furFrame(s, rf.roots, p, rf.rest);
+      const HairBuffers& hb = f.coats[0];
+      ASSERT_GT(hb.drawn, 2500);
+      const std::size_t n = static_cast<std::size_t>(hb.pointsPerHair) * 3;
+      std::vector<float> pos, nrm;
+      degenerate = 0;
+      for (std::int64_t h = 0; h < hb.drawn; ++h) {
+        referenceHair(s, rf.roots, p, rf.rest, 0, h, pos, nrm);
+        ASSERT_EQ(0, std::memcmp(pos.data(), hb.positions.data() + static_cast<std::size_t>(h) * n,
+                                 n * sizeof(float)))
+            << "hair " << h;
+        ASSERT_EQ(0, std::memcmp(nrm.data(), hb.normals.data() + static_cast<std::size_t>(h) * n,
+                                 n * sizeof(float)))
+            << "hair " << h;
+        const Eigen::Vector3f chord = test::point(hb, h, hb.pointsPerHair - 1) - test::point(hb, h, 0);
+        if (chord.x() == 0.0f && chord.y() == 0.0f) ++degenerate;
+      }
+    }
+    setKernelPath(KernelPath::Auto);
+    if (style != HairStyle::Tube) {  // (a tube's last ring is around the end, not at it)
+      EXPECT_GT(degenerate, 1000) << "hairs straight up on the bare half";
+      EXPECT_LT(degenerate, 2000) << "hairs leaning along +X on the other half";
+    }
+  }
+}
+
+TEST(Generate, PolylineEndsAtDistanceLFromTheRoot) {
+  const skin::SkinMesh s = test::makeGrid(8, 0.01f, 0.02f, Eigen::Vector3f(1, 0, 0));
+  FurParams p = test::simpleParams(HairStyle::Polyline, 3000);
+  p.coats[0].segmentDirectionWeight = 0.4f;
+  p.coats[0].hairEndRandomize = 0.3f;
+  p.coats[0].normalRandomize = 0.4f;
+  const test::RestFur rf = test::restFur(s, p);
+  const FurRoots& r = rf.roots;
+  const skin::DeformedSkin& d = rf.rest;
+  const FurFrame f = test::furFrame(s, r, p, d);
+  FurParams stiff = p;
+  stiff.coats[0].stiffness = 1.0f;  // f = 0.02
+  const FurFrame g = test::furFrame(s, r, stiff, d);
+  const HairBuffers& hb = f.coats[0];
+  ASSERT_GT(hb.drawn, 2500);
+  for (std::int64_t h = 0; h < hb.drawn; ++h) {
+    EXPECT_NEAR((test::point(hb, h, 7) - test::point(hb, h, 0)).norm(), 0.02f, 1e-8f);
+    EXPECT_EQ(test::point(hb, h, 0).z(), 0.0f) << "roots lie on the skin";
+    EXPECT_LT(test::point(hb, h, 7).z(), test::point(g.coats[0], h, 7).z())
+        << "gravity lowers the end";
+  }
+}
+
+TEST(Generate, FrameBuffersAreReusedWithoutReallocation) {
+  const skin::SkinMesh s = test::makeGrid(8, 0.01f, 0.02f);
+  const FurParams p = test::simpleParams(HairStyle::Polyline, 2000);
+  const test::RestFur rf = test::restFur(s, p);
+  const FurRoots& r = rf.roots;
+  const skin::DeformedSkin& d = rf.rest;
+  FurWorkspace ws;
+  FurFrame f;
+  generateFur(s, r, p, d, {}, ws, f);
+  const float* pos = f.coats[0].positions.data();
+  const float* records = ws.vertexRecords.data();
+  FurView far;
+  far.culling = true;
+  far.viewDistance = 4.0f;
+  for (int k = 0; k < 3; ++k) generateFur(s, r, p, d, k == 1 ? far : FurView{}, ws, f);
+  EXPECT_EQ(f.coats[0].positions.data(), pos);
+  EXPECT_EQ(ws.vertexRecords.data(), records);
+  EXPECT_EQ(reinterpret_cast<std::uintptr_t>(pos) % 64, 0u) << "aligned for streaming stores";
+}
+
+TEST(Generate, PointsPerHairPerStyle) {
+  CoatParams c;
+  c.style = HairStyle::Line;
+  EXPECT_EQ(pointsPerHair(c), 2);
+  c.style = HairStyle::Polyline;
+  EXPECT_EQ(pointsPerHair(c), 8);
+  c.style = HairStyle::Curve;
+  c.curvePoints = 12;
+  EXPECT_EQ(pointsPerHair(c), 12);
+  c.style = HairStyle::Tube;
+  c.tubeSides = 5;
+  EXPECT_EQ(pointsPerHair(c), 60);
+}
+
+}  // namespace
+}  // namespace pelage::fur

@@ -1,0 +1,244 @@
+// Image statistics of rendered fur (llvmpipe): fur pixels carry the coat's material colour, the
+// creature covers the expected area, distance culling halves the drawn hairs at twice the distance,
+// and the drawing options (ribbons, tubes, shadows, CPU vs GPU hairs) do what they say.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "gl_fixture.h"
+#include "pelage/fur/preset.h"
+#include "pelage/scene/draw_list.h"
+#include "pelage/scene/frame.h"
+#include "pelage/viewer/hair_vertex_buffers.h"
+#include "pelage/viewer/renderer.h"
+
+namespace pelage::viewer {
+namespace {
+
+const scene::Model& critter() { return test::testCritter(); }
+
+// fig9's colours with no specular term, so every lit fur pixel is Ka La + Kd t, t in [0, 1]: its
+// green/red ratio is exactly the diffuse colour's (0.14 / 0.3) and it has no blue.
+fur::FurParams testFur(double hairs) {
+  fur::FurParams p = fur::loadFurPreset("fig9");
+  p.hairs = hairs;
+  for (fur::CoatParams& c : p.coats) c.material.specular = Eigen::Vector3f::Zero();
+  p.culling.enabled = false;
+  return p;
+}
+
+struct Shot {
+  Image image;
+  std::int64_t drawn = 0;
+  scene::DrawList list;
+};
+
+class FurRenderTest : public test::GlTest {
+ protected:
+  void SetUp() override {
+    test::GlTest::SetUp();
+    if (HasFatalFailure()) return;
+    scene::evaluateFrame(critter(), anatomy::restPose(critter().body), frame_);
+  }
+
+  Shot render(const scene::Fur* fur, const scene::Camera& cam, scene::DrawOptions opt = {}, bool shadows = false,
+              Renderer* reuse = nullptr) {
+    if (fur) scene::evaluateFur(critter(), *fur, cam.eye, opt.hairSource == scene::HairSource::Cpu, frame_);
+    scene::Light light;
+    light.shadows = shadows;
+    Shot s;
+    scene::buildDrawList(critter(), frame_, fur, cam, light, opt, s.list);
+    s.list.ribbonRootWidthPixels = ribbonWidth_;
+    RendererOptions ro;
+    ro.samples = 0;
+    Renderer local(ro);
+    Renderer& r = reuse ? *reuse : local;
+    s.drawn = r.render(s.list).hairsDrawn;
+    s.image = r.readPixels();
+    return s;
+  }
+
+  scene::Camera camera(scene::CameraPreset preset, int size, const scene::Fur& fur) {
+    const scene::Framing fr = scene::framingOf(critter(), frame_, scene::maxHairLength(critter(), fur.params));
+    return scene::presetCamera(fr, preset, size, size);
+  }
+
+  scene::FrameState frame_;
+  float ribbonWidth_ = 2.5f;
+};
+
+bool samePixel(const Image& a, const Image& b, int x, int y) {
+  const std::uint8_t* p = a.pixel(x, y);
+  const std::uint8_t* q = b.pixel(x, y);
+  return p[0] == q[0] && p[1] == q[1] && p[2] == q[2];
+}
+
+TEST_F(FurRenderTest, FurPixelsHaveTheCoatColour) {
+  const scene::Fur fur = scene::growFur(critter(), testFur(30000));
+  for (const scene::HairShading shading : {scene::HairShading::Paper, scene::HairShading::KajiyaKay}) {
+    SCOPED_TRACE(scene::hairShadingName(shading));
+    const scene::Camera cam = camera(scene::CameraPreset::Side, 320, fur);
+    scene::DrawOptions withFur;
+    withFur.hairSource = scene::HairSource::Gpu;
+    withFur.hairShading = shading;
+    const Shot hairy = render(&fur, cam, withFur);
+    const Shot bare = render(nullptr, cam);
+    EXPECT_EQ(hairy.drawn, fur.roots.total());
+    // Fur pixels: where the hairy image differs from the bare one.
+    const fur::Material& mat = fur.params.coats[0].material;
+    const scene::Light light;
+    const float loR = mat.ambient.x() * light.ambient.x() * 255.0f;
+    const float hiR = (mat.ambient.x() * light.ambient.x() + mat.diffuse.x()) * 255.0f;
+    const float ratio = mat.diffuse.y() / mat.diffuse.x();
+    ASSERT_NEAR(mat.ambient.y() / mat.ambient.x(), ratio, 1e-6f);  // fig9: ambient = diffuse / 2
+    int furPixels = 0, lit = 0;
+    double sumR = 0, sumG = 0;
+    for (int y = 0; y < hairy.image.height; ++y)
+      for (int x = 0; x < hairy.image.width; ++x) {
+        if (samePixel(hairy.image, bare.image, x, y)) continue;
+        const std::uint8_t* p = hairy.image.pixel(x, y);
+        ++furPixels;
+        ASSERT_GE(p[0] + 1.5f, loR) << x << "," << y;
+        ASSERT_LE(p[0] - 1.5f, hiR) << x << "," << y;
+        ASSERT_NEAR(p[1], ratio * p[0], 1.5f) << x << "," << y;
+        ASSERT_LE(p[2], 1) << x << "," << y;
+        sumR += p[0];
+        sumG += p[1];
+        lit += p[0] > loR + 10.0f;
+      }
+    // Plenty of fur, and much of it lit by the key light, not only ambient.
+    EXPECT_GT(furPixels, 5000);
+    EXPECT_GT(lit, furPixels / 4);
+    EXPECT_NEAR(sumG / sumR, ratio, 0.01);
+  }
+}
+
+TEST_F(FurRenderTest, FurCoversTheSilhouetteAndAHairLengthAroundIt) {
+  const scene::Fur fur = scene::growFur(critter(), testFur(30000));
+  const scene::Camera cam = camera(scene::CameraPreset::ThreeQuarter, 256, fur);
+  scene::DrawOptions gpu;
+  gpu.hairSource = scene::HairSource::Gpu;
+  const Shot hairy = render(&fur, cam, gpu);
+  const Shot bare = render(nullptr, cam);
+  const float bg[3] = {bare.list.background.x(), bare.list.background.y(), bare.list.background.z()};
+  const double skin = test::coverage(bare.image, bg), all = test::coverage(hairy.image, bg);
+  EXPECT_GT(skin, 0.05);
+  // Fur adds area around the skin, but not much: hairs are at most a few pixels long here.
+  EXPECT_GT(all, skin * 1.05);
+  EXPECT_LT(all, skin * 2.0);
+  // Every covered pixel lies within the projected longest hair of the skin silhouette.
+  const float hair = scene::maxHairLength(critter(), fur.params);
+  const float pixelsPerMeter = static_cast<float>(cam.height) /
+                               (2.0f * std::tan(cam.fovYDegrees * 3.14159265f / 360.0f) * (cam.distance() - 0.3f));
+  const int reach = static_cast<int>(std::ceil(hair * pixelsPerMeter)) + 1;
+  for (int y = 0; y < hairy.image.height; ++y)
+    for (int x = 0; x < hairy.image.width; ++x) {
+      if (!test::differsFrom(hairy.image, x, y, bg)) continue;
+      bool nearSkin = false;
+      for (int dy = -reach; dy <= reach && !nearSkin; ++dy)
+        for (int dx = -reach; dx <= reach && !nearSkin; ++dx) {
+          const int u = x + dx, v = y + dy;
+          nearSkin = u >= 0 && v >= 0 && u < bare.image.width && v < bare.image.height &&
+                     test::differsFrom(bare.image, u, v, bg);
+        }
+      ASSERT_TRUE(nearSkin) << x << "," << y << " reach " << reach;
+    }
+}
+
+// Van Gelder & Wilhelms 1997, sec. 3.3: twice the distance, half the hairs -- counted by the GPU's
+// own draw commands.
+TEST_F(FurRenderTest, DistanceCullingHalvesTheDrawnHairsAtTwiceTheDistance) {
+  fur::FurParams p = testFur(40000);
+  p.culling.enabled = true;
+  const scene::Fur fur = scene::growFur(critter(), p);
+  const scene::Camera base = camera(scene::CameraPreset::Side, 128, fur);
+  const Eigen::Vector3f center = fur::creatureCenter(frame_.skin);
+  const float ref = fur::referenceDistance(critter().skin, fur.params.culling);
+  RendererOptions ro;
+  ro.samples = 0;
+  Renderer r(ro);
+  scene::DrawOptions gpu;
+  gpu.hairSource = scene::HairSource::Gpu;
+  auto drawnAt = [&](float distance) {
+    scene::Camera cam = base;
+    cam.eye = center + (base.eye - center).normalized() * distance;
+    cam.farMeters = distance * 2.0f;
+    const Shot s = render(&fur, cam, gpu, false, &r);
+    const std::int64_t gpuCount = r.coatBuffers(0).drawnHairsOnGpu() + r.coatBuffers(1).drawnHairsOnGpu();
+    EXPECT_EQ(gpuCount, s.drawn);
+    return gpuCount;
+  };
+  for (const float d : {2.0f * ref, 4.0f * ref}) {
+    const double ratio = static_cast<double>(drawnAt(d)) / static_cast<double>(drawnAt(2.0f * d));
+    EXPECT_NEAR(ratio, 2.0, 0.08) << d;
+  }
+  EXPECT_EQ(drawnAt(0.5f * ref), fur.roots.total());
+}
+
+TEST_F(FurRenderTest, RibbonsTubesAndShadowsDrawWhatTheySay) {
+  // Sparse fur, so that hairs rarely overlap and each one's width shows.
+  fur::FurParams p = testFur(3000);
+  const scene::Fur fur = scene::growFur(critter(), p);
+  const scene::Camera cam = camera(scene::CameraPreset::Side, 300, fur);
+  const Shot bare = render(nullptr, cam);
+  auto furPixels = [&](const Shot& s) {
+    int n = 0;
+    for (int y = 0; y < s.image.height; ++y)
+      for (int x = 0; x < s.image.width; ++x) n += samePixel(s.image, bare.image, x, y) ? 0 : 1;
+    return n;
+  };
+  scene::DrawOptions lines;
+  lines.hairSource = scene::HairSource::Gpu;
+  scene::DrawOptions ribbons = lines;
+  ribbons.hairWidth = scene::HairWidth::Ribbons;
+  const int lineCount = furPixels(render(&fur, cam, lines));
+  ribbonWidth_ = 4.0f;
+  const int ribbonCount = furPixels(render(&fur, cam, ribbons));
+  EXPECT_GT(ribbonCount, lineCount * 1.4);  // 4-pixel roots tapering to half a pixel
+  // Tubes: triangles around each hair; visible from here.
+  scene::Fur tubes{fur.params, fur.roots, fur.generation};
+  for (fur::CoatParams& c : tubes.params.coats) {
+    c.style = fur::HairStyle::Tube;
+    c.tubeRadiusMeters = 0.0015f;
+  }
+  const Shot tubeShot = render(&tubes, cam, lines);
+  EXPECT_GT(furPixels(tubeShot), lineCount / 2);
+  // Shadows: the fur darkens (fur and skin shadow each other) and so does the skin.
+  const Shot lit = render(&fur, cam, lines, false);
+  const Shot shadowed = render(&fur, cam, lines, true);
+  const float bg[3] = {lit.list.background.x(), lit.list.background.y(), lit.list.background.z()};
+  double a = 0, b = 0;
+  int darker = 0, brighter = 0;
+  for (int y = 0; y < lit.image.height; ++y)
+    for (int x = 0; x < lit.image.width; ++x) {
+      if (!test::differsFrom(lit.image, x, y, bg)) continue;
+      const int u = lit.image.pixel(x, y)[0], q = shadowed.image.pixel(x, y)[0];
+      a += u;
+      b += q;
+      darker += q < u;
+      brighter += q > u;
+    }
+  EXPECT_EQ(brighter, 0);  // a shadow only takes light away
+  EXPECT_GT(darker, 500);
+  EXPECT_LT(b, a * 0.98);
+}
+
+TEST_F(FurRenderTest, CpuAndGpuHairsGiveTheSameImage) {
+  const scene::Fur fur = scene::growFur(critter(), testFur(20000));
+  const scene::Camera cam = camera(scene::CameraPreset::Front, 200, fur);
+  scene::DrawOptions cpu, gpu;
+  cpu.hairSource = scene::HairSource::Cpu;
+  gpu.hairSource = scene::HairSource::Gpu;
+  const Shot a = render(&fur, cam, cpu);
+  const Shot b = render(&fur, cam, gpu);
+  EXPECT_EQ(a.drawn, b.drawn);
+  int differ = 0;
+  for (int y = 0; y < a.image.height; ++y)
+    for (int x = 0; x < a.image.width; ++x) differ += samePixel(a.image, b.image, x, y) ? 0 : 1;
+  // The points agree to ~1e-7 m, so at most a handful of line pixels may round differently.
+  EXPECT_LT(differ, a.image.width * a.image.height / 500);
+}
+
+}  // namespace
+}  // namespace pelage::viewer

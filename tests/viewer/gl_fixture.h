@@ -1,0 +1,81 @@
+// One headless EGL context (with KHR_debug output) per test binary, and image statistics.
+// GL tests never skip: without EGL/Mesa they fail with the context's error message.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+#include <string>
+
+#include "pelage/scene/model.h"
+#include "pelage/viewer/gl_context.h"
+#include "pelage/viewer/gl_debug.h"
+#include "pelage/viewer/image.h"
+
+namespace pelage::test {
+
+struct GlEnvironment {
+  std::unique_ptr<viewer::GlContext> context;
+  std::unique_ptr<viewer::GlDebugLog> log;
+  std::string error;  // why there is no context
+};
+
+inline GlEnvironment& glEnvironment() {
+  static GlEnvironment env = [] {
+    GlEnvironment e;
+    try {
+      viewer::ContextOptions o;
+      o.debug = true;
+      e.context = viewer::createHeadlessContext(o);
+      e.log = std::make_unique<viewer::GlDebugLog>();
+    } catch (const std::exception& ex) {
+      e.error = ex.what();
+    }
+    return e;
+  }();
+  return env;
+}
+
+// Fixture: fails (not skips) when no GL context can be made; fails when the driver reported a GL
+// error during the test.
+class GlTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    GlEnvironment& env = glEnvironment();
+    ASSERT_TRUE(env.context) << "no headless OpenGL context: " << env.error;
+    env.context->makeCurrent();
+    env.log->clear();
+  }
+  void TearDown() override {
+    GlEnvironment& env = glEnvironment();
+    if (env.log) {
+      EXPECT_EQ(env.log->errors(), "") << "OpenGL reported errors during the test";
+    }
+  }
+};
+
+// The test critter (tests/scene/critter.json: body, head facing +X with a "face" region, tail;
+// 40,000 triangles), built once per test binary: quick to build, also under the sanitizers.
+inline const scene::Model& testCritter() {
+  static const scene::Model m = scene::loadModel(PELAGE_SOURCE_DIR "/tests/scene/critter.json");
+  return m;
+}
+
+// True when pixel (x, y) differs from `bg` (0..1 RGB) by more than `tol` (0..255) in any channel.
+inline bool differsFrom(const viewer::Image& img, int x, int y, const float bg[3], int tol = 6) {
+  const std::uint8_t* p = img.pixel(x, y);
+  for (int c = 0; c < 3; ++c)
+    if (std::abs(static_cast<int>(p[c]) - static_cast<int>(std::lround(bg[c] * 255.0f))) > tol) return true;
+  return false;
+}
+
+// Fraction of pixels that differ from the background.
+inline double coverage(const viewer::Image& img, const float bg[3]) {
+  std::int64_t n = 0;
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x) n += differsFrom(img, x, y, bg) ? 1 : 0;
+  return static_cast<double>(n) / (static_cast<double>(img.width) * img.height);
+}
+
+}  // namespace pelage::test

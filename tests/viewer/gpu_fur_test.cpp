@@ -1,0 +1,192 @@
+// GPU fur against the CPU fur model: the same roots and deformed skin must give the same drawn
+// hairs, in the same order, with points and shading vectors within 1e-4 relative, for every style,
+// both coats, with culling on and off; and the splitting into bindings must not change anything.
+#include "pelage/viewer/gpu_fur.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "gl_fixture.h"
+#include "pelage/fur/preset.h"
+#include "pelage/scene/draw_list.h"
+#include "pelage/scene/frame.h"
+#include "pelage/viewer/hair_vertex_buffers.h"
+#include "pelage/viewer/renderer.h"
+
+namespace pelage::viewer {
+namespace {
+
+const scene::Model& critter() { return test::testCritter(); }
+
+// A pose that bends the body (so the skin is not the bind pose) and turns it a little.
+anatomy::Pose bentPose(const anatomy::Body& body) {
+  anatomy::Pose p = anatomy::restPose(body);
+  auto bend = [&](const char* name, const Eigen::Vector3f& axis, float deg) {
+    const int s = body.find(name);
+    ASSERT_GE(s, 0) << name;
+    p.local[static_cast<std::size_t>(s)].rotation =
+        p.local[static_cast<std::size_t>(s)].rotation * Eigen::Quaternionf(Eigen::AngleAxisf(deg * 3.14159265f / 180.0f, axis));
+  };
+  bend("head", Eigen::Vector3f::UnitY(), -25.0f);
+  bend("tail", Eigen::Vector3f::UnitX(), 40.0f);
+  bend("body", Eigen::Vector3f::UnitZ(), 20.0f);
+  return p;
+}
+
+struct StyleCase {
+  std::string name;
+  fur::HairStyle over;
+  fur::HairStyle under;
+  float curl;  // helix radius fraction (curve/tube)
+};
+
+void PrintTo(const StyleCase& c, std::ostream* os) { *os << c.name; }
+
+fur::FurParams paramsFor(const StyleCase& sc, double hairs) {
+  fur::FurParams p = fur::loadFurPreset("fig9");
+  p.hairs = hairs;
+  p.undercoatShare = 0.35f;
+  p.seed = 77;
+  for (int c = 0; c < fur::kCoatCount; ++c) {
+    fur::CoatParams& cp = p.coats[static_cast<std::size_t>(c)];
+    cp.style = c == 0 ? sc.over : sc.under;
+    cp.normalRandomize = 0.5f;   // polyline twist table in use
+    cp.hairEndRandomize = 0.3f;  // per-root jitter in use
+    cp.segmentDirectionWeight = 0.4f;
+    cp.curvePoints = 7;
+    cp.tubeSides = 5;
+    cp.curlRadius = sc.curl;
+    cp.curlTurns = sc.curl > 0.0f ? 2.5f : 0.0f;
+  }
+  // The 3D length region: a sphere around the head doubles its hairs.
+  p.lengthRegion.shape = fur::LengthRegion::Shape::Sphere;
+  p.lengthRegion.center = Eigen::Vector3f(0.25f, 0.0f, 0.38f);
+  p.lengthRegion.radius = 0.08f;
+  p.lengthRegion.scale = 2.0f;
+  p.culling.referenceDistance = 0.25f;
+  return p;
+}
+
+// Largest |gpu - cpu| / max(|cpu|, 0.05) over the points (3-vectors) of two arrays.
+double maxRelativeError(const std::vector<float>& gpu, const float* cpu, std::size_t floats) {
+  double worst = 0.0;
+  for (std::size_t i = 0; i + 2 < floats; i += 3) {
+    const Eigen::Vector3d g(gpu[i], gpu[i + 1], gpu[i + 2]);
+    const Eigen::Vector3d c(cpu[i], cpu[i + 1], cpu[i + 2]);
+    worst = std::max(worst, (g - c).norm() / std::max(c.norm(), 0.05));
+  }
+  return worst;
+}
+
+// Largest |gpu - cpu| over hair h's points divided by the hair's extent (largest distance of a CPU
+// point from the hair's first point): an error measured against the hair itself, not against its
+// distance from the world origin.
+double maxHairRelativeError(const std::vector<float>& gpu, const float* cpu, std::int64_t hairs, int pointsPerHair) {
+  double worst = 0.0;
+  for (std::int64_t h = 0; h < hairs; ++h) {
+    const std::size_t first = static_cast<std::size_t>(h * pointsPerHair * 3);
+    const Eigen::Vector3d c0(cpu[first], cpu[first + 1], cpu[first + 2]);
+    double extent = 0.0, err = 0.0;
+    for (int i = 0; i < pointsPerHair; ++i) {
+      const std::size_t k = first + static_cast<std::size_t>(3 * i);
+      const Eigen::Vector3d c(cpu[k], cpu[k + 1], cpu[k + 2]);
+      const Eigen::Vector3d g(gpu[k], gpu[k + 1], gpu[k + 2]);
+      extent = std::max(extent, (c - c0).norm());
+      err = std::max(err, (g - c).norm());
+    }
+    worst = std::max(worst, err / std::max(extent, 1e-4));
+  }
+  return worst;
+}
+
+class GpuFurParity : public test::GlTest, public ::testing::WithParamInterface<StyleCase> {};
+
+TEST_P(GpuFurParity, MatchesTheCpuModel) {
+  const scene::Model& model = critter();
+  const scene::Fur fur = scene::growFur(model, paramsFor(GetParam(), 12000));
+  ASSERT_GT(fur.roots.coats[0].size(), 5000);
+  ASSERT_GT(fur.roots.coats[1].size(), 2500);
+  scene::FrameState frame;
+  scene::evaluateFrame(model, bentPose(model.body), frame);
+  const scene::Framing framing = scene::framingOf(model, frame, scene::maxHairLength(model, fur.params));
+
+  for (const bool culling : {false, true}) {
+    // Culling on: the camera at 3x the reference distance (c = 3); off: every hair.
+    scene::Camera cam = scene::presetCamera(framing, scene::CameraPreset::ThreeQuarter, 64, 64);
+    cam.eye = framing.center + (cam.eye - framing.center).normalized() * 0.75f;
+    fur::FurParams params = fur.params;
+    scene::Fur f2{params, fur.roots, fur.generation};
+    f2.params.culling.enabled = culling;
+    scene::evaluateFur(model, f2, cam.eye, true, frame);
+    if (culling) {
+      ASSERT_GT(frame.cullFactor, 2.0f);
+    } else {
+      ASSERT_EQ(frame.cullFactor, 1.0f);
+    }
+
+    for (const scene::HairShading shading : {scene::HairShading::Paper, scene::HairShading::KajiyaKay}) {
+      scene::DrawOptions opt;
+      opt.hairSource = scene::HairSource::Gpu;
+      opt.hairShading = shading;
+      scene::DrawList list;
+      scene::buildDrawList(model, frame, &f2, cam, scene::Light{}, opt, list);
+      ASSERT_EQ(list.fur.size(), 2u);
+      for (const bool split : {false, true}) {
+        RendererOptions ro;
+        ro.samples = 0;
+        // Split: every binding at most 48 KiB, so outputs and root windows come in many pieces, and
+        // dispatches of more than 8 groups become 2-D grids.
+        if (split) {
+          ro.gpuFur.maxBindingBytes = 48 * 1024;
+          ro.gpuFur.maxGroupsPerDimension = 8;
+        }
+        Renderer renderer(ro);
+        const RenderStats stats = renderer.render(list);
+        EXPECT_EQ(stats.hairsDrawn, frame.drawnHairs[0] + frame.drawnHairs[1]);
+        for (int c = 0; c < fur::kCoatCount; ++c) {
+          SCOPED_TRACE(testing::Message() << GetParam().name << " coat " << c << (culling ? " culled" : " all")
+                                          << (split ? " split" : "") << " " << scene::hairShadingName(shading));
+          const fur::HairBuffers& cpu = frame.fur.coats[static_cast<std::size_t>(c)];
+          const HairVertexBuffers& gpu = renderer.coatBuffers(c);
+          if (split) {
+            EXPECT_GT(gpu.chunks().size(), 2u);
+          }
+          ASSERT_EQ(gpu.drawnHairsOnGpu(), cpu.drawn);
+          ASSERT_EQ(cpu.drawn, frame.drawnHairs[static_cast<std::size_t>(c)]);
+          if (culling) {
+            EXPECT_LT(cpu.drawn, fur.roots.coats[static_cast<std::size_t>(c)].size() / 2);
+          }
+          std::vector<float> gp, gs;
+          gpu.readBack(gp, gs);
+          const std::size_t floats = static_cast<std::size_t>(cpu.drawn * cpu.pointsPerHair * 3);
+          ASSERT_EQ(gp.size(), floats);
+          EXPECT_LT(maxRelativeError(gp, cpu.positions.data(), floats), 1e-4);
+          // Also against each hair's own size: a 0.1% error in a 1 cm hair is far below 1e-4 of its
+          // distance from the origin. (On llvmpipe the two paths agree bit for bit.)
+          EXPECT_LT(maxHairRelativeError(gp, cpu.positions.data(), cpu.drawn, cpu.pointsPerHair), 1e-4);
+          if (shading == scene::HairShading::Paper) {
+            EXPECT_LT(maxRelativeError(gs, cpu.normals.data(), floats), 1e-4);
+          } else {
+            std::vector<float> tangents;
+            strandTangents(cpu.positions.data(), cpu.drawn, gpu.layout(), tangents);
+            EXPECT_LT(maxRelativeError(gs, tangents.data(), floats), 1e-3);
+          }
+        }
+      }
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Styles, GpuFurParity,
+    ::testing::Values(StyleCase{"line_polyline", fur::HairStyle::Line, fur::HairStyle::Polyline, 0.0f},
+                      StyleCase{"polyline_line", fur::HairStyle::Polyline, fur::HairStyle::Line, 0.0f},
+                      StyleCase{"curve_tube", fur::HairStyle::Curve, fur::HairStyle::Tube, 0.0f},
+                      StyleCase{"helical_tube_curve", fur::HairStyle::Tube, fur::HairStyle::Curve, 0.15f}),
+    [](const ::testing::TestParamInfo<StyleCase>& i) { return i.param.name; });
+
+}  // namespace
+}  // namespace pelage::viewer

@@ -1,0 +1,200 @@
+// The viewer's session (what the window and the headless loop drive): live parameter edits, roots
+// regrown on a worker thread without stalling the frames, playback with cross-fades, presets.
+#include "viewer_session.h"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <filesystem>
+#include <thread>
+
+#include "gl_fixture.h"
+#include "pelage/animation/clip.h"
+#include "pelage/fur/preset.h"
+#include "test_support.h"
+
+namespace pelage::viewer::detail {
+namespace {
+
+// The critter with one clip that turns its head from side to side (2 s, looping).
+scene::Model critterWithClips() {
+  scene::Model m = test::testCritter();
+  const int head = m.body.find("head");
+  for (const float sign : {1.0f, -1.0f}) {
+    animation::Clip c;
+    c.name = sign > 0 ? "look" : "lookback";
+    c.duration = 2.0f;
+    animation::Channel ch;
+    ch.segment = head;
+    ch.path = animation::ChannelPath::Rotation;
+    const Eigen::Quaternionf q0 = m.body.segments[static_cast<std::size_t>(head)].rest.rotation;
+    const Eigen::Quaternionf q1 = q0 * Eigen::Quaternionf(Eigen::AngleAxisf(sign * 1.0f, Eigen::Vector3f::UnitZ()));
+    ch.times = {0.0f, 1.0f, 2.0f};
+    ch.values = {q0.x(), q0.y(), q0.z(), q0.w(), q1.x(), q1.y(), q1.z(), q1.w(), q0.x(), q0.y(), q0.z(), q0.w()};
+    c.channels.push_back(ch);
+    m.clips.push_back(c);
+  }
+  return m;
+}
+
+ViewerOptions smallOptions() {
+  ViewerOptions o;
+  o.fur = fur::loadFurPreset("default");
+  o.fur.hairs = 4000;
+  o.width = 96;
+  o.height = 64;
+  o.samples = 0;
+  return o;
+}
+
+class ViewerSessionTest : public test::GlTest {};
+
+TEST_F(ViewerSessionTest, EditsApplyOnTheNextFrame) {
+  ViewerSession s(smallOptions(), critterWithClips());
+  s.frame(0.0, 96, 64);
+  const std::int64_t before = s.hairsDrawn();
+  EXPECT_GT(before, 0);
+  s.edit.coats[0].style = fur::HairStyle::Curve;
+  s.edit.coats[0].curvePoints = 5;
+  s.edit.lengthScale = 2.0f;
+  s.frame(0.0, 96, 64);
+  EXPECT_EQ(s.fur().params.coats[0].style, fur::HairStyle::Curve);
+  EXPECT_EQ(s.fur().params.lengthScale, 2.0f);
+  ASSERT_FALSE(s.drawList().fur.empty());
+  EXPECT_EQ(s.drawList().fur[0].strandPoints, 5);
+  // An invalid value is reported and not applied.
+  s.edit.coats[1].stiffness = 3.0f;
+  s.frame(0.0, 96, 64);
+  EXPECT_NE(s.editError.find("stiffness"), std::string::npos) << s.editError;
+  EXPECT_LE(s.fur().params.coats[1].stiffness, 1.0f);
+  s.edit.coats[1].stiffness = 0.5f;
+  s.frame(0.0, 96, 64);
+  EXPECT_TRUE(s.editError.empty());
+  // The skin colour: the model's, then the panel's.
+  EXPECT_TRUE(s.drawList().skin.material.diffuse.isApprox(s.model().skin.color));
+  s.skinColor = Eigen::Vector3f(0.1f, 0.2f, 0.3f);
+  s.frame(0.0, 96, 64);
+  EXPECT_TRUE(s.drawList().skin.material.diffuse.isApprox(Eigen::Vector3f(0.1f, 0.2f, 0.3f)));
+}
+
+TEST_F(ViewerSessionTest, ANewHairCountRegrowsTheRootsWithoutStalling) {
+  ViewerSession s(smallOptions(), critterWithClips());
+  s.frame(0.0, 96, 64);
+  const std::uint64_t generation = s.fur().generation;
+  const std::int64_t roots = s.fur().roots.total();
+  s.edit.hairs = 12000;
+  s.edit.coats[0].stiffness = 0.9f;  // applies at once, to the old roots
+  s.frame(0.0, 96, 64);
+  EXPECT_EQ(s.fur().params.coats[0].stiffness, 0.9f);
+  // Frames keep coming with the old roots until the new ones are ready, then they swap in.
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  int frames = 1;
+  while (s.fur().generation == generation && std::chrono::steady_clock::now() < deadline) {
+    if (s.regrowing()) {
+      EXPECT_EQ(s.fur().roots.total(), roots);
+    }
+    s.frame(0.0, 96, 64);
+    ++frames;
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  ASSERT_NE(s.fur().generation, generation) << "the roots were never regrown";
+  EXPECT_NEAR(static_cast<double>(s.fur().roots.total()), 12000.0, 400.0);
+  EXPECT_EQ(s.fur().params.hairs, 12000.0);
+  EXPECT_EQ(s.fur().params.coats[0].stiffness, 0.9f);
+  EXPECT_FALSE(s.regrowing());
+  EXPECT_GE(frames, 2);
+}
+
+TEST_F(ViewerSessionTest, PlaybackPlaysScrubsLoopsAndCrossFades) {
+  ViewerOptions o = smallOptions();
+  o.clip = "look";
+  o.time = 0.5;
+  ViewerSession s(o, critterWithClips());
+  EXPECT_EQ(s.clip(), 0);
+  EXPECT_DOUBLE_EQ(s.clipDuration(), 2.0);
+  s.frame(0.25, 96, 64);  // shows t = 0.5, then advances
+  EXPECT_DOUBLE_EQ(s.time(), 0.75);
+  s.speed = 2.0f;
+  s.frame(0.25, 96, 64);
+  EXPECT_DOUBLE_EQ(s.time(), 1.25);
+  s.playing = false;
+  s.frame(0.25, 96, 64);
+  EXPECT_DOUBLE_EQ(s.time(), 1.25);
+  s.setTime(1.0);  // scrub: the head at its extreme
+  s.frame(0.0, 96, 64);
+  const int head = s.model().body.find("head");
+  const Eigen::Matrix3f turned = s.state().body.world[static_cast<std::size_t>(head)].linear();
+  // A switch cross-fades: the first frame after it still shows the old clip (weight 0), the next
+  // ones a pose between the two clips' poses.
+  s.playing = true;
+  s.selectClip(1);
+  EXPECT_EQ(s.clip(), 1);
+  s.frame(0.1, 96, 64);
+  EXPECT_TRUE(s.state().body.world[static_cast<std::size_t>(head)].linear().isApprox(turned, 1e-5f));
+  s.frame(0.05, 96, 64);
+  const Eigen::Matrix3f fading = s.state().body.world[static_cast<std::size_t>(head)].linear();
+  for (int i = 0; i < 20; ++i) s.frame(0.05, 96, 64);  // 1 s: the fade (0.3 s) is over
+  const Eigen::Matrix3f after = s.state().body.world[static_cast<std::size_t>(head)].linear();
+  EXPECT_FALSE(fading.isApprox(turned, 1e-3f));
+  EXPECT_FALSE(fading.isApprox(after, 1e-3f));
+  // Without looping a clip stops on its last frame.
+  s.loop = false;
+  s.speed = 1.0f;
+  for (int i = 0; i < 60; ++i) s.frame(0.1, 96, 64);
+  EXPECT_FALSE(s.playing);
+  EXPECT_DOUBLE_EQ(s.time(), 2.0);
+  // The still pose.
+  s.selectClip(-1);
+  s.frame(0.1, 96, 64);
+  EXPECT_EQ(s.clip(), -1);
+}
+
+TEST_F(ViewerSessionTest, PresetsSaveAndLoad) {
+  test::TempDir dir;
+  ViewerSession s(smallOptions(), critterWithClips());
+  s.edit.coats[0].material.diffuse = Eigen::Vector3f(0.1f, 0.2f, 0.3f);
+  s.edit.coats[1].style = fur::HairStyle::Line;
+  s.frame(0.0, 96, 64);
+  s.edit.hairs = 7000;  // saved as edited, even before the new roots have grown
+  s.savePreset(dir.file("mine.json"));
+  EXPECT_NE(s.message.find("saved"), std::string::npos) << s.message;
+  const fur::FurParams back = fur::loadFurPreset(dir.file("mine.json"));
+  EXPECT_TRUE(back.coats[0].material.diffuse.isApprox(Eigen::Vector3f(0.1f, 0.2f, 0.3f)));
+  EXPECT_EQ(back.coats[1].style, fur::HairStyle::Line);
+  EXPECT_EQ(back.hairs, 7000.0);
+  // Invalid panel values are not saved; the message says why.
+  s.edit.coats[0].stiffness = 5.0f;
+  s.savePreset(dir.file("bad.json"));
+  EXPECT_NE(s.message.find("stiffness"), std::string::npos) << s.message;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("bad.json")));
+  s.edit.coats[0].stiffness = 0.5f;
+  s.loadPreset("fig8");
+  EXPECT_NE(s.message.find("loaded"), std::string::npos);
+  s.frame(0.0, 96, 64);
+  EXPECT_EQ(s.fur().params.coats[0].material.shininess, fur::loadFurPreset("fig8").coats[0].material.shininess);
+  s.loadPreset(dir.file("missing.json"));
+  EXPECT_NE(s.message.find("missing.json"), std::string::npos) << s.message;
+  s.savePreset(dir.file("no/such/dir/x.json"));
+  EXPECT_NE(s.message.find("x.json"), std::string::npos) << s.message;
+}
+
+TEST_F(ViewerSessionTest, CameraControlsAndPresets) {
+  ViewerSession s(smallOptions(), critterWithClips());
+  s.frame(0.0, 96, 64);
+  const scene::Orbit o = s.orbit;
+  s.orbitBy(30.0f, 100.0f);
+  EXPECT_NEAR(s.orbit.azimuthDegrees, o.azimuthDegrees + 30.0f, 1e-3f);
+  EXPECT_FLOAT_EQ(s.orbit.elevationDegrees, 89.0f);  // clamped below the pole
+  s.zoomBy(0.5f);
+  EXPECT_NEAR(s.orbit.distanceMeters, o.distanceMeters * 0.5f, 1e-5f);
+  s.panBy(0.1f, 0.0f);
+  EXPECT_GT((s.orbit.target - o.target).norm(), 0.0f);
+  s.applyPreset(scene::CameraPreset::Face);
+  s.frame(0.0, 96, 64);
+  EXPECT_LT(s.orbit.distanceMeters, o.distanceMeters * 0.5f);
+  s.applyPreset(scene::CameraPreset::Follow);
+  EXPECT_TRUE(s.follow);
+}
+
+}  // namespace
+}  // namespace pelage::viewer::detail

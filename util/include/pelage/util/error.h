@@ -1,0 +1,61 @@
+// Two kinds of error (STYLE.md practice 8):
+//  - InputError: bad user input (files, parameters, command line). The message names the file or
+//    field and the accepted range; the app prints it and exits non-zero.
+//  - PELAGE_CHECK: a broken internal invariant (a bug); throws InternalError with file:line.
+#pragma once
+
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+namespace pelage {
+
+// Bad user input: a clear message naming the file/field and the accepted range.
+class InputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// A broken invariant inside pelage (a bug, never the user's fault).
+class InternalError : public std::logic_error {
+ public:
+  using std::logic_error::logic_error;
+};
+
+namespace detail {
+[[noreturn]] void checkFailed(const char* file, int line, const char* cond, const std::string& msg);
+
+inline void appendAll(std::ostringstream&) {}
+template <typename T, typename... Rest>
+void appendAll(std::ostringstream& os, const T& v, const Rest&... rest) {
+  os << v;
+  appendAll(os, rest...);
+}
+template <typename... Args>
+std::string concat(const Args&... args) {
+  std::ostringstream os;
+  appendAll(os, args...);
+  return os.str();
+}
+}  // namespace detail
+
+// Builds a message from any streamable pieces: str("field ", name, " = ", v).
+template <typename... Args>
+std::string str(const Args&... args) {
+  return detail::concat(args...);
+}
+
+// Throws InputError with the concatenated message.
+template <typename... Args>
+[[noreturn]] void inputError(const Args&... args) {
+  throw InputError(detail::concat(args...));
+}
+
+}  // namespace pelage
+
+#define PELAGE_CHECK(cond, ...)                                                             \
+  do {                                                                                      \
+    if (!(cond))                                                                            \
+      ::pelage::detail::checkFailed(__FILE__, __LINE__, #cond,                              \
+                                    ::pelage::detail::concat("" __VA_OPT__(, ) __VA_ARGS__)); \
+  } while (0)

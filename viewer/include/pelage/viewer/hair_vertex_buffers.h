@@ -1,0 +1,91 @@
+// GPU buffers holding one coat's hair points for drawing: positions and shading vectors (3 floats
+// per point, tightly packed, hair i's points at [i*P, (i+1)*P) as the CPU fur model writes them), a
+// static index pattern (line strips with primitive restart, or tube triangles) and indirect draw
+// commands. Filled either by uploading the CPU fur model's buffers or by the GPU fur pass.
+//
+// The buffers are split into chunks of whole hairs, each at most maxShaderStorageBlockSize bytes
+// per array, because llvmpipe lets one shader-storage binding address only 128 MiB: the GPU pass
+// writes each chunk through its own bound range, and each chunk is drawn by its own indirect command
+// (baseVertex = the chunk's first point), so any hair count works on any driver.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "pelage/viewer/gl.h"
+
+namespace pelage::viewer {
+
+// Layout of one hair's points: strandPoints points along the hair, each a ring of strandStride
+// points for tubes (strandStride = 1 otherwise). P = strandPoints * strandStride.
+struct HairLayout {
+  int strandPoints = 2;
+  int strandStride = 1;
+  bool triangles = false;  // tubes: triangles between consecutive rings; else a line strip
+  int pointsPerHair() const { return strandPoints * strandStride; }
+  // Indices per hair: P + 1 (strip + restart) or (K - 1) * M * 6 (tube triangles).
+  int indicesPerHair() const;
+  bool operator==(const HairLayout&) const = default;
+};
+
+// One chunk: hairs [firstHair, firstHair + capacity) of the coat's slots.
+struct HairChunk {
+  std::int64_t firstHair = 0;
+  std::int64_t capacity = 0;
+};
+
+// DrawElementsIndirectCommand (GL 4.0 indirect draw layout).
+struct DrawCommand {
+  std::uint32_t count = 0;
+  std::uint32_t instanceCount = 1;
+  std::uint32_t firstIndex = 0;
+  std::int32_t baseVertex = 0;
+  std::uint32_t baseInstance = 0;
+};
+
+class HairVertexBuffers {
+ public:
+  HairVertexBuffers();
+  ~HairVertexBuffers();
+  HairVertexBuffers(const HairVertexBuffers&) = delete;
+  HairVertexBuffers& operator=(const HairVertexBuffers&) = delete;
+
+  // Makes room for `hairs` hairs of `layout` (grows, never shrinks, unless the layout changes);
+  // `maxChunkBytes` caps one chunk's array size (0 = the context's GL_MAX_SHADER_STORAGE_BLOCK_SIZE).
+  void reserve(std::int64_t hairs, const HairLayout& layout, std::int64_t maxChunkBytes = 0);
+  // Uploads `hairs` hairs from CPU arrays (hairs * P * 3 floats each) and sets the draw commands.
+  void upload(const float* positions, const float* shading, std::int64_t hairs);
+
+  // Reads back the drawn hairs' points in hair order (tests: GPU/CPU parity). Uses the commands.
+  void readBack(std::vector<float>& positions, std::vector<float>& shading) const;
+  // Hairs the current commands draw (reads the command buffer back; for tests and statistics).
+  std::int64_t drawnHairsOnGpu() const;
+
+  const HairLayout& layout() const { return layout_; }
+  const std::vector<HairChunk>& chunks() const { return chunks_; }
+  std::int64_t capacity() const { return capacity_; }
+  GLuint positions() const { return positions_; }
+  GLuint shading() const { return shading_; }
+  GLuint indices() const { return indices_; }
+  GLuint commands() const { return commands_; }
+  GLuint vertexArray() const { return vao_; }
+
+ private:
+  HairLayout layout_;
+  std::int64_t capacity_ = 0;
+  std::int64_t indexCapacity_ = 0;
+  std::int64_t maxChunkBytes_ = 0;  // hairs the index pattern covers (the largest chunk)
+  std::vector<HairChunk> chunks_;
+  std::vector<DrawCommand> commandScratch_;
+  GLuint positions_ = 0, shading_ = 0, indices_ = 0, commands_ = 0, vao_ = 0;
+};
+
+// Unit tangents along each strand (Kajiya-Kay's T) of `hairs` hairs of `layout` from their points
+// (hairs * P * 3 floats): the direction of the segment leaving each point, the last point repeating
+// the one arriving. The GPU fur pass computes the same for its hairs.
+void strandTangents(const float* positions, std::int64_t hairs, const HairLayout& layout, std::vector<float>& out);
+
+// The largest size in bytes one shader-storage binding may address on this context.
+std::int64_t maxShaderStorageBlockSize();
+
+}  // namespace pelage::viewer

@@ -1,0 +1,29 @@
+// An RGBA8 image as read back from the renderer (top row first), and PNG files.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace pelage::viewer {
+
+struct Image {
+  int width = 0;
+  int height = 0;
+  std::vector<std::uint8_t> rgba;  // height x width x 4, top row first
+
+  const std::uint8_t* pixel(int x, int y) const {
+    return rgba.data() + (static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
+                          static_cast<std::size_t>(x)) * 4;
+  }
+};
+
+// Encodes `image` as PNG into memory (stb_image_write; thread-safe).
+std::vector<std::uint8_t> encodePng(const Image& image);
+// Writes a PNG atomically (temporary file + rename): never a truncated file. Throws InputError
+// naming the file on failure (unwritable directory, disk full).
+void writePng(const std::string& path, const Image& image);
+// Reads a PNG as RGBA8; throws InputError naming the file if it is missing or not a PNG.
+Image readPng(const std::string& path);
+
+}  // namespace pelage::viewer

@@ -1,0 +1,422 @@
+#include "pelage/viewer/renderer.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "gl_program.h"
+#include "pelage/util/error.h"
+#include "pelage/viewer/gpu_fur.h"
+#include "pelage/viewer/hair_vertex_buffers.h"
+
+namespace pelage::viewer {
+
+using detail::Buffer;
+using detail::Framebuffer;
+using detail::Program;
+using detail::Renderbuffer;
+using detail::Texture;
+using detail::uniform;
+
+namespace {
+
+Eigen::Matrix4f ortho(float l, float r, float b, float t, float n, float f) {
+  Eigen::Matrix4f m = Eigen::Matrix4f::Identity();
+  m(0, 0) = 2.0f / (r - l);
+  m(1, 1) = 2.0f / (t - b);
+  m(2, 2) = -2.0f / (f - n);
+  m(0, 3) = -(r + l) / (r - l);
+  m(1, 3) = -(t + b) / (t - b);
+  m(2, 3) = -(f + n) / (f - n);
+  return m;
+}
+
+void setMatrix(GLuint program, const char* name, const Eigen::Matrix4f& m) {
+  glProgramUniformMatrix4fv(program, uniform(program, name), 1, GL_FALSE, m.data());
+}
+void setVec3(GLuint program, const char* name, const Eigen::Vector3f& v) {
+  glProgramUniform3f(program, uniform(program, name), v.x(), v.y(), v.z());
+}
+void setFloat(GLuint program, const char* name, float v) {
+  glProgramUniform1f(program, uniform(program, name), v);
+}
+void setInt(GLuint program, const char* name, int v) {
+  glProgramUniform1i(program, uniform(program, name), v);
+}
+
+void setMaterial(GLuint program, const scene::Material& m) {
+  setVec3(program, "uKa", m.ambient);
+  setVec3(program, "uKd", m.diffuse);
+  setVec3(program, "uKs", m.specular);
+  setFloat(program, "uShininess", std::max(m.shininess, 1.0f));
+}
+
+HairLayout layoutOf(const scene::FurDrawItem& item) {
+  HairLayout l;
+  l.strandPoints = item.strandPoints;
+  l.strandStride = item.strandStride;
+  l.triangles = item.triangles;
+  return l;
+}
+
+}  // namespace
+
+struct Renderer::Impl {
+  RendererOptions options;
+  int samples = 0;
+  int width = 0, height = 0;
+
+  Program skinProgram, hairProgram, ribbonProgram, depthProgram;
+
+  Framebuffer msaaFbo, resolveFbo, shadowFbo;
+  Renderbuffer msaaColor, msaaDepth, resolveDepth;
+  Texture resolveColor, shadowMap;
+  int shadowSize = 0;
+
+  detail::VertexArray skinVao;
+  Buffer skinPositions, skinNormals, skinIndices;
+  int skinVertices = -1;
+  const std::vector<std::int32_t>* skinTrianglesSource = nullptr;
+  std::size_t skinTrianglesSize = 0;
+  int skinTriangleCount = 0;
+
+  std::array<HairVertexBuffers, 2> coats;
+  std::vector<float> tangentScratch;
+  std::unique_ptr<GpuFur> gpuFur;  // created on first use (compiles the compute shaders)
+
+  explicit Impl(const RendererOptions& o) : options(o) {
+    GLint maxSamples = 0;
+    glGetIntegerv(GL_MAX_SAMPLES, &maxSamples);
+    samples = options.samples > 1 ? std::min(options.samples, static_cast<int>(maxSamples)) : 0;
+    if (samples < 2) samples = 0;
+
+    using detail::ShaderStage;
+    skinProgram.reset(detail::buildProgram(
+        "skin", {ShaderStage{GL_VERTEX_SHADER, {"skin.vert"}},
+                 ShaderStage{GL_FRAGMENT_SHADER, {"lighting.glsl", "skin.frag"}}}));
+    hairProgram.reset(detail::buildProgram(
+        "hair", {ShaderStage{GL_VERTEX_SHADER, {"hair.vert"}},
+                 ShaderStage{GL_FRAGMENT_SHADER, {"lighting.glsl", "hair.frag"}}}));
+    ribbonProgram.reset(detail::buildProgram(
+        "hair ribbons", {ShaderStage{GL_VERTEX_SHADER, {"hair.vert"}},
+                         ShaderStage{GL_GEOMETRY_SHADER, {"hair_ribbon.geom"}},
+                         ShaderStage{GL_FRAGMENT_SHADER, {"lighting.glsl", "hair.frag"}}},
+        "#define RIBBON 1"));
+    depthProgram.reset(detail::buildProgram(
+        "depth", {ShaderStage{GL_VERTEX_SHADER, {"depth.vert"}}, ShaderStage{GL_FRAGMENT_SHADER, {"depth.frag"}}}));
+
+    GLuint vao = 0;
+    glCreateVertexArrays(1, &vao);
+    skinVao.reset(vao);
+  }
+
+  void resize(int w, int h) {
+    PELAGE_CHECK(w > 0 && h > 0 && w <= 16384 && h <= 16384, "framebuffer ", w, "x", h);
+    if (w == width && h == height && resolveFbo) return;
+    width = w;
+    height = h;
+    GLuint id = 0;
+    msaaFbo.reset();
+    msaaColor.reset();
+    msaaDepth.reset();
+    resolveFbo.reset();
+    resolveColor.reset();
+    resolveDepth.reset();
+
+    glCreateTextures(GL_TEXTURE_2D, 1, &id);
+    resolveColor.reset(id);
+    glTextureStorage2D(id, 1, GL_RGBA8, w, h);
+    glCreateFramebuffers(1, &id);
+    resolveFbo.reset(id);
+    glNamedFramebufferTexture(id, GL_COLOR_ATTACHMENT0, resolveColor.get(), 0);
+    if (samples == 0) {
+      glCreateRenderbuffers(1, &id);
+      resolveDepth.reset(id);
+      glNamedRenderbufferStorage(id, GL_DEPTH_COMPONENT24, w, h);
+      glNamedFramebufferRenderbuffer(resolveFbo.get(), GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, id);
+    }
+    PELAGE_CHECK(glCheckNamedFramebufferStatus(resolveFbo.get(), GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE,
+                 "resolve framebuffer incomplete");
+    if (samples > 0) {
+      glCreateRenderbuffers(1, &id);
+      msaaColor.reset(id);
+      glNamedRenderbufferStorageMultisample(id, samples, GL_RGBA8, w, h);
+      glCreateRenderbuffers(1, &id);
+      msaaDepth.reset(id);
+      glNamedRenderbufferStorageMultisample(id, samples, GL_DEPTH_COMPONENT24, w, h);
+      glCreateFramebuffers(1, &id);
+      msaaFbo.reset(id);
+      glNamedFramebufferRenderbuffer(id, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, msaaColor.get());
+      glNamedFramebufferRenderbuffer(id, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, msaaDepth.get());
+      PELAGE_CHECK(glCheckNamedFramebufferStatus(id, GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE,
+                   "multisample framebuffer incomplete");
+    }
+  }
+
+  void ensureShadowMap(int size) {
+    if (shadowSize == size && shadowMap) return;
+    shadowSize = size;
+    GLuint id = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &id);
+    shadowMap.reset(id);
+    glTextureStorage2D(id, 1, GL_DEPTH_COMPONENT24, size, size);
+    glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(id, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(id, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(id, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+    glTextureParameteri(id, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+    glCreateFramebuffers(1, &id);
+    shadowFbo.reset(id);
+    glNamedFramebufferTexture(id, GL_DEPTH_ATTACHMENT, shadowMap.get(), 0);
+    glNamedFramebufferDrawBuffer(id, GL_NONE);
+    PELAGE_CHECK(glCheckNamedFramebufferStatus(id, GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE,
+                 "shadow framebuffer incomplete");
+  }
+
+  // The deformed skin's positions and normals (nV x 3 floats each), drawn as the skin and read by
+  // the GPU fur pass.
+  void uploadSkinArrays(const std::vector<Eigen::Vector3f>& positions, const std::vector<Eigen::Vector3f>& normals) {
+    const int vertices = static_cast<int>(positions.size());
+    PELAGE_CHECK(normals.size() == positions.size());
+    const auto bytes = static_cast<GLsizeiptr>(static_cast<std::size_t>(vertices) * 3 * sizeof(float));
+    if (vertices != skinVertices) {
+      skinVertices = vertices;
+      skinPositions = detail::createBuffer();
+      skinNormals = detail::createBuffer();
+      glNamedBufferStorage(skinPositions.get(), bytes, nullptr, GL_DYNAMIC_STORAGE_BIT);
+      glNamedBufferStorage(skinNormals.get(), bytes, nullptr, GL_DYNAMIC_STORAGE_BIT);
+      const GLuint vao = skinVao.get();
+      glVertexArrayVertexBuffer(vao, 0, skinPositions.get(), 0, 3 * sizeof(float));
+      glVertexArrayVertexBuffer(vao, 1, skinNormals.get(), 0, 3 * sizeof(float));
+      for (GLuint a : {0u, 1u}) {
+        glEnableVertexArrayAttrib(vao, a);
+        glVertexArrayAttribFormat(vao, a, 3, GL_FLOAT, GL_FALSE, 0);
+        glVertexArrayAttribBinding(vao, a, a);
+      }
+    }
+    static_assert(sizeof(Eigen::Vector3f) == 3 * sizeof(float));
+    glNamedBufferSubData(skinPositions.get(), 0, bytes, positions.data());
+    glNamedBufferSubData(skinNormals.get(), 0, bytes, normals.data());
+  }
+
+  void uploadSkin(const scene::SkinDrawItem& s) {
+    if (!s.positions || s.triangleCount == 0) return;
+    PELAGE_CHECK(static_cast<int>(s.positions->size()) == s.vertices);
+    uploadSkinArrays(*s.positions, *s.normals);
+    if (s.triangles != skinTrianglesSource || s.triangles->size() != skinTrianglesSize) {
+      skinTrianglesSource = s.triangles;
+      skinTrianglesSize = s.triangles->size();
+      skinIndices = detail::createBuffer();
+      glNamedBufferStorage(skinIndices.get(), static_cast<GLsizeiptr>(skinTrianglesSize * sizeof(std::int32_t)),
+                           s.triangles->data(), 0);
+      glVertexArrayElementBuffer(skinVao.get(), skinIndices.get());
+    }
+  }
+
+  void uploadCpuHairs(const scene::FurDrawItem& f, scene::HairShading shading) {
+    HairVertexBuffers& b = coats[static_cast<std::size_t>(f.coat)];
+    const HairLayout layout = layoutOf(f);
+    b.reserve(f.drawnHairs, layout);
+    const float* shade = f.normals;
+    if (shading == scene::HairShading::KajiyaKay) {
+      strandTangents(f.positions, f.drawnHairs, layout, tangentScratch);
+      shade = tangentScratch.data();
+    }
+    b.upload(f.positions, shade, f.drawnHairs);
+  }
+
+  void drawSkin(GLuint program) {
+    if (skinTriangleCount == 0) return;
+    glUseProgram(program);
+    glBindVertexArray(skinVao.get());
+    glDrawElements(GL_TRIANGLES, skinTriangleCount * 3, GL_UNSIGNED_INT, nullptr);
+  }
+
+  void drawHairs(const HairVertexBuffers& b, GLuint program) {
+    if (b.capacity() == 0) return;
+    glUseProgram(program);
+    setInt(program, "uPointsPerStrand", b.layout().strandPoints);
+    setInt(program, "uStrandStride", b.layout().strandStride);
+    glBindVertexArray(b.vertexArray());
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, b.commands());
+    glMultiDrawElementsIndirect(b.layout().triangles ? GL_TRIANGLES : GL_LINE_STRIP, GL_UNSIGNED_INT, nullptr,
+                                static_cast<GLsizei>(b.chunks().size()), sizeof(DrawCommand));
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
+  }
+
+  void setLighting(GLuint program, const scene::DrawList& list, const Eigen::Matrix4f& lightViewProj, float bias) {
+    setVec3(program, "uLightDir", list.light.direction.normalized());
+    setVec3(program, "uLightColor", list.light.color);
+    setVec3(program, "uAmbientLight", list.light.ambient);
+    setVec3(program, "uEye", list.camera.eye);
+    setInt(program, "uShadows", list.light.shadows ? 1 : 0);
+    setMatrix(program, "uLightViewProj", lightViewProj);
+    setFloat(program, "uShadowBias", bias);
+    setMatrix(program, "uViewProj", list.camera.viewProjection());
+  }
+
+  // Light-space view-projection fitting the scene bounds (orthographic: a directional light).
+  Eigen::Matrix4f lightMatrix(const scene::DrawList& list) const {
+    Eigen::AlignedBox3f box = list.bounds;
+    if (box.isEmpty()) box = Eigen::AlignedBox3f(Eigen::Vector3f::Constant(-1), Eigen::Vector3f::Constant(1));
+    const Eigen::Vector3f c = box.center();
+    const float r = std::max(0.5f * box.diagonal().norm(), 1e-3f);
+    scene::Camera lc;
+    lc.target = c;
+    lc.eye = c + list.light.direction.normalized() * (2.0f * r);
+    lc.up = std::abs(list.light.direction.normalized().z()) > 0.99f ? Eigen::Vector3f::UnitX()
+                                                                   : Eigen::Vector3f::UnitZ();
+    return ortho(-r, r, -r, r, r * 0.5f, r * 3.5f) * lc.view();
+  }
+
+  RenderStats render(const scene::DrawList& list) {
+    resize(list.camera.width, list.camera.height);
+    RenderStats stats;
+    uploadSkin(list.skin);
+    skinTriangleCount = list.skin.positions ? list.skin.triangleCount : 0;
+    std::array<bool, 2> drawCoat{false, false};
+    bool gpuBegun = false;
+    const bool tangents = list.hairShading == scene::HairShading::KajiyaKay;
+    for (const scene::FurDrawItem& f : list.fur) {
+      PELAGE_CHECK(f.coat == 0 || f.coat == 1, "coat ", f.coat);
+      if (f.source == scene::HairSource::Cpu) {
+        uploadCpuHairs(f, list.hairShading);
+      } else {
+        if (!gpuBegun) {
+          const scene::GpuFurInputs& in = list.gpuFur;
+          PELAGE_CHECK(in.params && in.roots && in.skin && in.deformed, "GPU hair source without its inputs");
+          if (!list.skin.positions) uploadSkinArrays(in.deformed->positions, in.deformed->normals);
+          if (!gpuFur) gpuFur = std::make_unique<GpuFur>(options.gpuFur);
+          GpuFurFrame g;
+          g.skin = in.skin;
+          g.roots = in.roots;
+          g.params = in.params;
+          g.rootsGeneration = in.rootsGeneration;
+          g.deformed = in.deformed;
+          g.skinPositions = skinPositions.get();
+          g.skinNormals = skinNormals.get();
+          g.cullFactor = f.cullFactor;
+          gpuFur->beginFrame(g);
+          gpuBegun = true;
+        }
+        gpuFur->generate(f.coat, layoutOf(f), tangents, coats[static_cast<std::size_t>(f.coat)]);
+      }
+      drawCoat[static_cast<std::size_t>(f.coat)] = true;
+      stats.hairsDrawn += f.drawnHairs;
+    }
+    stats.skinTriangles = skinTriangleCount;
+
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glEnable(GL_PRIMITIVE_RESTART_FIXED_INDEX);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_BLEND);
+    glDisable(GL_SCISSOR_TEST);
+    glDepthMask(GL_TRUE);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+
+    const Eigen::Matrix4f lightViewProj = lightMatrix(list);
+    if (list.light.shadows) {
+      ensureShadowMap(std::clamp(list.light.shadowMapSize, 256, 8192));
+      glBindFramebuffer(GL_FRAMEBUFFER, shadowFbo.get());
+      glViewport(0, 0, shadowSize, shadowSize);
+      glClear(GL_DEPTH_BUFFER_BIT);
+      setMatrix(depthProgram.get(), "uViewProj", lightViewProj);
+      glEnable(GL_POLYGON_OFFSET_FILL);
+      glPolygonOffset(2.0f, 4.0f);
+      if (list.skin.positions) drawSkin(depthProgram.get());
+      glDisable(GL_POLYGON_OFFSET_FILL);
+      for (std::size_t c = 0; c < 2; ++c)
+        if (drawCoat[c]) drawHairs(coats[c], depthProgram.get());
+      glBindTextureUnit(0, shadowMap.get());
+    } else {
+      if (!shadowMap) ensureShadowMap(256);  // a bound sampler keeps every driver happy; uShadows = 0 skips it
+      glBindTextureUnit(0, shadowMap.get());
+    }
+
+    const GLuint target = samples > 0 ? msaaFbo.get() : resolveFbo.get();
+    glBindFramebuffer(GL_FRAMEBUFFER, target);
+    glViewport(0, 0, width, height);
+    glClearColor(list.background.x(), list.background.y(), list.background.z(), 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+
+    const float bias = 3.0f / static_cast<float>(std::max(shadowSize, 1));
+    if (list.skin.positions) {
+      const GLuint p = skinProgram.get();
+      setLighting(p, list, lightViewProj, bias * 0.5f);
+      setMaterial(p, list.skin.material);
+      // Hairs start on the skin: push the skin back a little so their roots are not hidden.
+      glEnable(GL_POLYGON_OFFSET_FILL);
+      glPolygonOffset(1.0f, 2.0f);
+      drawSkin(p);
+      glDisable(GL_POLYGON_OFFSET_FILL);
+    }
+    const bool ribbons = list.hairWidth == scene::HairWidth::Ribbons;
+    for (const scene::FurDrawItem& f : list.fur) {
+      const HairVertexBuffers& b = coats[static_cast<std::size_t>(f.coat)];
+      const GLuint p = (ribbons && !b.layout().triangles) ? ribbonProgram.get() : hairProgram.get();
+      setLighting(p, list, lightViewProj, bias * 2.0f);
+      setMaterial(p, f.material);
+      setInt(p, "uKajiyaKay", list.hairShading == scene::HairShading::KajiyaKay ? 1 : 0);
+      glProgramUniform2f(p, uniform(p, "uViewport"), static_cast<float>(width), static_cast<float>(height));
+      setFloat(p, "uRootWidth", list.ribbonRootWidthPixels);
+      drawHairs(b, p);
+    }
+    glBindVertexArray(0);
+    glUseProgram(0);
+    glDisable(GL_PRIMITIVE_RESTART_FIXED_INDEX);  // others (the UI) draw 16-bit indices up to 0xFFFF
+
+    if (samples > 0)
+      glBlitNamedFramebuffer(msaaFbo.get(), resolveFbo.get(), 0, 0, width, height, 0, 0, width, height,
+                             GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    return stats;
+  }
+};
+
+Renderer::Renderer(const RendererOptions& options) : impl_(std::make_unique<Impl>(options)) {}
+Renderer::~Renderer() = default;
+
+RenderStats Renderer::render(const scene::DrawList& list) { return impl_->render(list); }
+
+void Renderer::readPixels(Image& out) {
+  PELAGE_CHECK(impl_->width > 0, "readPixels before render");
+  const int w = impl_->width, h = impl_->height;
+  out.width = w;
+  out.height = h;
+  const std::size_t row = static_cast<std::size_t>(w) * 4;
+  out.rgba.resize(row * static_cast<std::size_t>(h));
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glNamedFramebufferReadBuffer(impl_->resolveFbo.get(), GL_COLOR_ATTACHMENT0);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, impl_->resolveFbo.get());
+  glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, out.rgba.data());
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+  // GL's rows are bottom-up; images are top-down.
+  for (int y = 0; y < h / 2; ++y)
+    std::swap_ranges(out.rgba.begin() + static_cast<std::ptrdiff_t>(row * static_cast<std::size_t>(y)),
+                     out.rgba.begin() + static_cast<std::ptrdiff_t>(row * static_cast<std::size_t>(y + 1)),
+                     out.rgba.begin() + static_cast<std::ptrdiff_t>(row * static_cast<std::size_t>(h - 1 - y)));
+}
+
+Image Renderer::readPixels() {
+  Image img;
+  readPixels(img);
+  return img;
+}
+
+void Renderer::blitTo(GLuint target, int x, int y, int width, int height) {
+  glBlitNamedFramebuffer(impl_->resolveFbo.get(), target, 0, 0, impl_->width, impl_->height, x, y, x + width,
+                         y + height, GL_COLOR_BUFFER_BIT, GL_LINEAR);
+}
+
+void Renderer::finish() { glFinish(); }
+int Renderer::samples() const { return impl_->samples; }
+int Renderer::width() const { return impl_->width; }
+int Renderer::height() const { return impl_->height; }
+const HairVertexBuffers& Renderer::coatBuffers(int coat) const {
+  PELAGE_CHECK(coat == 0 || coat == 1);
+  return impl_->coats[static_cast<std::size_t>(coat)];
+}
+
+}  // namespace pelage::viewer

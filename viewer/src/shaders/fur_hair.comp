@@ -1,0 +1,101 @@
+// GPU fur, per frame: one invocation per root of a root window; the roots drawn after distance
+// culling (sec. 3.3: the first k' roots of each triangle, in creation order) compute their hair with
+// buildHair (hair_math.glsl, the mirror of the CPU model) and write its P points at their drawn slot
+// i = drawnStart[t] + (j - triangleStart[t]), inside the output chunk bound at bindings 12/13.
+layout(local_size_x = 64) in;
+
+layout(std430, binding = 1) readonly buffer Triangles { int triangles[]; };          // nT x 3
+layout(std430, binding = 2) readonly buffer TriangleStart { int triangleStart[]; };  // nT + 1
+layout(std430, binding = 3) readonly buffer DrawnStart { int drawnStart[]; };        // nT + 1
+layout(std430, binding = 4) readonly buffer Roots { ivec2 roots[]; };                // window: (triangle, table index)
+layout(std430, binding = 5) readonly buffer Jitter { vec4 jitter[]; };               // window: (xi, phase)
+layout(std430, binding = 6) readonly buffer Barycentric { vec4 barycentric[]; };     // 2048: (b1, b2, b3, 0)
+layout(std430, binding = 7) readonly buffer Twist { vec2 twist[]; };                 // 2048 x 8: (cos, sin)
+layout(std430, binding = 8) readonly buffer Positions { float positions[]; };        // nV x 3, deformed
+layout(std430, binding = 9) readonly buffer Normals { float normals[]; };            // nV x 3
+layout(std430, binding = 10) readonly buffer Directions { float directions[]; };     // nV x 3
+layout(std430, binding = 11) readonly buffer Lengths { float lengths[]; };           // nV
+layout(std430, binding = 12) buffer OutPositions { float outPositions[]; };          // chunk: C x P x 3
+layout(std430, binding = 13) buffer OutShading { float outShading[]; };              // chunk: C x P x 3
+
+uniform int uWindowFirst;   // first root of the window (roots[0] is root uWindowFirst)
+uniform int uWindowCount;   // roots in the window
+uniform int uChunkFirst;    // first drawn slot of the output chunk
+uniform int uChunkCount;    // drawn slots in the chunk
+uniform bool uTangents;     // shading = unit tangents (Kajiya-Kay) instead of the style's normals
+uniform int uStrandStride;  // 1, or M for tubes
+
+int gOut = 0;  // first float of this hair's points in the chunk
+
+void emitPoint(int i, vec3 p, vec3 n) {
+  int o = gOut + 3 * i;
+  outPositions[o] = p.x;
+  outPositions[o + 1] = p.y;
+  outPositions[o + 2] = p.z;
+  outShading[o] = n.x;
+  outShading[o + 1] = n.y;
+  outShading[o + 2] = n.z;
+}
+
+vec3 vertexArray3(int which, int v) {
+  if (which == 0) return vec3(positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]);
+  if (which == 1) return vec3(normals[3 * v], normals[3 * v + 1], normals[3 * v + 2]);
+  return vec3(directions[3 * v], directions[3 * v + 1], directions[3 * v + 2]);
+}
+
+void main() {
+  int local = int((gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * gl_WorkGroupSize.x +
+                  gl_LocalInvocationID.x);
+  if (local >= uWindowCount) return;
+  int j = uWindowFirst + local;
+  ivec2 r = roots[local];
+  int t = r.x;
+  int slot = drawnStart[t] + (j - triangleStart[t]);
+  if (slot >= drawnStart[t + 1]) return;  // culled (sec. 3.3)
+  if (slot < uChunkFirst || slot >= uChunkFirst + uChunkCount) return;  // another chunk's
+  gOut = (slot - uChunkFirst) * cs.points * 3;
+
+  // Sec. 3.2: interpolate at the root with the table's barycentric coordinates.
+  vec4 b = barycentric[r.y];
+  int v1 = triangles[3 * t], v2 = triangles[3 * t + 1], v3 = triangles[3 * t + 2];
+  HairInput hin;
+  vec3 p1 = vertexArray3(0, v1), p2 = vertexArray3(0, v2), p3 = vertexArray3(0, v3);
+  vec3 n1 = vertexArray3(1, v1), n2 = vertexArray3(1, v2), n3 = vertexArray3(1, v3);
+  vec3 s1 = vertexArray3(2, v1), s2 = vertexArray3(2, v2), s3 = vertexArray3(2, v3);
+  hin.root = vec3(barycentricMix(b.x, b.y, b.z, p1.x, p2.x, p3.x), barycentricMix(b.x, b.y, b.z, p1.y, p2.y, p3.y),
+                  barycentricMix(b.x, b.y, b.z, p1.z, p2.z, p3.z));
+  hin.normalSum = vec3(barycentricMix(b.x, b.y, b.z, n1.x, n2.x, n3.x), barycentricMix(b.x, b.y, b.z, n1.y, n2.y, n3.y),
+                       barycentricMix(b.x, b.y, b.z, n1.z, n2.z, n3.z));
+  hin.directionSum = vec3(barycentricMix(b.x, b.y, b.z, s1.x, s2.x, s3.x), barycentricMix(b.x, b.y, b.z, s1.y, s2.y, s3.y),
+                          barycentricMix(b.x, b.y, b.z, s1.z, s2.z, s3.z));
+  hin.length = barycentricMix(b.x, b.y, b.z, lengths[v1], lengths[v2], lengths[v3]);
+  vec4 jit = jitter[local];
+  hin.xi = jit.xyz;
+  hin.phase = jit.w;
+  for (int i = 0; i < POLYLINE_POINTS; ++i) {
+    vec2 cs2 = cs.twist != 0 ? twist[r.y * POLYLINE_POINTS + i] : vec2(1.0, 0.0);
+    hin.twistCos[i] = cs2.x;
+    hin.twistSin[i] = cs2.y;
+  }
+  buildHair(hin);
+
+  if (uTangents) {
+    // Kajiya-Kay's T: the direction of the segment leaving each point along its strand (the last
+    // point repeats the one arriving), as the renderer computes it for CPU hairs.
+    int M = uStrandStride;
+    int K = cs.points / M;
+    for (int k = 0; k < K; ++k)
+      for (int m = 0; m < M; ++m) {
+        int a = ((k + 1 < K) ? k : k - 1) * M + m, c = a + M;
+        vec3 pa = vec3(outPositions[gOut + 3 * a], outPositions[gOut + 3 * a + 1], outPositions[gOut + 3 * a + 2]);
+        vec3 pc = vec3(outPositions[gOut + 3 * c], outPositions[gOut + 3 * c + 1], outPositions[gOut + 3 * c + 2]);
+        vec3 d = pc - pa;
+        float len = length(d);
+        d = len > 0.0 ? d / len : vec3(0.0, 0.0, 1.0);
+        int o = gOut + 3 * (k * M + m);
+        outShading[o] = d.x;
+        outShading[o + 1] = d.y;
+        outShading[o + 2] = d.z;
+      }
+  }
+}

@@ -1,0 +1,260 @@
+// GLSL mirror of fur/include/pelage/fur/hair_math.h (lanes T = float, Vec3<T> = vec3, masks =
+// bool), function for function and line for line, so the GPU evaluates the same formulas as the
+// CPU fur model (Van Gelder & Wilhelms 1997, sec. 3.2 to 3.8). Keep the two in step: the parity
+// test (tests/viewer/gpu_fur_test.cpp) compares every style against the CPU within 1e-4.
+//
+// The per-coat constants (fur::CoatShape) arrive as the std430 block `cs`, packed by gpu_fur.cpp
+// (GpuCoatShape) with the same members in the same order.
+
+#define STYLE_LINE 0
+#define STYLE_POLYLINE 1
+#define STYLE_CURVE 2
+#define STYLE_TUBE 3
+#define REGION_NONE 0
+#define REGION_SPHERE 1
+#define REGION_BOX 2
+#define POLYLINE_POINTS 8
+#define MAX_CURVE_POINTS 64
+#define MAX_TUBE_SIDES 32
+
+layout(std430, binding = 0) readonly buffer CoatShapeBlock {
+  int style;
+  int points;
+  int curvePoints;
+  int tubeSides;
+  int twist;
+  int curl;
+  int regionShape;
+  int pad0;
+  float lengthMul;
+  float segmentWeight;
+  float endRandomize;
+  float floppiness;
+  float up[3];
+  float fallbackTangent[3];
+  float regionCenter[3];
+  float regionRadius2;
+  float regionMin[3];
+  float regionMax[3];
+  float regionScale;
+  float curlRadius;
+  float polyA[POLYLINE_POINTS];
+  float polyB[POLYLINE_POINTS];
+  float polyAlpha[POLYLINE_POINTS];
+  float polyBeta[POLYLINE_POINTS];
+  float curveC1[MAX_CURVE_POINTS];
+  float curveC2[MAX_CURVE_POINTS];
+  float curveDc1[MAX_CURVE_POINTS];
+  float curveDc2[MAX_CURVE_POINTS];
+  float curlEnvelope[MAX_CURVE_POINTS];
+  float curlCos[MAX_CURVE_POINTS];
+  float curlSin[MAX_CURVE_POINTS];
+  float tubeRadius[MAX_CURVE_POINTS];
+  float ringCos[MAX_TUBE_SIDES];
+  float ringSin[MAX_TUBE_SIDES];
+} cs;
+
+vec3 csUp() { return vec3(cs.up[0], cs.up[1], cs.up[2]); }
+vec3 csFallbackTangent() { return vec3(cs.fallbackTangent[0], cs.fallbackTangent[1], cs.fallbackTangent[2]); }
+
+// hair_math.h: dot(a, b) = (a.x * b.x + a.y * b.y) + a.z * b.z (same summation order).
+float dot3(vec3 a, vec3 b) { return (a.x * b.x + a.y * b.y) + a.z * b.z; }
+
+// v / |v|, or `fallback` where |v|^2 <= minLength2.
+vec3 normalizeOr(vec3 v, vec3 fallback, float minLength2) {
+  float len2 = dot3(v, v);
+  bool ok = len2 > minLength2;
+  float inv = 1.0 / sqrt(ok ? len2 : 1.0);
+  return ok ? v * inv : fallback;
+}
+
+// A unit vector perpendicular to unit v: normalize(v x X), or normalize(v x Y) when |v.x| >= 0.9.
+vec3 perpendicularTo(vec3 v) {
+  bool nearX = abs(v.x) > 0.9;
+  vec3 withX = vec3(0.0, v.z, 0.0 - v.y);
+  vec3 withY = vec3(0.0 - v.z, 0.0, v.x);
+  vec3 p = nearX ? withY : withX;
+  return p * (1.0 / sqrt(dot3(p, p)));
+}
+
+// sin and cos of 2 pi u for u in [0, 1): quadrant reduction and Taylor polynomials of degree 9 and
+// 8 on [-pi/4, pi/4], the same terms as hair_math.h.
+void sinCosTurns(float u, out float s, out float c) {
+  float x = u * 4.0;
+  float k = floor(x + 0.5);
+  float a = (x - k) * 1.57079632679;
+  float a2 = a * a;
+  float sa = a * (1.0 + a2 * (-1.0 / 6.0 + a2 * (1.0 / 120.0 + a2 * (-1.0 / 5040.0 + a2 * (1.0 / 362880.0)))));
+  float ca = 1.0 + a2 * (-0.5 + a2 * (1.0 / 24.0 + a2 * (-1.0 / 720.0 + a2 * (1.0 / 40320.0))));
+  bool q1 = k == 1.0;
+  bool q2 = k == 2.0;
+  bool q3 = k == 3.0;
+  s = q1 ? ca : (q2 ? 0.0 - sa : (q3 ? 0.0 - ca : sa));
+  c = q1 ? 0.0 - sa : (q2 ? 0.0 - ca : (q3 ? sa : ca));
+}
+
+// Inputs of one hair, interpolated at its root (sec. 3.2).
+struct HairInput {
+  vec3 root;
+  vec3 normalSum;
+  vec3 directionSum;
+  float length;
+  vec3 xi;
+  float phase;
+  float twistCos[POLYLINE_POINTS];
+  float twistSin[POLYLINE_POINTS];
+};
+
+// Sec. 3.2: h = b1 v1 + b2 v2 + b3 v3.
+float barycentricMix(float b1, float b2, float b3, float v1, float v2, float v3) {
+  return (b1 * v1 + b2 * v2) + b3 * v3;
+}
+
+// Sec. 3.2: the skin normal n = normalize(b1 n1 + b2 n2 + b3 n3) (U where it vanishes).
+vec3 skinNormal(HairInput hin) { return normalizeOr(hin.normalSum, csUp(), 1e-20); }
+
+// Sec. 3.2: L = (sum b_i len_i) * global scale * coat factor, times the region scale inside the
+// user's 3D region.
+float hairLength(float interpolated, vec3 h) {
+  float L = interpolated * cs.lengthMul;
+  if (cs.regionShape == REGION_SPHERE) {
+    vec3 q = h - vec3(cs.regionCenter[0], cs.regionCenter[1], cs.regionCenter[2]);
+    return L * (dot3(q, q) <= cs.regionRadius2 ? cs.regionScale : 1.0);
+  }
+  if (cs.regionShape == REGION_BOX) {
+    bool inX = cs.regionMin[0] <= h.x && h.x <= cs.regionMax[0];
+    bool inY = cs.regionMin[1] <= h.y && h.y <= cs.regionMax[1];
+    bool inZ = cs.regionMin[2] <= h.z && h.z <= cs.regionMax[2];
+    return L * ((inX && inY && inZ) ? cs.regionScale : 1.0);
+  }
+  return L;
+}
+
+// Sec. 3.4: d = normalize((1 - w) n + w s), s = normalize(sum b_i s_i); d = n without s.
+vec3 weightlessDirection(vec3 n, vec3 directionSum, float w) {
+  bool hasS = dot3(directionSum, directionSum) > 1e-12;
+  vec3 s = normalizeOr(directionSum, n, 1e-12);
+  vec3 blend = n * (1.0 - w) + s * w;
+  return hasS ? normalizeOr(blend, n, 1e-12) : n;
+}
+
+// Sec. 3.5 hair end randomize: d~ = normalize(d + r xi).
+vec3 perturbedDirection(vec3 d, vec3 xi) {
+  if (cs.endRandomize == 0.0) return d;
+  return normalizeOr(d + xi * cs.endRandomize, d, 1e-12);
+}
+
+// Sec. 3.5 gravity: cos(theta) = d~ . n, d' = d~ - f cos(theta) U, e = d' / |d'|.
+vec3 droopDirection(vec3 dTilde, vec3 n) {
+  float cosTheta = dot3(dTilde, n);
+  vec3 dPrime = dTilde - csUp() * (cs.floppiness * cosTheta);
+  return normalizeOr(dPrime, csFallbackTangent(), 1e-10);
+}
+
+// Sec. 3.7: the unit normal B of the hair plane through R, W and E, oriented so that B x e lies on
+// the skin normal's side.
+vec3 hairPlaneNormal(vec3 dTilde, vec3 e, vec3 n) {
+  vec3 b0 = cross(dTilde, e);
+  vec3 b1 = cross(dTilde, n);
+  bool ok0 = dot3(b0, b0) > 1e-8;
+  bool ok1 = dot3(b1, b1) > 1e-8;
+  vec3 raw = ok0 ? b0 : (ok1 ? b1 : perpendicularTo(dTilde));
+  vec3 b = raw * (1.0 / sqrt(dot3(raw, raw)));
+  bool flip = 0.0 > dot3(cross(b, e), n);
+  return flip ? -b : b;
+}
+
+// Sec. 3.7: polyline control point i = R + a_i (W - R) + b_i (E - R).
+vec3 polylinePoint(int i, vec3 root, vec3 ld, vec3 le) { return (root + ld * cs.polyA[i]) + le * cs.polyB[i]; }
+
+// Sec. 3.7: the shading normal at point i, perpendicular to the segment ending there, in the plane.
+vec3 polylineNormal(int i, vec3 u1, vec3 u2) {
+  return normalizeOr(u1 * cs.polyAlpha[i] + u2 * cs.polyBeta[i], u1, 1e-20);
+}
+
+// Sec. 3.8: n_p = the skin normal projected into the hair plane, normalised.
+vec3 curveStartDirection(vec3 n, vec3 b, vec3 dTilde) { return normalizeOr(n - b * dot3(n, b), dTilde, 1e-12); }
+
+// Sec. 3.8: the cubic Bezier (R, R + L/3 n_p, R + 2/3 (E - R), E) at t_k, plus the helix.
+vec3 curvePoint(int k, vec3 root, vec3 lnp, vec3 le, vec3 np, vec3 e, vec3 b, float curlLength,
+                float phaseSin, float phaseCos) {
+  vec3 base = (root + lnp * cs.curveC1[k]) + le * cs.curveC2[k];
+  if (cs.curl == 0) return base;
+  vec3 tangent = np * cs.curveDc1[k] + e * cs.curveDc2[k];
+  vec3 n1 = normalizeOr(cross(b, tangent), np, 1e-12);
+  float cosA = cs.curlCos[k] * phaseCos - cs.curlSin[k] * phaseSin;
+  float sinA = cs.curlSin[k] * phaseCos + cs.curlCos[k] * phaseSin;
+  float radius = curlLength * cs.curlEnvelope[k];
+  return base + (n1 * cosA + b * sinA) * radius;
+}
+
+// Sec. 3.8 nurbs surface: ring direction j around a curve point with unit tangent t.
+vec3 tubeDirection(int j, vec3 tangentUnit, vec3 b) {
+  vec3 a = normalizeOr(b - tangentUnit * dot3(b, tangentUnit), perpendicularTo(tangentUnit), 1e-12);
+  vec3 q = cross(tangentUnit, a);
+  return q * cs.ringCos[j] + a * cs.ringSin[j];
+}
+
+// The sink: the including shader defines void emitPoint(int i, vec3 position, vec3 normal).
+void emitPoint(int i, vec3 p, vec3 n);
+
+// One hair, any style: emitPoint(i, position, normal) for i = 0..P-1 in order (buildHair).
+void buildHair(HairInput hin) {
+  vec3 root = hin.root;
+  vec3 n = skinNormal(hin);
+  vec3 d = weightlessDirection(n, hin.directionSum, cs.segmentWeight);
+  float L = hairLength(hin.length, root);
+  vec3 dTilde = perturbedDirection(d, hin.xi);
+  vec3 e = droopDirection(dTilde, n);
+  vec3 le = e * L;
+  if (cs.style == STYLE_LINE) {
+    // Sec. 3.6: a straight line from the root to the ending point, shaded with the skin normal.
+    emitPoint(0, root, n);
+    emitPoint(1, root + le, n);
+    return;
+  }
+  vec3 b = hairPlaneNormal(dTilde, e, n);
+  if (cs.style == STYLE_POLYLINE) {
+    vec3 ld = dTilde * L;
+    vec3 u1 = cross(b, dTilde);
+    vec3 u2 = cross(b, e);
+    for (int i = 0; i < POLYLINE_POINTS; ++i) {
+      vec3 p = polylinePoint(i, root, ld, le);
+      vec3 nrm = polylineNormal(i, u1, u2);
+      if (cs.twist != 0) nrm = nrm * hin.twistCos[i] + b * hin.twistSin[i];
+      emitPoint(i, p, nrm);
+    }
+    return;
+  }
+  vec3 np = curveStartDirection(n, b, dTilde);
+  vec3 lnp = np * L;
+  float phaseSin = 0.0, phaseCos = 1.0;
+  if (cs.curl != 0) sinCosTurns(hin.phase, phaseSin, phaseCos);
+  float curlLength = L * cs.curlRadius;
+  int K = cs.curvePoints;
+  if (cs.style == STYLE_CURVE) {
+    // Sec. 3.8: "Our implementation currently uses the skin normal as the shading normal."
+    for (int k = 0; k < K; ++k) emitPoint(k, curvePoint(k, root, lnp, le, np, e, b, curlLength, phaseSin, phaseCos), n);
+    return;
+  }
+  // Tube: rings around the tessellated curve; tangents by differences of neighbouring points.
+  bool hasLength = L > 0.0;
+  int M = cs.tubeSides;
+  vec3 prev = root;
+  vec3 cur = root;
+  vec3 next = curvePoint(1, root, lnp, le, np, e, b, curlLength, phaseSin, phaseCos);
+  for (int k = 0; k < K; ++k) {
+    vec3 tangent = k == 0 ? next - cur : (k == K - 1 ? cur - prev : next - prev);
+    vec3 tUnit = normalizeOr(tangent, dTilde, 1e-30);
+    float radius = hasLength ? cs.tubeRadius[k] : 0.0;
+    for (int j = 0; j < M; ++j) {
+      vec3 dir = tubeDirection(j, tUnit, b);
+      emitPoint(k * M + j, cur + dir * radius, dir);
+    }
+    if (k + 1 < K) {
+      prev = cur;
+      cur = next;
+      if (k + 2 < K) next = curvePoint(k + 2, root, lnp, le, np, e, b, curlLength, phaseSin, phaseCos);
+    }
+  }
+}

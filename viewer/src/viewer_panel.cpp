@@ -1,0 +1,209 @@
+#include "viewer_panel.h"
+
+#include <imgui.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+
+#include "pelage/fur/preset.h"
+
+namespace pelage::viewer::detail {
+namespace {
+
+bool color(const char* label, Eigen::Vector3f& c) { return ImGui::ColorEdit3(label, c.data(), ImGuiColorEditFlags_Float); }
+
+void coatPanel(const char* title, fur::CoatParams& c, bool undercoat) {
+  if (!ImGui::TreeNodeEx(title, ImGuiTreeNodeFlags_DefaultOpen)) return;
+  ImGui::PushID(title);
+  const char* styles[] = {"line", "polyline", "curve", "tube"};
+  int style = static_cast<int>(c.style);
+  if (ImGui::Combo("style", &style, styles, 4)) c.style = static_cast<fur::HairStyle>(style);
+  ImGui::SliderFloat("stiffness", &c.stiffness, 0.0f, 1.0f);
+  ImGui::SliderFloat("normal randomize", &c.normalRandomize, 0.0f, 1.0f);
+  ImGui::SliderFloat("hair end randomize", &c.hairEndRandomize, 0.0f, 2.0f);
+  ImGui::SliderFloat("segment direction wt", &c.segmentDirectionWeight, 0.0f, 1.0f);
+  ImGui::SliderFloat(undercoat ? "relative length" : "length factor", &c.lengthFactor, 0.0f, 10.0f, "%.3f",
+                     ImGuiSliderFlags_Logarithmic);
+  if (c.style == fur::HairStyle::Curve || c.style == fur::HairStyle::Tube) {
+    ImGui::SliderInt("curve points (K)", &c.curvePoints, 2, 64);
+    ImGui::SliderFloat("curl radius", &c.curlRadius, 0.0f, 0.5f);
+    ImGui::SliderFloat("curl turns", &c.curlTurns, 0.0f, 20.0f);
+  }
+  if (c.style == fur::HairStyle::Tube) {
+    ImGui::SliderInt("tube sides (M)", &c.tubeSides, 3, 32);
+    ImGui::SliderFloat("tube radius (m)", &c.tubeRadiusMeters, 1e-6f, 0.01f, "%.6f", ImGuiSliderFlags_Logarithmic);
+  }
+  color("ambient", c.material.ambient);
+  color("diffuse", c.material.diffuse);
+  color("specular", c.material.specular);
+  ImGui::SliderFloat("shininess", &c.material.shininess, 1.0f, 1000.0f, "%.0f", ImGuiSliderFlags_Logarithmic);
+  ImGui::PopID();
+  ImGui::TreePop();
+}
+
+void furPanel(ViewerSession& s) {
+  fur::FurParams& p = s.edit;
+  if (!ImGui::CollapsingHeader("Fur", ImGuiTreeNodeFlags_DefaultOpen)) return;
+  float hairs = static_cast<float>(p.hairs);
+  if (ImGui::SliderFloat("hairs", &hairs, 0.0f, static_cast<float>(fur::kMaxHairs), "%.0f", ImGuiSliderFlags_Logarithmic))
+    p.hairs = std::round(static_cast<double>(hairs));
+  float density = static_cast<float>(p.densityPerM2);
+  if (ImGui::SliderFloat("density (/m^2)", &density, 0.0f, 1e8f, "%.0f", ImGuiSliderFlags_Logarithmic))
+    p.densityPerM2 = static_cast<double>(density);
+  ImGui::SameLine();
+  ImGui::TextDisabled("(0: use hairs)");
+  ImGui::SliderFloat("undercoat share", &p.undercoatShare, 0.0f, 1.0f);
+  // Any seed the presets accept ([0, 2^53]); validation reports one out of range.
+  const std::uint64_t step = 1;
+  ImGui::InputScalar("seed", ImGuiDataType_U64, &p.seed, &step);
+  if (s.regrowing()) ImGui::TextColored(ImVec4(1, 0.8f, 0.3f, 1), "growing new roots...");
+  ImGui::SliderFloat("length scale (all)", &p.lengthScale, 0.0f, 10.0f, "%.3f", ImGuiSliderFlags_Logarithmic);
+
+  if (ImGui::TreeNode("length scale in a 3D region")) {
+    const char* shapes[] = {"none", "sphere", "box"};
+    int shape = static_cast<int>(p.lengthRegion.shape);
+    if (ImGui::Combo("region", &shape, shapes, 3)) {
+      p.lengthRegion.shape = static_cast<fur::LengthRegion::Shape>(shape);
+      const scene::Framing f = scene::framingOf(s.model(), s.state(), 0.0f);
+      if (p.lengthRegion.radius <= 0.0f) {  // start around the face
+        p.lengthRegion.center = f.faceCenter;
+        p.lengthRegion.radius = f.faceRadius;
+        p.lengthRegion.boxMin = f.faceCenter - Eigen::Vector3f::Constant(f.faceRadius);
+        p.lengthRegion.boxMax = f.faceCenter + Eigen::Vector3f::Constant(f.faceRadius);
+      }
+    }
+    if (p.lengthRegion.shape == fur::LengthRegion::Shape::Sphere) {
+      ImGui::DragFloat3("centre (m)", p.lengthRegion.center.data(), 0.002f);
+      ImGui::DragFloat("radius (m)", &p.lengthRegion.radius, 0.001f, 1e-6f, 10.0f);
+    } else if (p.lengthRegion.shape == fur::LengthRegion::Shape::Box) {
+      ImGui::DragFloat3("min (m)", p.lengthRegion.boxMin.data(), 0.002f);
+      ImGui::DragFloat3("max (m)", p.lengthRegion.boxMax.data(), 0.002f);
+    }
+    ImGui::SliderFloat("scale inside", &p.lengthRegion.scale, 0.0f, 10.0f);
+    ImGui::TreePop();
+  }
+  if (ImGui::TreeNode("gravity")) {
+    // Sec. 3.5: hairs droop along gravity = -U (the paper's -Z).
+    Eigen::Vector3f g = -p.up;
+    if (ImGui::DragFloat3("direction", g.data(), 0.01f, -1.0f, 1.0f) && g.norm() > 1e-3f) p.up = -g.normalized();
+    ImGui::TreePop();
+  }
+  if (ImGui::TreeNode("distance culling (sec. 3.3)")) {
+    ImGui::Checkbox("enabled", &p.culling.enabled);
+    ImGui::SliderFloat("reference distance (m)", &p.culling.referenceDistance, 0.0f, 10.0f, "%.3f",
+                       ImGuiSliderFlags_Logarithmic);
+    ImGui::Text("0 = derived from the face: %.3f m", static_cast<double>(s.referenceDistance()));
+    ImGui::SliderFloat("fov for the default", &p.culling.fovYDegrees, 5.0f, 120.0f);
+    ImGui::TreePop();
+  }
+  coatPanel("overcoat", p.coats[fur::kOvercoat], false);
+  coatPanel("undercoat", p.coats[fur::kUndercoat], true);
+  if (!s.editError.empty()) ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", s.editError.c_str());
+}
+
+void presetPanel(ViewerSession& s, PanelState& st) {
+  if (!ImGui::CollapsingHeader("Presets")) return;
+  static const std::vector<std::string> names = fur::builtinPresetNames();
+  std::vector<const char*> items;
+  for (const std::string& n : names) items.push_back(n.c_str());
+  ImGui::Combo("built-in", &st.builtinPreset, items.data(), static_cast<int>(items.size()));
+  ImGui::SameLine();
+  if (ImGui::Button("use") && st.builtinPreset < static_cast<int>(names.size()))
+    s.loadPreset(names[static_cast<std::size_t>(st.builtinPreset)]);
+  ImGui::InputText("file", st.presetPath.data(), st.presetPath.size());
+  if (ImGui::Button("load file")) s.loadPreset(st.presetPath.data());
+  ImGui::SameLine();
+  if (ImGui::Button("save file")) s.savePreset(st.presetPath.data());
+  if (!s.message.empty()) ImGui::TextWrapped("%s", s.message.c_str());
+}
+
+void viewPanel(ViewerSession& s) {
+  if (!ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) return;
+  // Playback: clip selector (cross-fades), play/pause, scrub, speed, loop.
+  const auto& clips = s.model().clips;
+  std::string current = s.clip() >= 0 ? clips[static_cast<std::size_t>(s.clip())].name : std::string("(still pose)");
+  if (ImGui::BeginCombo("clip", current.c_str())) {
+    if (ImGui::Selectable("(still pose)", s.clip() < 0)) s.selectClip(-1);
+    for (int i = 0; i < static_cast<int>(clips.size()); ++i)
+      if (ImGui::Selectable(clips[static_cast<std::size_t>(i)].name.c_str(), s.clip() == i)) s.selectClip(i);
+    ImGui::EndCombo();
+  }
+  ImGui::Checkbox("play", &s.playing);
+  ImGui::SameLine();
+  ImGui::Checkbox("loop", &s.loop);
+  if (s.clip() >= 0) {
+    const double duration = s.clipDuration();
+    float t = duration > 0.0 ? static_cast<float>(std::fmod(s.time(), duration)) : 0.0f;
+    if (ImGui::SliderFloat("time (s)", &t, 0.0f, static_cast<float>(duration), "%.2f")) {
+      // Scrub within the current cycle (root motion of earlier cycles is kept).
+      const double cycles = duration > 0.0 ? std::floor(s.time() / duration) : 0.0;
+      s.setTime(cycles * duration + static_cast<double>(t));
+    }
+  }
+  ImGui::SliderFloat("speed", &s.speed, 0.0f, 4.0f);
+  ImGui::SliderFloat("turntable (deg/s)", &s.turntableDegPerSecond, -90.0f, 90.0f);
+  const char* presets[] = {"front", "side", "3/4", "face", "follow"};
+  for (int i = 0; i < 5; ++i) {
+    if (i) ImGui::SameLine();
+    if (ImGui::Button(presets[i])) s.applyPreset(static_cast<scene::CameraPreset>(i));
+  }
+  ImGui::Checkbox("follow the creature", &s.follow);
+  ImGui::SliderFloat("light azimuth", &s.lightAzimuth, -180.0f, 180.0f);
+  ImGui::SliderFloat("light elevation", &s.lightElevation, -89.0f, 89.0f);
+  ImGui::Checkbox("shadows", &s.shadows);
+  ImGui::SameLine();
+  ImGui::Checkbox("skin", &s.drawSkin);
+  ImGui::SameLine();
+  ImGui::ColorEdit3("##skin colour", s.skinColor.data(), ImGuiColorEditFlags_NoInputs | ImGuiColorEditFlags_Float);
+  ImGui::SameLine();
+  ImGui::Checkbox("fur", &s.drawFur);
+  int shading = static_cast<int>(s.shading);
+  const char* shadings[] = {"paper (Phong, style normals)", "Kajiya-Kay (tangents)"};
+  if (ImGui::Combo("hair shading", &shading, shadings, 2)) s.shading = static_cast<scene::HairShading>(shading);
+  int width = static_cast<int>(s.hairWidth);
+  const char* widths[] = {"1-pixel lines", "tapered ribbons"};
+  if (ImGui::Combo("hair width", &width, widths, 2)) s.hairWidth = static_cast<scene::HairWidth>(width);
+  if (s.hairWidth == scene::HairWidth::Ribbons) ImGui::SliderFloat("root width (px)", &s.ribbonWidth, 0.5f, 8.0f);
+  int source = static_cast<int>(s.hairSource);
+  const char* sources[] = {"CPU fur model", "GPU compute"};
+  if (ImGui::Combo("hairs computed on", &source, sources, 2)) s.hairSource = static_cast<scene::HairSource>(source);
+}
+
+void statusLine(ViewerSession& s) {
+  const ImGuiViewport* vp = ImGui::GetMainViewport();
+  ImGui::SetNextWindowPos(ImVec2(vp->WorkPos.x, vp->WorkPos.y + vp->WorkSize.y), ImGuiCond_Always, ImVec2(0, 1));
+  ImGui::SetNextWindowBgAlpha(0.6f);
+  ImGui::Begin("status", nullptr,
+               ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoMove |
+                   ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav);
+  const scene::FrameState& f = s.state();
+  ImGui::Text("hairs drawn %lld of %lld (c = %.2f) | frame %.1f ms | skin %d triangles | %s | %s",
+              static_cast<long long>(s.hairsDrawn()), static_cast<long long>(s.fur().roots.total()),
+              static_cast<double>(f.cullFactor), s.frameMs(), s.model().skin.numTriangles(),
+              s.hairSource == scene::HairSource::Gpu ? "GPU fur" : "CPU fur", s.model().name.c_str());
+  ImGui::End();
+}
+
+}  // namespace
+
+float drawPanel(ViewerSession& s, PanelState& st) {
+  const ImGuiViewport* vp = ImGui::GetMainViewport();
+  ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(400, vp->WorkSize.y - 50), ImGuiCond_FirstUseEver);
+  float right = 0.0f;
+  if (ImGui::Begin("pelage")) {
+    ImGui::PushItemWidth(ImGui::GetWindowWidth() * 0.55f);
+    viewPanel(s);
+    furPanel(s);
+    presetPanel(s, st);
+    ImGui::PopItemWidth();
+    right = ImGui::GetWindowPos().x + ImGui::GetWindowWidth();
+  }
+  ImGui::End();
+  statusLine(s);
+  return right;
+}
+
+}  // namespace pelage::viewer::detail

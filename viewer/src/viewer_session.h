@@ -1,0 +1,115 @@
+// The state of one viewer run, shared by the window loop (with its ImGui panel) and the headless
+// loop: the model, the fur (with roots regrown on a worker thread when the hair count changes),
+// playback, camera, light and render settings, and the renderer. Private to pelage::viewer.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <future>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "pelage/scene/draw_list.h"
+#include "pelage/scene/frame.h"
+#include "pelage/viewer/renderer.h"
+#include "pelage/viewer/viewer_app.h"
+
+namespace pelage::viewer::detail {
+
+class ViewerSession {
+ public:
+  // Takes the model, loads the fur preset, grows the roots (on the calling thread) and creates the
+  // renderer; needs a current OpenGL context.
+  ViewerSession(const ViewerOptions& options, scene::Model model);
+  ~ViewerSession();
+
+  // Evaluates the frame at the current time for a width x height viewport, renders it into the
+  // renderer's framebuffer, then advances playback by `dtSeconds` of wall time.
+  void frame(double dtSeconds, int width, int height);
+
+  // ---- What the UI edits (applied on the next frame) -----------------------------------------
+  fur::FurParams edit;          // the parameters being edited; roots follow when count/share/seed change
+  std::string editError;        // why `edit` was not applied (validation message), or empty
+  std::string message;          // last preset save/load result
+  scene::Orbit orbit;
+  bool follow = false;
+  scene::HairSource hairSource = scene::HairSource::Gpu;
+  scene::HairShading shading = scene::HairShading::Paper;
+  scene::HairWidth hairWidth = scene::HairWidth::Lines;
+  float ribbonWidth = 2.5f;
+  Eigen::Vector3f skinColor;    // the skin's diffuse colour (the model's, or --skin-color)
+  bool drawSkin = true;
+  bool drawFur = true;
+  float lightAzimuth = 35.0f, lightElevation = 50.0f;
+  bool shadows = false;
+  bool playing = true;
+  float turntableDegPerSecond = 0.0f;  // without a clip: turn the creature about +Z (0 = still)
+  bool loop = true;
+  float speed = 1.0f;
+
+  // Playback of the model's clips (none: the still pose).
+  int clip() const { return clip_; }
+  // Switches to clip `index` (-1: the still pose), cross-fading over kCrossFadeSeconds in step
+  // (the new clip starts at the same phase).
+  void selectClip(int index);
+  double time() const { return time_; }
+  void setTime(double seconds);  // scrubbing
+  double clipDuration() const;   // 0 without a clip
+  static constexpr double kCrossFadeSeconds = 0.3;
+
+  // Camera presets and orbit controls.
+  void applyPreset(scene::CameraPreset preset);
+  void orbitBy(float dAzimuthDeg, float dElevationDeg);
+  void panBy(float dxFraction, float dyFraction);  // fractions of the view height
+  void zoomBy(float factor);                        // distance *= factor
+
+  // Presets (the fur module's JSON format). Saving writes the panel's parameters (`edit`) when they
+  // are valid, so a hair count still being regrown is saved too; otherwise it reports why not.
+  void loadPreset(const std::string& nameOrPath);
+  void savePreset(const std::string& path);
+
+  // ---- What the UI shows ---------------------------------------------------------------------
+  const scene::Model& model() const { return model_; }
+  const scene::Fur& fur() const { return fur_; }
+  const scene::FrameState& state() const { return frame_; }
+  const scene::DrawList& drawList() const { return list_; }
+  Renderer& renderer() { return *renderer_; }
+  bool regrowing() const { return pending_.valid(); }
+  double frameMs() const { return frameMs_; }
+  // Records one frame's wall time (the status line shows a running average).
+  void recordFrameTime(double ms) { frameMs_ = frameMs_ == 0.0 ? ms : 0.9 * frameMs_ + 0.1 * ms; }
+  std::int64_t hairsDrawn() const { return hairsDrawn_; }
+  float referenceDistance() const;
+
+ private:
+  void applyEdits();
+  void advance(double dtSeconds);
+  void posedFrame();  // evaluates the frame's pose (clip or still, then the turntable)
+
+  scene::Model model_;
+  anatomy::Pose stillPose_;
+  anatomy::Pose pose_;
+  anatomy::Pose blendScratch_;
+  int clip_ = -1;
+  int fromClip_ = -1;       // the clip being faded out, or -1
+  double fromTime_ = 0.0;
+  double fadeSeconds_ = 0.0;
+  Eigen::Vector3f pivot_ = Eigen::Vector3f::Zero();
+  scene::Fur fur_;
+  std::future<scene::Fur> pending_;
+  scene::FrameState frame_;
+  scene::DrawList list_;
+  std::unique_ptr<Renderer> renderer_;
+  scene::Framing framing_;
+  std::optional<scene::CameraPreset> pendingPreset_;  // applied on the next frame, at its viewport size
+  Eigen::Vector3f lastRoot_ = Eigen::Vector3f::Zero();
+  double time_ = 0.0;
+  double frameMs_ = 0.0;
+  std::int64_t hairsDrawn_ = 0;
+};
+
+// `pelage view --headless --benchmark`: ms/frame for each of options.benchmarkHairs.
+int runBenchmark(const ViewerOptions& options, const scene::Model& model);
+
+}  // namespace pelage::viewer::detail

@@ -4,7 +4,7 @@ BUILD_ASAN ?= build-asan
 JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
 CMAKE_FLAGS ?=
 
-.PHONY: all deps build demo test test-asan fuzz fuzz-ci bench format clean
+.PHONY: all deps build demo test test-asan soak fuzz fuzz-ci bench format clean
 
 all: build
 
@@ -30,6 +30,16 @@ test-asan: deps
 	@cmake --build $(BUILD_ASAN) -j $(JOBS)
 	@ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
 	  ctest --test-dir $(BUILD_ASAN) --output-on-failure -j $(JOBS) -LE slow
+
+# 10,000 frames of the viewer update path and the export loop under the sanitizers, a change every
+# frame, with resident memory at start and end (tests/viewer/soak_test.cpp); SOAK_FRAMES to change.
+SOAK_FRAMES ?= 10000
+soak: deps
+	@cmake -S . -B $(BUILD_ASAN) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DPELAGE_WERROR=ON \
+	  -DPELAGE_SANITIZE=ON -DPELAGE_BUILD_BENCH=OFF $(CMAKE_FLAGS) >/dev/null
+	@cmake --build $(BUILD_ASAN) -j $(JOBS) --target soak_tests
+	@PELAGE_SOAK_FRAMES=$(SOAK_FRAMES) ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:quarantine_size_mb=16 \
+	  UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 $(BUILD_ASAN)/tests/soak_tests
 
 # libFuzzer on every input reader (clang, ASan + UBSan): FUZZ_SECONDS per reader; see docs/reliability.md.
 FUZZ_SECONDS ?= 60

@@ -183,7 +183,7 @@ void printSummary(const scene::AnalysisResult& r) {
 
 }  // namespace
 
-void DynamicsArgs::add(CLI::App& cmd) {
+void DynamicsArgs::add(CLI::App& cmd, bool fpsOption, bool preRollOption) {
   cmd.add_option("--dynamics", mode,
                  "Fur dynamics: 'on' makes each hair's end follow the paper's (quasi-static) end through a damped "
                  "spring; 'off' (default) is the paper's model")
@@ -195,10 +195,11 @@ void DynamicsArgs::add(CLI::App& cmd) {
   cmd.add_option("--damping", damping,
                  "Dynamic damping ratio [0, 10] (1 = critical): one value or two (overcoat undercoat); default 0.25")
       ->expected(1, 2);
-  cmd.add_option("--fps", fps, "Frames per second of the clip sampling, [1, 1000] (default 30)");
-  cmd.add_option("--preroll", preRoll,
-                 "Dynamics: frames simulated before the first one shown (default: from the clip's start, "
-                 "so any frame range matches a whole run exactly)");
+  if (fpsOption) cmd.add_option("--fps", fps, "Frames per second of the clip sampling, [1, 1000] (default 30)");
+  if (preRollOption)
+    cmd.add_option("--preroll", preRoll,
+                   "Dynamics: frames simulated before the first one shown (default: from the clip's start, "
+                   "so any frame range matches a whole run exactly)");
 }
 
 bool DynamicsArgs::enabled() const {

@@ -85,6 +85,7 @@ struct ExportArgs {
   ClipFramesArgs range;
   std::string format;
   std::string out;
+  DynamicsArgs dynamics;
 };
 
 void runExport(ExportArgs& a) {
@@ -103,12 +104,17 @@ void runExport(ExportArgs& a) {
   }
   fur::FurParams params = a.furSet.apply(a.fur.resolve());
   params.culling.enabled = false;  // export writes every hair in every frame
+  const fur::DynamicsParams dynamics = a.dynamics.resolve();
+  scene::DynamicsClock clock = a.dynamics.clock();
+  clock.fps = a.range.fps;
   scene::Model model = a.model.load();
   const int clip = resolveClip(model, a.range.clip);
+  if (a.dynamics.enabled() && clip < 0) inputError("--dynamics on needs a clip (--clip): the rest pose does not move");
   const scene::Fur fur = scene::growFur(model, params, "fur '" + params.name + "'");
-  std::printf("export: %s (%d triangles), %s, fur %s: %lld hairs, frames %d..%d at %g fps -> %s\n", model.name.c_str(),
+  std::printf("export: %s (%d triangles), %s, fur %s: %lld hairs%s, frames %d..%d at %g fps -> %s\n", model.name.c_str(),
               model.skin.numTriangles(), clip >= 0 ? ("clip " + model.clips[static_cast<std::size_t>(clip)].name).c_str() : "rest pose",
-              params.name.c_str(), static_cast<long long>(fur.roots.total()), first, last, a.range.fps, a.out.c_str());
+              params.name.c_str(), static_cast<long long>(fur.roots.total()), a.dynamics.enabled() ? " (dynamic)" : "", first,
+              last, a.range.fps, a.out.c_str());
   std::fflush(stdout);
 
   const auto t0 = std::chrono::steady_clock::now();
@@ -124,12 +130,21 @@ void runExport(ExportArgs& a) {
                      ", fur ", params.name, " (seed ", params.seed, "), ", fur.roots.total(), " hairs");
     usd = std::make_unique<scene::UsdaWriter>(a.out, model, fur.params, uo);
   }
+  fur::FurDynamicsState dynamicState;
+  if (a.dynamics.enabled()) {
+    // Frame `first` is reached as a whole run reaches it (scene/dynamic_fur.h).
+    scene::FrameState scratch;
+    scene::preRollDynamics(model, fur, dynamics, clip, first, clock, dynamicState, scratch);
+  }
   for (int f = first; f <= last; ++f) {
     if (clip >= 0)
       scene::evaluateClipFrame(model, clip, static_cast<double>(f) / a.range.fps, state);
     else
       scene::evaluateFrame(model, rest, state);
-    scene::evaluateFur(model, fur, state.skinBounds.center(), true, state);
+    if (a.dynamics.enabled())
+      scene::stepClipDynamics(model, fur, dynamics, clock, state.skinBounds.center(), true, dynamicState, state);
+    else
+      scene::evaluateFur(model, fur, state.skinBounds.center(), true, state);
     if (usd) {
       usd->addFrame(f, state);
     } else if (a.format == "ply") {
@@ -179,6 +194,7 @@ void addExportCommand(CLI::App& app) {
   cmd->add_option("--out", a->out, "usda: the .usda file; ply, glb: the directory for frame_NNNNN.ply/.glb")->required();
   a->fur.add(*cmd);
   a->furSet.add(*cmd);
+  a->dynamics.add(*cmd, false, true);
   cmd->callback([a] { runExport(*a); });
 }
 

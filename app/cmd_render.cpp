@@ -42,6 +42,7 @@ struct RenderArgs {
   bool resume = false;
   int encoders = 0;
   bool quiet = false;
+  DynamicsArgs dynamics;
 };
 
 void parseSize(const std::string& text, int& width, int& height) {
@@ -111,7 +112,15 @@ void runRender(RenderArgs& a) {
   o.shading = scene::parseHairShading(a.shading);
   o.hairWidth = a.ribbons ? scene::HairWidth::Ribbons : scene::HairWidth::Lines;
   o.shadows = a.shadows;
-  viewer::validateSequenceOptions(o);
+  o.dynamics = a.dynamics.enabled();
+  o.dynamicsParams = a.dynamics.resolve();
+  o.preRollFrames = a.dynamics.preRoll;
+  {
+    // Everything but the clip (resolved with the model below) is checked before the model is built.
+    viewer::SequenceOptions early = o;
+    early.dynamics = false;
+    viewer::validateSequenceOptions(early);
+  }
   ensureWritableDirectory(o.outDir);
   if (!o.video.empty() && viewer::findOnPath("ffmpeg").empty())
     inputError("--video ", o.video, " needs the ffmpeg program, which is not on PATH (Debian: apt-get install ffmpeg)");
@@ -120,13 +129,15 @@ void runRender(RenderArgs& a) {
   if (a.noCulling) params.culling.enabled = false;
   scene::Model model = a.model.load();
   o.clip = resolveClip(model, a.range.clip);
+  viewer::validateSequenceOptions(o);
   const scene::Fur fur = scene::growFur(model, params, "fur '" + params.name + "'");
   auto context = viewer::createHeadlessContext();
   const viewer::ContextInfo& info = context->info();
-  std::printf("render: %s (%d triangles), %s, fur %s: %lld hairs; frames %d..%d at %g fps, %dx%d -> %s/\n",
+  std::printf("render: %s (%d triangles), %s, fur %s: %lld hairs%s; frames %d..%d at %g fps, %dx%d -> %s/\n",
               model.name.c_str(), model.skin.numTriangles(),
               o.clip >= 0 ? ("clip " + model.clips[static_cast<std::size_t>(o.clip)].name).c_str() : "rest pose",
-              params.name.c_str(), static_cast<long long>(fur.roots.total()), o.frames.first, o.frames.last,
+              params.name.c_str(), static_cast<long long>(fur.roots.total()),
+              o.dynamics ? " (dynamic, CPU)" : "", o.frames.first, o.frames.last,
               o.framesPerSecond, o.width, o.height, o.outDir.c_str());
   std::printf("render: %s, %s (%s); %d worker threads\n", info.renderer.c_str(), info.version.c_str(),
               info.backend.c_str(), threadCount());
@@ -170,6 +181,7 @@ void addRenderCommand(CLI::App& app) {
   cmd->add_flag("--no-culling", a->noCulling, "Draw every hair at any distance (no sec. 3.3 culling)");
   cmd->add_option("--encoders", a->encoders, "PNG encoder threads (0 = --threads)")->capture_default_str();
   cmd->add_flag("--quiet", a->quiet, "No progress output");
+  a->dynamics.add(*cmd, false, true);
   cmd->callback([a] { runRender(*a); });
 }
 

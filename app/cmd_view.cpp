@@ -28,6 +28,7 @@ void addViewCommand(CLI::App& app) {
   auto o = std::make_shared<viewer::ViewerOptions>();
   auto size = std::make_shared<std::string>("1280x800");
   auto benchHairs = std::make_shared<std::vector<double>>();
+  auto dyn = std::make_shared<DynamicsArgs>();
   args->add(*cmd);
   cmd->add_option("--pose", o->posePath, "Pose file (JSON) for the still pose");
   cmd->add_option("--clip", o->clip, "Clip to play (default: the model's first; see `pelage info`)");
@@ -47,6 +48,7 @@ void addViewCommand(CLI::App& app) {
   cmd->add_flag("--shadows", o->shadows, "Shadow map: fur and skin shadow each other");
   cmd->add_option("--skin-color", o->skinColor, "Skin colour R G B in [0, 1] (default: the model's)")->expected(3);
   cmd->add_flag("--no-culling", o->noCulling, "Draw every hair at any distance (no sec. 3.3 culling)");
+  dyn->add(*cmd, false, false);
   cmd->add_option("--screenshot", o->screenshot, "Write the last frame to this PNG and exit (a window: its back buffer, UI included; --headless: the scene)");
   cmd->add_option("--frames", o->frames, "Frames to run before exiting (0 = until closed; 3 with --screenshot)");
   cmd->add_flag("--headless", o->headless, "No window: render offscreen through EGL (no UI)");
@@ -54,10 +56,12 @@ void addViewCommand(CLI::App& app) {
   cmd->add_option("--benchmark-hairs", *benchHairs, "Hair counts for --benchmark (default 500000 1000000 5000000)");
   cmd->add_option("--benchmark-frames", o->benchmarkFrames, "Timed frames per count")->capture_default_str();
   cmd->add_flag("--debug-gl", o->debugGl, "OpenGL debug output to stderr; GL errors fail the run");
-  cmd->callback([cmd, args, furArgs, o, size, benchHairs] {
+  cmd->callback([cmd, args, furArgs, o, size, benchHairs, dyn] {
     // The benchmark's reference resolution is 1080p (issue 5) unless a size is given.
     parseSize(o->benchmark && cmd->count("--size") == 0 ? std::string("1920x1080") : *size, o->width, o->height);
     o->fur = furArgs->resolve();
+    o->dynamics = dyn->enabled();
+    o->dynamicsParams = dyn->resolve();
     if (!benchHairs->empty()) o->benchmarkHairs = *benchHairs;
     const int status = viewer::runViewer(*o, args->load());
     if (status != 0) throw CLI::RuntimeError(status);

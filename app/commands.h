@@ -75,14 +75,15 @@ void addBenchCommand(CLI::App& app);
 void addViewCommand(CLI::App& app);
 
 // Fur dynamics options (issue 7; cmd_analyze.cpp): --dynamics on|off, --frequency, --damping
-// (one value for both coats or two), --fps, --preroll.
+// (one value for both coats or two) and, where the command has no frame clock of its own, --fps;
+// --preroll where frame ranges are rendered.
 struct DynamicsArgs {
   std::string mode = "off";
   std::vector<double> frequency;
   std::vector<double> damping;
   double fps = 30.0;
   int preRoll = -1;  // -1: from the clip's start
-  void add(CLI::App& cmd);
+  void add(CLI::App& cmd, bool fpsOption = true, bool preRollOption = true);
   bool enabled() const;
   fur::DynamicsParams resolve() const;  // validated; InputError naming the option
   scene::DynamicsClock clock() const;

@@ -64,6 +64,31 @@ TEST_F(ExportCommand, PlyAndGlbFilesPerFrame) {
     EXPECT_EQ(readText((dir.path() / "glb" / f).string()).substr(0, 4), "glTF") << f;
 }
 
+// Dynamic fur in export: a range exported on its own pre-rolls the springs from frame 0, so its
+// files are byte-identical to the same frames of a whole run, and differ from the quasi-static ones.
+TEST_F(ExportCommand, DynamicFurRangesMatchAWholeRun) {
+  const std::string dyn = " --format ply --dynamics on --frequency 3 --damping 0.1";
+  RunResult r = runPelage("export " + base() + " --frames 0:5" + dyn + " --out " + dir.file("whole"));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("(dynamic)"), std::string::npos) << r.output;
+  r = runPelage("export " + base() + " --frames 4:5" + dyn + " --out " + dir.file("part"));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  r = runPelage("export " + base() + " --frames 4:5 --format ply --out " + dir.file("static"));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  for (const char* f : {"frame_00004.ply", "frame_00005.ply"}) {
+    const std::string whole = readText((dir.path() / "whole" / f).string());
+    EXPECT_EQ(readText((dir.path() / "part" / f).string()), whole) << f;
+    EXPECT_NE(readText((dir.path() / "static" / f).string()), whole) << f;
+  }
+  // A short pre-roll is allowed (approximate), and the rest pose has nothing to simulate.
+  r = runPelage("export " + base() + " --frames 4:4 --preroll 2" + dyn + " --out " + dir.file("short"));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  r = runPelage(std::string("export " PELAGE_SOURCE_DIR "/tests/scene/critter.json --hairs 100 --dynamics on --format ply --out ") +
+                dir.file("rest"));
+  EXPECT_EQ(r.exitCode, 2) << r.output;
+  EXPECT_NE(r.output.find("--dynamics on needs a clip"), std::string::npos) << r.output;
+}
+
 struct BadExport {
   const char* name;
   std::string args;    // <dir> and <base> are replaced
@@ -99,7 +124,9 @@ INSTANTIATE_TEST_SUITE_P(
         BadExport{"fur range", "<base> --fur-set overcoat.stiffness=7 --format usda --out <dir>/o.usda", "stiffness"},
         BadExport{"fur field", "<base> --fur-set overcoat.stifness=0.5 --format usda --out <dir>/o.usda", "stifness"},
         BadExport{"fur group", "<base> --fur-set coat.stiffness=0.5 --format usda --out <dir>/o.usda", "no field group 'coat'"},
-        BadExport{"fur syntax", "<base> --fur-set stiffness --format usda --out <dir>/o.usda", "is not FIELD=VALUE"}),
+        BadExport{"fur syntax", "<base> --fur-set stiffness --format usda --out <dir>/o.usda", "is not FIELD=VALUE"},
+        BadExport{"damping", "<base> --dynamics on --damping 20 --format ply --out <dir>/o", "damping"},
+        BadExport{"preroll", "<base> --dynamics on --preroll=-5 --format ply --out <dir>/o", "--preroll -5 is out of range"}),
     [](const ::testing::TestParamInfo<BadExport>& param) {
       std::string n = param.param.name;
       for (char& c : n)

@@ -1,5 +1,8 @@
 #include "pelage/skin/mesh_io.h"
 
+#include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 
 #include <gmock/gmock.h>
@@ -137,6 +140,127 @@ TEST(MeshIO, HeadersAreCheckedBeforeReading) {
   stl.append(50, '\0');
   test::writeText(dir.file("short.stl"), stl);
   EXPECT_THAT(errorOf(dir.file("short.stl")), HasSubstr("short.stl: binary STL declares 1000000 triangles (50000084 bytes) but the file has 134 bytes"));
+}
+
+// The four corners of the tetrahedron used below, and its faces (outward).
+constexpr float kTet[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+constexpr int kTetFaces[4][3] = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+
+void expectTetrahedron(const SkinMesh& s, const std::string& what) {
+  ASSERT_EQ(s.numVertices(), 4) << what;
+  ASSERT_EQ(s.numTriangles(), 4) << what;
+  // Volume 1/6 and area 1.5 + sqrt(3)/2 identify the tetrahedron whatever the vertex order.
+  EXPECT_NEAR(s.restArea, 1.5 + std::sqrt(3.0) / 2.0, 1e-6) << what;
+  double volume = 0.0;
+  for (int f = 0; f < 4; ++f) {
+    Eigen::Vector3d p[3];
+    for (int c = 0; c < 3; ++c)
+      p[c] = Eigen::Map<const Eigen::Vector3f>(s.restPositions() + 3 * s.triangles[3 * static_cast<std::size_t>(f) + static_cast<std::size_t>(c)]).cast<double>();
+    volume += p[0].dot(p[1].cross(p[2])) / 6.0;
+  }
+  EXPECT_NEAR(volume, 1.0 / 6.0, 1e-7) << what;
+}
+
+template <typename T>
+void putBig(std::string& out, T v) {  // big-endian bytes of v
+  char b[sizeof(T)];
+  std::memcpy(b, &v, sizeof(T));
+  for (std::size_t k = sizeof(T); k-- > 0;) out.push_back(b[k]);
+}
+
+TEST(MeshIO, PlyVariantsReadTheSameTetrahedron) {
+  test::TempDir dir;
+  // ASCII with extra vertex properties, properties in another order, faces before vertices, a
+  // second list on the faces and an unrelated element.
+  std::string ascii =
+      "ply\r\nformat ascii 1.0\r\nelement face 4\r\nproperty list uchar float texcoord\r\n"
+      "property list int uint vertex_index\r\nelement vertex 4\r\nproperty float nx\r\nproperty double z\r\n"
+      "property float y\r\nproperty float x\r\nproperty uchar red\r\nelement edge 1\r\nproperty int a\r\nend_header\r\n";
+  for (const auto& f : kTetFaces) ascii += str("2 0.5 0.25 3 ", f[0], " ", f[1], " ", f[2], "\n");
+  for (const auto& v : kTet) ascii += str("1 ", v[2], " ", v[1], " ", v[0], " 255\n");
+  ascii += "7\n";
+  test::writeText(dir.file("ascii.ply"), ascii);
+  expectTetrahedron(readStaticMesh(dir.file("ascii.ply")), "ascii.ply");
+
+  // Big-endian binary with double coordinates, short counts and int16 indices.
+  std::string big =
+      "ply\nformat binary_big_endian 1.0\nelement vertex 4\nproperty double x\nproperty double y\n"
+      "property double z\nelement face 4\nproperty list short int16 vertex_indices\nend_header\n";
+  for (const auto& v : kTet)
+    for (float c : v) putBig(big, static_cast<double>(c));
+  for (const auto& f : kTetFaces) {
+    putBig(big, std::int16_t{3});
+    for (int i : f) putBig(big, static_cast<std::int16_t>(i));
+  }
+  test::writeText(dir.file("big.ply"), big);
+  expectTetrahedron(readStaticMesh(dir.file("big.ply")), "big.ply");
+}
+
+TEST(MeshIO, PlyBodiesAreCheckedValueByValue) {
+  test::TempDir dir;
+  const std::string head = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n";
+  const std::string tri = "0 0 0\n1 0 0\n0 1 0\n";
+  auto ply = [&](const std::string& name, const std::string& rest) {
+    test::writeText(dir.file(name), rest);
+    return errorOf(dir.file(name));
+  };
+  EXPECT_THAT(ply("range.ply", head + "element face 1\nproperty list uchar int vertex_indices\nend_header\n" + tri + "3 0 1 3\n"),
+              HasSubstr("range.ply: PLY face 0: vertex index 3 is out of range [0, 2]"));
+  EXPECT_THAT(ply("two.ply", head + "element face 1\nproperty list uchar int vertex_indices\nend_header\n" + tri + "2 0 1\n"),
+              HasSubstr("two.ply: PLY face 0 has 2 vertices"));
+  EXPECT_THAT(ply("noxyz.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nend_header\n0 0\n"),
+              HasSubstr("noxyz.ply: PLY vertex element needs scalar properties x, y and z"));
+  EXPECT_THAT(ply("nolist.ply", head + "element face 1\nproperty list uchar int corners\nend_header\n" + tri + "3 0 1 2\n"),
+              HasSubstr("nolist.ply: PLY face element needs an integer list property vertex_indices"));
+  EXPECT_THAT(ply("twice.ply", head + "element vertex 1\nproperty float x\nend_header\n" + tri + "0\n"),
+              HasSubstr("twice.ply: PLY element 'vertex' is declared twice"));
+  EXPECT_THAT(ply("word.ply", head + "end_header\n0 0 0\n1 zero 0\n0 1 0\n"),
+              HasSubstr("word.ply: PLY element 0 instance 1: 'zero' is not a number"));
+  EXPECT_THAT(ply("float.ply", head + "element face 1\nproperty list uchar int vertex_indices\nend_header\n" + tri + "3 0 1.5 2\n"),
+              HasSubstr("float.ply: PLY element 1 instance 0: '1.5' is not an integer"));
+  EXPECT_THAT(ply("fcount.ply", head + "element face 1\nproperty list float int vertex_indices\nend_header\n" + tri + "3 0 1 2\n"),
+              HasSubstr("fcount.ply: PLY list count type 'float' must be an integer type"));
+  // A signed count of -1 (0xff) must not be read as 255 or as 2^32 - 1.
+  std::string bin = "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                    "property float z\nelement face 1\nproperty list char int vertex_indices\nend_header\n";
+  const float v[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  bin.append(reinterpret_cast<const char*>(v), sizeof(v));
+  bin.push_back(static_cast<char>(0xff));
+  const std::int32_t idx[3] = {0, 1, 2};
+  bin.append(reinterpret_cast<const char*>(idx), sizeof(idx));
+  EXPECT_THAT(ply("neg.ply", bin), HasSubstr("neg.ply: PLY element 1 instance 0: list count -1 does not fit the rest of the file"));
+}
+
+TEST(MeshIO, StlBinaryAndAsciiWeldCorners) {
+  test::TempDir dir;
+  // Binary, with a header that starts with "solid" as some exporters write: the size decides.
+  std::string bin = "solid but binary";
+  bin.resize(80, ' ');
+  const std::uint32_t n = 4;
+  bin.append(reinterpret_cast<const char*>(&n), 4);
+  std::string ascii = "solid tet\n";
+  for (const auto& f : kTetFaces) {
+    bin.append(12, '\0');  // normal (ignored)
+    ascii += "  facet normal 0 0 0\n    outer loop\n";
+    for (int i : f) {
+      bin.append(reinterpret_cast<const char*>(kTet[i]), 12);
+      ascii += str("      vertex ", kTet[i][0], " ", kTet[i][1], " ", kTet[i][2], "\n");
+    }
+    bin.append(2, '\0');
+    ascii += "    endloop\n  endfacet\n";
+  }
+  ascii += "endsolid tet\n";
+  test::writeText(dir.file("bin.stl"), bin);
+  expectTetrahedron(readStaticMesh(dir.file("bin.stl")), "bin.stl");
+  test::writeText(dir.file("ascii.stl"), ascii);
+  expectTetrahedron(readStaticMesh(dir.file("ascii.stl")), "ascii.stl");
+
+  test::writeText(dir.file("word.stl"), "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertx 0 1 0\n");
+  EXPECT_THAT(errorOf(dir.file("word.stl")), HasSubstr("word.stl:6: unknown ASCII STL keyword 'vertx'"));
+  test::writeText(dir.file("two.stl"), "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nendloop\n");
+  EXPECT_THAT(errorOf(dir.file("two.stl")), HasSubstr("two.stl:6: a facet needs at least 3 vertices, it has 2"));
+  test::writeText(dir.file("nan.stl"), "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 nan\n");
+  EXPECT_THAT(errorOf(dir.file("nan.stl")), HasSubstr("nan.stl:4: vertex has a non-finite coordinate"));
 }
 
 TEST(MeshIO, QuadsAreTriangulated) {

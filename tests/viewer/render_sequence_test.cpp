@@ -81,6 +81,39 @@ TEST_F(RenderSequenceTest, AFrameDependsOnlyOnItsNumber) {
   EXPECT_TRUE(afterOthers.rgba == alone.rgba);
 }
 
+// Dynamic fur: frame 4 rendered alone pre-rolls the springs from frame 0 and matches frame 4 of a
+// run through 0..4 pixel for pixel; it differs from the quasi-static frame.
+TEST_F(RenderSequenceTest, DynamicFurFramesDependOnlyOnTheirNumber) {
+  TempDir dir;
+  viewer::SequenceOptions o = options(dir);
+  o.dynamics = true;
+  o.dynamicsParams.coats[0] = {2.0f, 0.05f};
+  o.dynamicsParams.coats[1] = {2.0f, 0.05f};
+  viewer::Image afterOthers, alone, quasiStatic;
+  {
+    viewer::SequenceRenderer s(wagCritter(), wagFur(), o);
+    viewer::Image scratch;
+    for (int f : {0, 1, 2, 3}) s.render(f, scratch);
+    s.render(4, afterOthers);
+  }
+  {
+    viewer::SequenceRenderer s(wagCritter(), wagFur(), o);
+    s.render(4, alone);
+  }
+  {
+    viewer::SequenceOptions q = options(dir);
+    q.hairSource = scene::HairSource::Cpu;
+    viewer::SequenceRenderer s(wagCritter(), wagFur(), q);
+    s.render(4, quasiStatic);
+  }
+  ASSERT_EQ(afterOthers.rgba.size(), alone.rgba.size());
+  EXPECT_TRUE(afterOthers.rgba == alone.rgba);
+  EXPECT_FALSE(alone.rgba == quasiStatic.rgba);
+  // Without a clip there is no motion to simulate.
+  o.clip = -1;
+  EXPECT_THROW(viewer::validateSequenceOptions(o), InputError);
+}
+
 TEST_F(RenderSequenceTest, ResumeSkipsCompleteFramesAndRedoesTheRest) {
   TempDir whole, resumed;
   viewer::renderSequence(wagCritter(), wagFur(), options(whole));

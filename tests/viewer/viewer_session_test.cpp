@@ -4,7 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <thread>
 
@@ -75,6 +77,53 @@ TEST_F(ViewerSessionTest, EditsApplyOnTheNextFrame) {
   s.skinColor = Eigen::Vector3f(0.1f, 0.2f, 0.3f);
   s.frame(0.0, 96, 64);
   EXPECT_TRUE(s.drawList().skin.material.diffuse.isApprox(Eigen::Vector3f(0.1f, 0.2f, 0.3f)));
+}
+
+// The dynamics switch: on, hairs come from the CPU's damped ends: they start on the quasi-static
+// hairs, lag behind them while the head turns, and settle back onto them once the body is still.
+TEST_F(ViewerSessionTest, DynamicFurStartsLagsAndSettles) {
+  ViewerOptions o = smallOptions();
+  o.hairSource = "cpu";
+  ViewerSession quasi(o, critterWithClips());
+  o.hairSource = "gpu";
+  o.dynamics = true;
+  o.dynamicsParams.coats[0] = {20.0f, 0.7f};
+  o.dynamicsParams.coats[1] = {20.0f, 0.7f};
+  ViewerSession dyn(o, critterWithClips());
+  // Largest distance between the two sessions' overcoat hair points (same roots, same culling).
+  auto maxGap = [&] {
+    const fur::HairBuffers& a = quasi.state().fur.coats[0];
+    const fur::HairBuffers& b = dyn.state().fur.coats[0];
+    EXPECT_EQ(a.drawn, b.drawn);
+    EXPECT_GT(a.drawn, 0);
+    float gap = 0.0f;
+    for (std::size_t i = 0; i < static_cast<std::size_t>(a.drawn * a.pointsPerHair * 3); ++i)
+      gap = std::max(gap, std::abs(a.positions.data()[i] - b.positions.data()[i]));
+    return gap;
+  };
+  quasi.frame(1.0 / 30.0, 96, 64);
+  dyn.frame(1.0 / 30.0, 96, 64);
+  EXPECT_TRUE(dyn.state().cpuFur);
+  EXPECT_EQ(dyn.drawList().fur.empty(), false);
+  EXPECT_LT(maxGap(), 1e-6f);  // the first step starts on the quasi-static hairs
+  float lag = 0.0f;
+  for (int i = 0; i < 10; ++i) {  // the head turns: the dynamic ends trail
+    quasi.frame(1.0 / 30.0, 96, 64);
+    dyn.frame(1.0 / 30.0, 96, 64);
+    lag = std::max(lag, maxGap());
+  }
+  EXPECT_GT(lag, 1e-4f);
+  // Paused, the body is still: the springs settle onto the quasi-static hairs.
+  quasi.playing = dyn.playing = false;
+  for (int i = 0; i < 300; ++i) {
+    quasi.frame(1.0 / 30.0, 96, 64);
+    dyn.frame(1.0 / 30.0, 96, 64);
+  }
+  EXPECT_LT(maxGap(), 1e-5f);
+  // Invalid spring parameters from the panel are reported and not applied.
+  dyn.dynamicsParams.coats[0].dampingRatio = -1.0f;
+  dyn.frame(1.0 / 30.0, 96, 64);
+  EXPECT_NE(dyn.editError.find("damping"), std::string::npos) << dyn.editError;
 }
 
 TEST_F(ViewerSessionTest, ANewHairCountRegrowsTheRootsWithoutStalling) {

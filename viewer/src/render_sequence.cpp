@@ -23,6 +23,7 @@
 #include <mutex>
 #include <thread>
 
+#include "pelage/scene/dynamic_fur.h"
 #include "pelage/util/atomic_file.h"
 #include "pelage/util/error.h"
 #include "pelage/util/json_reader.h"
@@ -262,6 +263,12 @@ void validateSequenceOptions(const SequenceOptions& o) {
   if (!(o.camera.fovYDegrees > 1.0f && o.camera.fovYDegrees < 179.0f))
     inputError("--fov ", o.camera.fovYDegrees, " is out of range (1, 179) degrees");
   if (o.outDir.empty()) inputError("--out: an output directory is required");
+  if (o.dynamics) {
+    if (o.clip < 0) inputError("--dynamics on needs a clip (--clip): the rest pose does not move");
+    fur::validateDynamicsParams(o.dynamicsParams, "--frequency/--damping");
+    if (o.preRollFrames < -1 || o.preRollFrames > 10000000)
+      inputError("--preroll ", o.preRollFrames, " is out of range [0, 10000000] frames");
+  }
   if (!o.video.empty()) {
     const std::string ext = fs::path(o.video).extension().string();
     if (ext != ".mp4" && ext != ".gif") inputError("--video ", o.video, ": the file must end in .mp4 or .gif");
@@ -280,6 +287,10 @@ struct SequenceRenderer::Impl {
   scene::DrawList list;
   std::unique_ptr<Renderer> renderer;
   float hairPad = 0.0f;
+  // Dynamic fur: the springs' state, the frame it is ready to step to, and pre-roll scratch.
+  fur::FurDynamicsState dynamics;
+  int nextDynamicFrame = -1;
+  scene::FrameState preRollScratch;
 
   Impl(const scene::Model& m, const scene::Fur& f, const SequenceOptions& o) : model(m), fur(f), options(o) {}
 
@@ -351,13 +362,26 @@ RenderStats SequenceRenderer::render(int frame, Image& out) {
   Impl& m = *impl_;
   m.evaluate(frame);
   const scene::Camera cam = m.camera(frame);
-  const bool cpu = m.options.hairSource == scene::HairSource::Cpu;
-  scene::evaluateFur(m.model, m.fur, cam.eye, cpu, m.state);
+  const bool cpu = m.options.hairSource == scene::HairSource::Cpu || m.options.dynamics;
+  if (m.options.dynamics) {
+    scene::DynamicsClock clock;
+    clock.fps = m.options.framesPerSecond;
+    clock.preRollFrames = m.options.preRollFrames;
+    // Frames come in order; any other frame (the first, or one after frames skipped by --resume)
+    // is reached by pre-rolling, exactly as a whole run reaches it.
+    if (frame != m.nextDynamicFrame)
+      scene::preRollDynamics(m.model, m.fur, m.options.dynamicsParams, m.options.clip, frame, clock, m.dynamics,
+                             m.preRollScratch);
+    scene::stepClipDynamics(m.model, m.fur, m.options.dynamicsParams, clock, cam.eye, true, m.dynamics, m.state);
+    m.nextDynamicFrame = frame + 1;
+  } else {
+    scene::evaluateFur(m.model, m.fur, cam.eye, cpu, m.state);
+  }
   scene::Light light;
   light.direction = scene::lightDirection(35.0f, 50.0f);  // the viewer's default key light
   light.shadows = m.options.shadows;
   scene::DrawOptions opt;
-  opt.hairSource = m.options.hairSource;
+  opt.hairSource = cpu ? scene::HairSource::Cpu : m.options.hairSource;
   opt.hairShading = m.options.shading;
   opt.hairWidth = m.options.hairWidth;
   scene::buildDrawList(m.model, m.state, &m.fur, cam, light, opt, m.list);

@@ -26,7 +26,7 @@ int runBenchmark(const ViewerOptions& options, const scene::Model& model) {
   const ContextInfo& info = context->info();
   std::printf("pelage view --benchmark: %s | %s | %s | %dx%d | %d CPU threads | hairs on the %s | model %s\n",
               info.renderer.c_str(), info.version.c_str(), info.backend.c_str(), options.width, options.height,
-              threadCount(), options.hairSource == "cpu" ? "CPU" : "GPU", model.name.c_str());
+              threadCount(), options.dynamics ? "CPU (dynamic fur)" : options.hairSource == "cpu" ? "CPU" : "GPU", model.name.c_str());
   // MSAA off is the setting of the reference figures (../shared/docs/headless-gl.md); on a GPU 4x is
   // measured too, as the viewer uses it there. A software rasteriser only without (4x costs ~2.3x).
   std::vector<int> sampleCounts;

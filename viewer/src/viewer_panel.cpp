@@ -103,6 +103,21 @@ void furPanel(ViewerSession& s) {
   if (!s.editError.empty()) ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", s.editError.c_str());
 }
 
+// Dynamic fur (fur/dynamics.h; not in the paper): off by default, the paper's quasi-static model.
+void dynamicsPanel(ViewerSession& s) {
+  if (!ImGui::CollapsingHeader("Dynamics")) return;
+  ImGui::Checkbox("dynamic fur (hair ends lag through damped springs)", &s.dynamics);
+  ImGui::TextDisabled("off: the paper's quasi-static droop; on: hairs are computed on the CPU");
+  for (int c = 0; c < fur::kCoatCount; ++c) {
+    fur::CoatDynamics& d = s.dynamicsParams.coats[static_cast<std::size_t>(c)];
+    ImGui::PushID(c);
+    ImGui::Text("%s", c == fur::kOvercoat ? "overcoat" : "undercoat");
+    ImGui::SliderFloat("frequency (Hz at 1 cm)", &d.frequencyHz, 0.1f, 100.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
+    ImGui::SliderFloat("damping ratio", &d.dampingRatio, 0.0f, 10.0f, "%.3f", ImGuiSliderFlags_Logarithmic);
+    ImGui::PopID();
+  }
+}
+
 void presetPanel(ViewerSession& s, PanelState& st) {
   if (!ImGui::CollapsingHeader("Presets")) return;
   static const std::vector<std::string> names = fur::builtinPresetNames();
@@ -182,7 +197,8 @@ void statusLine(ViewerSession& s) {
   ImGui::Text("hairs drawn %lld of %lld (c = %.2f) | frame %.1f ms | skin %d triangles | %s | %s",
               static_cast<long long>(s.hairsDrawn()), static_cast<long long>(s.fur().roots.total()),
               static_cast<double>(f.cullFactor), s.frameMs(), s.model().skin.numTriangles(),
-              s.hairSource == scene::HairSource::Gpu ? "GPU fur" : "CPU fur", s.model().name.c_str());
+              s.dynamics ? "CPU dynamic fur" : s.hairSource == scene::HairSource::Gpu ? "GPU fur" : "CPU fur",
+              s.model().name.c_str());
   ImGui::End();
 }
 
@@ -197,6 +213,7 @@ float drawPanel(ViewerSession& s, PanelState& st) {
     ImGui::PushItemWidth(ImGui::GetWindowWidth() * 0.55f);
     viewPanel(s);
     furPanel(s);
+    dynamicsPanel(s);
     presetPanel(s, st);
     ImGui::PopItemWidth();
     right = ImGui::GetWindowPos().x + ImGui::GetWindowWidth();

@@ -47,6 +47,9 @@ ViewerSession::ViewerSession(const ViewerOptions& options, scene::Model model)
   shading = scene::parseHairShading(options.shading);
   hairWidth = options.ribbons ? scene::HairWidth::Ribbons : scene::HairWidth::Lines;
   shadows = options.shadows;
+  dynamics = options.dynamics;
+  dynamicsParams = options.dynamicsParams;
+  fur::validateDynamicsParams(dynamicsParams, "--frequency/--damping");
   skinColor = model_.skin.color;
   if (!options.skinColor.empty()) {
     if (options.skinColor.size() != 3) inputError("--skin-color takes 3 values (R G B in [0, 1]), got ", options.skinColor.size());
@@ -173,11 +176,13 @@ void ViewerSession::selectClip(int index) {
     time_ = 0.0;
   }
   clip_ = index;
+  dynamicsRunning_ = false;
 }
 
 void ViewerSession::setTime(double seconds) {
   time_ = std::max(seconds, 0.0);
   fromClip_ = -1;  // scrubbing ends a cross-fade
+  dynamicsRunning_ = false;
 }
 
 double ViewerSession::clipDuration() const {
@@ -185,8 +190,12 @@ double ViewerSession::clipDuration() const {
 }
 
 void ViewerSession::advance(double dtSeconds) {
+  // The dynamic springs step by the played clip time; with the clip still (paused, speed 0), by
+  // the wall time, so hairs keep settling.
+  lastStep_ = dtSeconds;
   if (!playing) return;
   const double step = dtSeconds * static_cast<double>(speed);
+  if (step > 0.0) lastStep_ = step;
   time_ += step;
   fromTime_ += step;
   fadeSeconds_ += dtSeconds;
@@ -238,13 +247,18 @@ void ViewerSession::frame(double dtSeconds, int width, int height) {
   const float d = (cam.eye - framing_.center).norm();
   cam.nearMeters = std::max((d - framing_.radius) * 0.5f, framing_.radius * 0.002f);
   cam.farMeters = d + framing_.radius * 2.0f;
-  const bool cpu = hairSource == scene::HairSource::Cpu;
-  if (drawFur) scene::evaluateFur(model_, fur_, cam.eye, cpu, frame_);
+  const bool cpu = hairSource == scene::HairSource::Cpu || dynamics;
+  if (drawFur && dynamics) {
+    dynamicFur(cam.eye, lastStep_);
+  } else {
+    dynamicsRunning_ = false;
+    if (drawFur) scene::evaluateFur(model_, fur_, cam.eye, cpu, frame_);
+  }
   scene::Light light;
   light.direction = scene::lightDirection(lightAzimuth, lightElevation);
   light.shadows = shadows;
   scene::DrawOptions opt;
-  opt.hairSource = hairSource;
+  opt.hairSource = cpu ? scene::HairSource::Cpu : hairSource;
   opt.hairShading = shading;
   opt.hairWidth = hairWidth;
   opt.drawSkin = drawSkin;
@@ -255,6 +269,26 @@ void ViewerSession::frame(double dtSeconds, int width, int height) {
   const RenderStats stats = renderer_->render(list_);
   hairsDrawn_ = stats.hairsDrawn;
   advance(dtSeconds);  // the first frame shows the start time exactly
+}
+
+void ViewerSession::dynamicFur(const Eigen::Vector3f& cameraEye, double stepSeconds) {
+  // The spring parameters come from the panel: invalid ones (mid-edit) keep the last valid set.
+  try {
+    fur::validateDynamicsParams(dynamicsParams, "dynamics panel");
+    appliedDynamics_ = dynamicsParams;
+  } catch (const InputError& e) {
+    editError = e.what();
+  }
+  if (!dynamicsRunning_ || dynamicsGeneration_ != fur_.generation) {
+    fur::resetFurDynamics(fur_.roots, dynamicsState_);
+    dynamicsGeneration_ = fur_.generation;
+    dynamicsRunning_ = true;
+  }
+  // The spring step is exact for any dt; dt is kept in [1 ms, 1 s] (fps [1, 1000]); the first
+  // frame's (0) is ignored after a reset.
+  scene::DynamicsClock clock;
+  clock.fps = 1.0 / std::clamp(stepSeconds, 1e-3, 1.0);
+  scene::stepClipDynamics(model_, fur_, appliedDynamics_, clock, cameraEye, true, dynamicsState_, frame_);
 }
 
 }  // namespace pelage::viewer::detail

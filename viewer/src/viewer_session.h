@@ -10,7 +10,9 @@
 #include <optional>
 #include <string>
 
+#include "pelage/fur/dynamics.h"
 #include "pelage/scene/draw_list.h"
+#include "pelage/scene/dynamic_fur.h"
 #include "pelage/scene/frame.h"
 #include "pelage/viewer/renderer.h"
 #include "pelage/viewer/viewer_app.h"
@@ -47,6 +49,11 @@ class ViewerSession {
   float turntableDegPerSecond = 0.0f;  // without a clip: turn the creature about +Z (0 = still)
   bool loop = true;
   float speed = 1.0f;
+  // Dynamic fur (fur/dynamics.h): each hair's end follows the paper's through a damped spring,
+  // stepped by the played time; its hairs are computed on the CPU. Restarts from the quasi-static
+  // hairs when switched on, when the roots are regrown, on a clip change and when scrubbing.
+  bool dynamics = false;
+  fur::DynamicsParams dynamicsParams;
 
   // Playback of the model's clips (none: the still pose).
   int clip() const { return clip_; }
@@ -86,6 +93,8 @@ class ViewerSession {
   void applyEdits();
   void advance(double dtSeconds);
   void posedFrame();  // evaluates the frame's pose (clip or still, then the turntable)
+  // This frame's hairs from the dynamic ends, `stepSeconds` of clip time after the previous one.
+  void dynamicFur(const Eigen::Vector3f& cameraEye, double stepSeconds);
 
   scene::Model model_;
   anatomy::Pose stillPose_;
@@ -107,6 +116,11 @@ class ViewerSession {
   double time_ = 0.0;
   double frameMs_ = 0.0;
   std::int64_t hairsDrawn_ = 0;
+  fur::FurDynamicsState dynamicsState_;
+  std::uint64_t dynamicsGeneration_ = 0;  // the roots the state was sized to
+  bool dynamicsRunning_ = false;          // false: the next step restarts from the quasi-static hairs
+  double lastStep_ = 0.0;                 // clip seconds played since the previous frame
+  fur::DynamicsParams appliedDynamics_;   // the last valid dynamicsParams
 };
 
 // `pelage view --headless --benchmark`: ms/frame for each of options.benchmarkHairs.

@@ -1,4 +1,4 @@
-// Static meshes in and out through OpenMesh's reader/writer (OBJ, PLY, OFF, STL).
+// Static meshes in (OBJ, PLY, OFF, STL, read by pelage into an OpenMesh mesh) and out (OBJ, PLY).
 #pragma once
 
 #include <Eigen/Core>

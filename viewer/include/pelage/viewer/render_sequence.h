@@ -17,6 +17,7 @@
 #include <string_view>
 #include <vector>
 
+#include "pelage/fur/dynamics.h"
 #include "pelage/scene/draw_list.h"
 #include "pelage/scene/frame.h"
 #include "pelage/scene/frame_range.h"
@@ -78,6 +79,12 @@ struct SequenceOptions {
   scene::HairShading shading = scene::HairShading::Paper;
   scene::HairWidth hairWidth = scene::HairWidth::Lines;
   bool shadows = false;
+  // Dynamic fur (fur/dynamics.h; needs a clip): hairs from the damped ends, computed on the CPU.
+  // Frame f's springs have run from frame max(0, f - preRollFrames), or from frame 0 when
+  // preRollFrames is -1, so a range rendered on its own matches a whole run bit for bit.
+  bool dynamics = false;
+  fur::DynamicsParams dynamicsParams;
+  int preRollFrames = -1;
   Eigen::Vector3f background{0.80f, 0.82f, 0.86f};
   std::string outDir;     // frames go to outDir/frame_NNNNN.png
   bool resume = false;    // skip frames whose PNG is already complete

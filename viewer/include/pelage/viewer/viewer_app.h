@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "pelage/fur/dynamics.h"
 #include "pelage/fur/fur_params.h"
 #include "pelage/scene/model.h"
 
@@ -26,6 +27,8 @@ struct ViewerOptions {
   bool ribbons = false;
   bool shadows = false;
   bool noCulling = false;
+  bool dynamics = false;        // dynamic fur (fur/dynamics.h): hair ends lag through damped springs
+  fur::DynamicsParams dynamicsParams;
   std::string screenshot;       // write the last frame here (PNG) and exit
   int frames = 0;               // frames to run (0 = until the window closes; 3 with --screenshot)
   bool headless = false;        // EGL, no window, no UI

@@ -50,11 +50,11 @@ struct RunResult {
   std::string output;  // stdout and stderr together
 };
 
-// Runs `build/bin/pelage <args>` through the shell, capturing output and exit status.
-inline RunResult runPelage(const std::string& args) {
-  const std::string cmd = std::string(PELAGE_BIN_DIR) + "/pelage " + args + " 2>&1";
+// Runs a shell command line, capturing its output (stdout and stderr) and exit status (128 + the
+// signal for a killed process).
+inline RunResult runShell(const std::string& command) {
   RunResult r;
-  FILE* p = ::popen(cmd.c_str(), "r");
+  FILE* p = ::popen((command + " 2>&1").c_str(), "r");
   if (!p) return r;
   std::array<char, 4096> buf;
   std::size_t n;
@@ -63,5 +63,8 @@ inline RunResult runPelage(const std::string& args) {
   r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
   return r;
 }
+
+// Runs `build/bin/pelage <args>` through the shell, capturing output and exit status.
+inline RunResult runPelage(const std::string& args) { return runShell(std::string(PELAGE_BIN_DIR) + "/pelage " + args); }
 
 }  // namespace pelage::test

@@ -137,18 +137,10 @@ INSTANTIATE_TEST_SUITE_P(
 // A disk that fails mid-write (the file-size limit makes every write past 64 KiB fail with EFBIG,
 // as a full disk fails with ENOSPC): a clear error, and neither the layer nor its spools remain.
 TEST_F(ExportCommand, FailingDiskLeavesNoPartialFiles) {
-  const std::string cmd = "bash -c \"trap '' XFSZ; ulimit -f 64; exec " + std::string(PELAGE_BIN_DIR) +
-                          "/pelage export " + base() + " --frames 0:2 --format usda --out " + dir.file("big.usda") +
-                          "\" 2>&1";
-  FILE* p = ::popen(cmd.c_str(), "r");
-  ASSERT_NE(p, nullptr);
-  std::string out;
-  char buf[4096];
-  std::size_t n;
-  while ((n = std::fread(buf, 1, sizeof buf, p)) > 0) out.append(buf, n);
-  const int status = ::pclose(p);
-  ASSERT_TRUE(WIFEXITED(status)) << out;
-  EXPECT_EQ(WEXITSTATUS(status), 2) << out;
+  const RunResult r = runShell("bash -c \"trap '' XFSZ; ulimit -f 64; exec " + std::string(PELAGE_BIN_DIR) +
+                               "/pelage export " + base() + " --frames 0:2 --format usda --out " + dir.file("big.usda") + "\"");
+  const std::string& out = r.output;
+  EXPECT_EQ(r.exitCode, 2) << out;
   EXPECT_NE(out.find("big.usda: write failed (File too large); no file was written"), std::string::npos) << out;
   EXPECT_EQ(std::distance(fs::directory_iterator(dir.path()), fs::directory_iterator()), 1);  // wag.json only
 }

@@ -107,23 +107,19 @@ TEST_F(RenderCommand, RenderFarmScriptsSplitTheRangeIntoTheSameFrames) {
   for (int task = 0; task < 2; ++task) {
     const std::string cmd = env + "OUT=" + slurm + " SLURM_ARRAY_TASK_ID=" + std::to_string(task + 4) +
                             " SLURM_ARRAY_TASK_MIN=4 SLURM_ARRAY_TASK_COUNT=2 SLURM_CPUS_PER_TASK=1 SLURM_SUBMIT_DIR=" +
-                            farm + " bash " + farm + "/render.slurm 2>&1";
-    FILE* p = ::popen(cmd.c_str(), "r");
-    std::string out;
-    char buf[4096];
-    for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, p)) > 0;) out.append(buf, n);
-    ASSERT_EQ(::pclose(p), 0) << out;
+                            farm + " bash " + farm + "/render.slurm";
+    const test::RunResult r = test::runShell(cmd);
+    const std::string& out = r.output;
+    ASSERT_EQ(r.exitCode, 0) << out;
     EXPECT_NE(out.find(task == 0 ? "task 0/2: frames 2..5 of 2..8" : "task 1/2: frames 6..8 of 2..8"), std::string::npos)
         << out;
   }
   for (int task = 0; task < 3; ++task) {
     const std::string cmd = env + "OUT=" + k8s + " JOB_COMPLETION_INDEX=" + std::to_string(task) +
-                            " PELAGE_TASK_COUNT=3 bash " + farm + "/render-range.sh 2>&1";
-    FILE* p = ::popen(cmd.c_str(), "r");
-    std::string out;
-    char buf[4096];
-    for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, p)) > 0;) out.append(buf, n);
-    ASSERT_EQ(::pclose(p), 0) << out;
+                            " PELAGE_TASK_COUNT=3 bash " + farm + "/render-range.sh";
+    const test::RunResult r = test::runShell(cmd);
+    const std::string& out = r.output;
+    ASSERT_EQ(r.exitCode, 0) << out;
   }
   ASSERT_EQ(frames(whole).size(), 7u);
   ASSERT_EQ(frames(slurm), frames(whole));
@@ -179,14 +175,10 @@ TEST_F(RenderCommand, VideoFileThroughFfmpeg) {
 
 TEST_F(RenderCommand, MissingFfmpegFailsBeforeRendering) {
   const std::string cmd = "PATH=/nonexistent-bin " + std::string(PELAGE_BIN_DIR) + "/pelage render " +
-                          args("0:1", dir.file("f")) + " --video " + dir.file("clip.mp4") + " 2>&1";
-  FILE* p = ::popen(cmd.c_str(), "r");
-  std::string out;
-  char buf[4096];
-  std::size_t n;
-  while ((n = std::fread(buf, 1, sizeof buf, p)) > 0) out.append(buf, n);
-  const int status = ::pclose(p);
-  EXPECT_EQ(WEXITSTATUS(status), 2) << out;
+                          args("0:1", dir.file("f")) + " --video " + dir.file("clip.mp4");
+  const test::RunResult r = test::runShell(cmd);
+  const std::string& out = r.output;
+  EXPECT_EQ(r.exitCode, 2) << out;
   EXPECT_NE(out.find("needs the ffmpeg program, which is not on PATH (Debian: apt-get install ffmpeg)"), std::string::npos)
       << out;
   EXPECT_TRUE(!fs::exists(dir.file("f")) || fs::is_empty(dir.file("f")));

@@ -187,11 +187,7 @@ int videoFrames(const std::string& path) {
   if (viewer::findOnPath("ffprobe").empty()) return -1;
   const std::string cmd = "ffprobe -v error -count_frames -select_streams v:0 -show_entries stream=nb_read_frames "
                           "-of csv=p=0 '" + path + "'";
-  FILE* p = ::popen(cmd.c_str(), "r");
-  char buf[64] = {};
-  const std::size_t n = std::fread(buf, 1, sizeof buf - 1, p);
-  ::pclose(p);
-  return n > 0 ? std::atoi(buf) : 0;
+  return std::atoi(runShell(cmd).output.c_str());
 }
 
 TEST_F(RenderSequenceTest, VideoThroughFfmpegWithResumedFrames) {

@@ -41,18 +41,7 @@ std::string smallModel(const TempDir& dir) {
 
 bool hasXvfb() { return std::system("command -v xvfb-run >/dev/null 2>&1") == 0; }
 
-// Runs a shell command line; its output (stdout and stderr) and exit status.
-test::RunResult runShell(const std::string& command) {
-  test::RunResult r;
-  FILE* p = ::popen((command + " 2>&1").c_str(), "r");
-  if (!p) return r;
-  char buf[4096];
-  std::size_t n;
-  while ((n = std::fread(buf, 1, sizeof buf, p)) > 0) r.output.append(buf, n);
-  const int status = ::pclose(p);
-  r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  return r;
-}
+using test::runShell;
 
 // Pixels whose colour is close to `rgb` (0..255).
 int countNear(const Image& img, int r, int g, int b, int tol) {

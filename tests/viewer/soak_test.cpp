@@ -93,7 +93,7 @@ TEST_F(Soak, ViewerUpdatePathWithAChangeEveryFrame) {
     s.orbitBy(1.0f, 0.0f);
     s.frame(1.0 / 30.0, o.width, o.height);
     ASSERT_TRUE(s.editError.empty()) << "frame " << i << ": " << s.editError;
-    if (i == frames / 10) early = memory();
+    if (i == frames / 10) report("viewer", i, early = memory());
   }
   s.renderer().finish();
   EXPECT_GT(s.hairsDrawn(), 0);
@@ -127,7 +127,7 @@ TEST_F(Soak, ExportFrameLoopWithAChangeEveryFrame) {
     ASSERT_EQ(state.fur.drawn(), fur.roots.total());
     fur::writeHairPly(dir.file("frame.ply"), state.fur, fur.params, "soak");
     if (i % 10 == 0) scene::writeFrameGlb(dir.file("frame.glb"), model, fur.params, state, "soak");
-    if (i == frames / 10) early = memory();
+    if (i == frames / 10) report("export", i, early = memory());
   }
   const Memory end = memory();
   report("export", frames, end);

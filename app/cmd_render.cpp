@@ -112,15 +112,8 @@ void runRender(RenderArgs& a) {
   o.shading = scene::parseHairShading(a.shading);
   o.hairWidth = a.ribbons ? scene::HairWidth::Ribbons : scene::HairWidth::Lines;
   o.shadows = a.shadows;
-  o.dynamics = a.dynamics.enabled();
-  o.dynamicsParams = a.dynamics.resolve();
-  o.preRollFrames = a.dynamics.preRoll;
-  {
-    // Everything but the clip (resolved with the model below) is checked before the model is built.
-    viewer::SequenceOptions early = o;
-    early.dynamics = false;
-    viewer::validateSequenceOptions(early);
-  }
+  viewer::validateSequenceOptions(o);  // before the model is built; dynamics once the clip is known
+  const fur::DynamicsParams dynamics = a.dynamics.resolve();
   ensureWritableDirectory(o.outDir);
   if (!o.video.empty() && viewer::findOnPath("ffmpeg").empty())
     inputError("--video ", o.video, " needs the ffmpeg program, which is not on PATH (Debian: apt-get install ffmpeg)");
@@ -129,6 +122,9 @@ void runRender(RenderArgs& a) {
   if (a.noCulling) params.culling.enabled = false;
   scene::Model model = a.model.load();
   o.clip = resolveClip(model, a.range.clip);
+  o.dynamics = a.dynamics.enabled();
+  o.dynamicsParams = dynamics;
+  o.preRollFrames = a.dynamics.preRoll;
   viewer::validateSequenceOptions(o);
   const scene::Fur fur = scene::growFur(model, params, "fur '" + params.name + "'");
   auto context = viewer::createHeadlessContext();

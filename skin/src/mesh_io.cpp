@@ -71,6 +71,17 @@ void warnSkipped(const std::string& path, long long skipped) {
   if (skipped) warn(str(path, ": skipped ", skipped, " triangles (repeated vertices or non-manifold edges)"));
 }
 
+// Reads the next three words of line `lineNo` as the coordinates of a vertex (OBJ, OFF, ASCII STL).
+void readCoordinates(const std::string& path, long long lineNo, std::istringstream& words, float* xyz) {
+  for (int k = 0; k < 3; ++k) {
+    std::string t;
+    words >> t;
+    const auto r = std::from_chars(t.data(), t.data() + t.size(), xyz[k]);
+    if (t.empty() || r.ec != std::errc() || r.ptr != t.data() + t.size())
+      inputError(path, ":", lineNo, ": vertex coordinate '", t.substr(0, 40), "' is not a number");
+  }
+}
+
 // PLY (ascii, binary_little_endian, binary_big_endian 1.0), read here rather than by OpenMesh,
 // whose reader trusts what the file claims: it loops forever on a header with no end_header, on an
 // end_header prefix or a garbage format version, reads forever past an ASCII face list count, and
@@ -178,9 +189,10 @@ class PlyBody {
   bool ascii_, bigEndian_;
 };
 
-void readPly(const std::string& path, TriMesh& mesh, std::uintmax_t fileSize) {
+void readPly(const std::string& path, TriMesh& mesh) {
   constexpr std::size_t kHeaderLimit = 1 << 16;
   const std::string bytes = readAll(path);
+  const std::uintmax_t fileSize = bytes.size();
   if (bytes.rfind("ply", 0) != 0 || (bytes.size() > 3 && bytes[3] != '\n' && bytes[3] != '\r'))
     inputError(path, ": not a PLY file (it must start with the line 'ply')");
   static const std::map<std::string, PlyType> kTypes = {
@@ -338,7 +350,7 @@ void readPly(const std::string& path, TriMesh& mesh, std::uintmax_t fileSize) {
 // reads. A file whose size is exactly 84 + 50 n for the triangle count n at byte 80 is binary;
 // otherwise it must be ASCII ("solid ...", "vertex x y z" lines, each "endloop" closing a polygon).
 // Corners at bit-identical positions are welded into one vertex (STL stores none shared).
-void readStl(const std::string& path, TriMesh& mesh, std::uintmax_t fileSize) {
+void readStl(const std::string& path, TriMesh& mesh) {
   const std::string bytes = readAll(path);
   std::map<std::array<float, 3>, TriMesh::VertexHandle> welded;
   std::vector<TriMesh::VertexHandle> face;
@@ -353,7 +365,7 @@ void readStl(const std::string& path, TriMesh& mesh, std::uintmax_t fileSize) {
   std::uint32_t n = 0;
   if (bytes.size() >= 84) std::memcpy(&n, bytes.data() + 80, 4);
   const std::uintmax_t expected = 84 + 50 * static_cast<std::uintmax_t>(n);
-  if (bytes.size() >= 84 && expected == fileSize) {
+  if (bytes.size() >= 84 && expected == bytes.size()) {
     for (std::uint32_t t = 0; t < n; ++t) {
       face.clear();
       for (int c = 0; c < 3; ++c) {
@@ -368,7 +380,7 @@ void readStl(const std::string& path, TriMesh& mesh, std::uintmax_t fileSize) {
   }
   if (bytes.rfind("solid", 0) != 0) {
     if (bytes.size() < 84) inputError(path, ": binary STL shorter than its 84-byte header");
-    inputError(path, ": binary STL declares ", n, " triangles (", expected, " bytes) but the file has ", fileSize, " bytes");
+    inputError(path, ": binary STL declares ", n, " triangles (", expected, " bytes) but the file has ", bytes.size(), " bytes");
   }
   std::istringstream in(bytes);
   std::string line;
@@ -380,13 +392,7 @@ void readStl(const std::string& path, TriMesh& mesh, std::uintmax_t fileSize) {
     words >> key;
     if (key == "vertex") {
       std::array<float, 3> p;
-      for (int k = 0; k < 3; ++k) {
-        std::string t;
-        words >> t;
-        const auto r = std::from_chars(t.data(), t.data() + t.size(), p[static_cast<std::size_t>(k)]);
-        if (t.empty() || r.ec != std::errc() || r.ptr != t.data() + t.size())
-          inputError(path, ":", lineNo, ": vertex coordinate '", t.substr(0, 40), "' is not a number");
-      }
+      readCoordinates(path, lineNo, words, p.data());
       corner(p, str(":", lineNo));
     } else if (key == "endloop") {
       if (face.size() < 3) inputError(path, ":", lineNo, ": a facet needs at least 3 vertices, it has ", face.size());
@@ -419,18 +425,9 @@ void readObj(const std::string& path, TriMesh& mesh) {
     std::string key;
     words >> key;
     if (key == "v") {
-      float x = 0, y = 0, z = 0;
-      std::string a, b, c;
-      words >> a >> b >> c;
-      auto parse = [&](const std::string& t, float& out) {
-        const auto r = std::from_chars(t.data(), t.data() + t.size(), out);
-        if (t.empty() || r.ec != std::errc() || r.ptr != t.data() + t.size())
-          inputError(path, ":", lineNo, ": vertex coordinate '", t.substr(0, 40), "' is not a number");
-      };
-      parse(a, x);
-      parse(b, y);
-      parse(c, z);
-      vertices.push_back(mesh.add_vertex(TriMesh::Point(x, y, z)));
+      TriMesh::Point p;
+      readCoordinates(path, lineNo, words, p.data());
+      vertices.push_back(mesh.add_vertex(p));
     } else if (key == "f") {
       face.clear();
       std::string corner;
@@ -494,13 +491,7 @@ void readOff(const std::string& path, TriMesh& mesh, std::uintmax_t fileSize) {
   for (long long v = 0; v < nVertices; ++v) {
     if (!nextLine(words)) inputError(path, ": OFF file ends after ", v, " of its ", nVertices, " vertices");
     TriMesh::Point p;
-    for (int k = 0; k < 3; ++k) {
-      std::string t;
-      words >> t;
-      const auto r = std::from_chars(t.data(), t.data() + t.size(), p[k]);
-      if (t.empty() || r.ec != std::errc() || r.ptr != t.data() + t.size())
-        inputError(path, ":", lineNo, ": vertex coordinate '", t.substr(0, 40), "' is not a number");
-    }
+    readCoordinates(path, lineNo, words, p.data());
     vertices.push_back(mesh.add_vertex(p));
   }
   long long skipped = 0;
@@ -542,8 +533,8 @@ SkinMesh readStaticMesh(const std::string& path, float furLengthMeters) {
   omerr().disable();
   if (ext == ".obj") readObj(path, skin.mesh);
   else if (ext == ".off") readOff(path, skin.mesh, fileSize);
-  else if (ext == ".ply") readPly(path, skin.mesh, fileSize);
-  else readStl(path, skin.mesh, fileSize);
+  else if (ext == ".ply") readPly(path, skin.mesh);
+  else readStl(path, skin.mesh);
   TriMesh& m = skin.mesh;
   if (m.n_faces() == 0) inputError(path, ": the mesh has no faces");
   for (auto v : m.vertices()) {

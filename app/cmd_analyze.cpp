@@ -30,12 +30,14 @@ int findClipOrFile(scene::Model& model, const std::string& name) {
   std::string names;
   for (const animation::Clip& k : model.clips) names += (names.empty() ? "" : ", ") + k.name;
   inputError("--clip: model '", model.name, "' has no clip '", name, "' (",
-             names.empty() ? std::string("it has no clips") : "its clips: " + names, "; or give a clip .json file)");
+             names.empty() ? std::string("it has no clips") : "its clips: " + names,
+             "; or give a clip .json file)");
 }
 
 // "A:B" (inclusive) or "A".
 void parseFrames(const std::string& text, int& first, int& last) {
-  const std::string form = " is not a frame range A:B (whole numbers, 0 <= A <= B <= 10000000) or a frame A";
+  const std::string form =
+      " is not a frame range A:B (whole numbers, 0 <= A <= B <= 10000000) or a frame A";
   const std::size_t colon = text.find(':');
   auto whole = [&](const std::string& s) {
     if (s.empty() || s.size() > 8 || s.find_first_not_of("0123456789") != std::string::npos)
@@ -47,7 +49,8 @@ void parseFrames(const std::string& text, int& first, int& last) {
   if (last < first || last > 10000000) inputError("--frames '", text, "'", form);
 }
 
-std::vector<double> column(const scene::AnalysisResult& r, double (*get)(const scene::FrameAnalysis&)) {
+std::vector<double> column(const scene::AnalysisResult& r,
+                           double (*get)(const scene::FrameAnalysis&)) {
   std::vector<double> v;
   for (const scene::FrameAnalysis& f : r.frames) v.push_back(get(f));
   return v;
@@ -56,9 +59,11 @@ std::vector<double> column(const scene::AnalysisResult& r, double (*get)(const s
 scene::PlotPanel orientationPanel(const scene::AnalysisResult& r, const std::vector<double>& t) {
   scene::PlotPanel p;
   p.yLabel = "body orientation (deg): up vector of segment '" + r.orientationSegment + "'";
-  p.series.push_back({"pitch (about world Y)", t, column(r, [](const scene::FrameAnalysis& f) { return f.pitchDeg; }),
+  p.series.push_back({"pitch (about world Y)", t,
+                      column(r, [](const scene::FrameAnalysis& f) { return f.pitchDeg; }),
                       scene::plotColor(7), false});
-  p.series.push_back({"tilt from vertical", t, column(r, [](const scene::FrameAnalysis& f) { return f.tiltDeg; }),
+  p.series.push_back({"tilt from vertical", t,
+                      column(r, [](const scene::FrameAnalysis& f) { return f.tiltDeg; }),
                       scene::plotColor(4), false});
   return p;
 }
@@ -73,38 +78,50 @@ scene::PlotSpec analysisPlot(const scene::AnalysisResult& r, const std::string& 
   spec.panels.push_back(orientationPanel(r, t));
   const auto qsColor = scene::plotColor(0), dynColor = scene::plotColor(1);
   scene::PlotPanel droop{"mean droop angle (deg): end direction vs weightless direction", {}};
-  droop.series.push_back({"quasi-static (paper)", t,
-                          column(r, [](const scene::FrameAnalysis& f) { return f.quasiStatic.all.droopMeanDeg; }), qsColor,
-                          r.dynamics});
+  droop.series.push_back(
+      {"quasi-static (paper)", t,
+       column(r, [](const scene::FrameAnalysis& f) { return f.quasiStatic.all.droopMeanDeg; }),
+       qsColor, r.dynamics});
   scene::PlotPanel height{"mean tip height above the root (mm)", {}};
-  height.series.push_back({"quasi-static (paper)", t,
-                           column(r, [](const scene::FrameAnalysis& f) { return f.quasiStatic.tipHeightMm; }), qsColor,
-                           r.dynamics});
+  height.series.push_back(
+      {"quasi-static (paper)", t,
+       column(r, [](const scene::FrameAnalysis& f) { return f.quasiStatic.tipHeightMm; }), qsColor,
+       r.dynamics});
   scene::PlotPanel bodyUp{"mean droop along the body's up axis (mm): < 0 toward its belly", {}};
-  bodyUp.series.push_back({"quasi-static (paper)", t,
-                           column(r, [](const scene::FrameAnalysis& f) { return f.quasiStatic.droopBodyUpMm; }), qsColor,
-                           r.dynamics});
+  bodyUp.series.push_back(
+      {"quasi-static (paper)", t,
+       column(r, [](const scene::FrameAnalysis& f) { return f.quasiStatic.droopBodyUpMm; }),
+       qsColor, r.dynamics});
   if (r.dynamics) {
-    droop.series.push_back({"dynamic", t, column(r, [](const scene::FrameAnalysis& f) { return f.dynamic.all.droopMeanDeg; }),
-                            dynColor, false});
+    droop.series.push_back(
+        {"dynamic", t,
+         column(r, [](const scene::FrameAnalysis& f) { return f.dynamic.all.droopMeanDeg; }),
+         dynColor, false});
     droop.series.push_back({"dynamic - quasi-static lag", t,
-                            column(r, [](const scene::FrameAnalysis& f) { return f.lagDeg; }), scene::plotColor(2), false});
-    height.series.push_back({"dynamic", t, column(r, [](const scene::FrameAnalysis& f) { return f.dynamic.tipHeightMm; }),
-                             dynColor, false});
-    bodyUp.series.push_back({"dynamic", t, column(r, [](const scene::FrameAnalysis& f) { return f.dynamic.droopBodyUpMm; }),
-                             dynColor, false});
+                            column(r, [](const scene::FrameAnalysis& f) { return f.lagDeg; }),
+                            scene::plotColor(2), false});
+    height.series.push_back(
+        {"dynamic", t,
+         column(r, [](const scene::FrameAnalysis& f) { return f.dynamic.tipHeightMm; }), dynColor,
+         false});
+    bodyUp.series.push_back(
+        {"dynamic", t,
+         column(r, [](const scene::FrameAnalysis& f) { return f.dynamic.droopBodyUpMm; }), dynColor,
+         false});
   }
   spec.panels.push_back(droop);
   spec.panels.push_back(height);
   spec.panels.push_back(bodyUp);
   if (r.dynamics) {
     scene::PlotPanel offset{"dynamic ends' distance from the quasi-static ends (mm)", {}};
-    offset.series.push_back({"mean distance", t, column(r, [](const scene::FrameAnalysis& f) { return f.offsetMm; }),
+    offset.series.push_back({"mean distance", t,
+                             column(r, [](const scene::FrameAnalysis& f) { return f.offsetMm; }),
                              scene::plotColor(3), false});
     if (r.settling.measured)
-      offset.series.push_back({"along its direction at the stop", t,
-                               column(r, [](const scene::FrameAnalysis& f) { return f.stopResponseMm; }),
-                               scene::plotColor(9), false});
+      offset.series.push_back(
+          {"along its direction at the stop", t,
+           column(r, [](const scene::FrameAnalysis& f) { return f.stopResponseMm; }),
+           scene::plotColor(9), false});
     spec.panels.push_back(offset);
     spec.height = 1350;
   }
@@ -122,24 +139,34 @@ scene::PlotSpec sweepPlot(const scene::SweepResult& s, const std::string& title)
   spec.width = 1200;
   spec.height = 900;
   const scene::AnalysisResult& first = s.runs.front();
-  const std::vector<double> t = column(first, [](const scene::FrameAnalysis& f) { return f.seconds; });
+  const std::vector<double> t =
+      column(first, [](const scene::FrameAnalysis& f) { return f.seconds; });
   spec.panels.push_back(orientationPanel(first, t));
   const bool dyn = first.dynamics;
-  scene::PlotPanel droop{std::string("mean droop angle (deg)") + (dyn ? ", dynamic" : ", quasi-static"), {}};
-  scene::PlotPanel height{std::string("mean tip height above the root (mm)") + (dyn ? ", dynamic" : ", quasi-static"), {}};
+  scene::PlotPanel droop{
+      std::string("mean droop angle (deg)") + (dyn ? ", dynamic" : ", quasi-static"), {}};
+  scene::PlotPanel height{
+      std::string("mean tip height above the root (mm)") + (dyn ? ", dynamic" : ", quasi-static"),
+      {}};
   const std::vector<double> values = s.spec.values();
   for (std::size_t i = 0; i < s.runs.size(); ++i) {
     char label[64];
     std::snprintf(label, sizeof label, "%s = %g", s.spec.parameter.c_str(), values[i]);
     const auto color = scene::plotColor(static_cast<int>(i));
-    droop.series.push_back({label, t,
-                            column(s.runs[i], dyn ? +[](const scene::FrameAnalysis& f) { return f.dynamic.all.droopMeanDeg; }
-                                                  : +[](const scene::FrameAnalysis& f) { return f.quasiStatic.all.droopMeanDeg; }),
-                            color, false});
-    height.series.push_back({label, t,
-                             column(s.runs[i], dyn ? +[](const scene::FrameAnalysis& f) { return f.dynamic.tipHeightMm; }
-                                                   : +[](const scene::FrameAnalysis& f) { return f.quasiStatic.tipHeightMm; }),
-                             color, false});
+    droop.series.push_back(
+        {label, t,
+         column(
+             s.runs[i],
+             dyn ? +[](const scene::FrameAnalysis& f) { return f.dynamic.all.droopMeanDeg; }
+                 : +[](const scene::FrameAnalysis& f) { return f.quasiStatic.all.droopMeanDeg; }),
+         color, false});
+    height.series.push_back(
+        {label, t,
+         column(
+             s.runs[i],
+             dyn ? +[](const scene::FrameAnalysis& f) { return f.dynamic.tipHeightMm; }
+                 : +[](const scene::FrameAnalysis& f) { return f.quasiStatic.tipHeightMm; }),
+         color, false});
   }
   spec.panels.push_back(droop);
   spec.panels.push_back(height);
@@ -159,25 +186,31 @@ void printSummary(const scene::AnalysisResult& r) {
     if (f.tiltDeg > inverted->tiltDeg) inverted = &f;
   }
   auto line = [&](const char* what, const scene::FrameAnalysis& f) {
-    std::printf("%s (frame %d, tilt %.1f deg): quasi-static droop %.2f deg, tip height %+.2f mm, droop along body up %+.2f mm",
-                what, f.frame, f.tiltDeg, f.quasiStatic.all.droopMeanDeg, f.quasiStatic.tipHeightMm,
-                f.quasiStatic.droopBodyUpMm);
+    std::printf(
+        "%s (frame %d, tilt %.1f deg): quasi-static droop %.2f deg, tip height %+.2f mm, droop "
+        "along body up %+.2f mm",
+        what, f.frame, f.tiltDeg, f.quasiStatic.all.droopMeanDeg, f.quasiStatic.tipHeightMm,
+        f.quasiStatic.droopBodyUpMm);
     if (r.dynamics)
-      std::printf("; dynamic %.2f deg, %+.2f mm, %+.2f mm, lag %.2f deg", f.dynamic.all.droopMeanDeg, f.dynamic.tipHeightMm,
-                  f.dynamic.droopBodyUpMm, f.lagDeg);
+      std::printf("; dynamic %.2f deg, %+.2f mm, %+.2f mm, lag %.2f deg",
+                  f.dynamic.all.droopMeanDeg, f.dynamic.tipHeightMm, f.dynamic.droopBodyUpMm,
+                  f.lagDeg);
     std::printf("\n");
-  }; 
+  };
   line("most upright", *upright);
   line("most inverted", *inverted);
   if (r.settling.measured) {
     const scene::SettlingAnalysis& s = r.settling;
-    std::printf("after the body stops at %.3f s: largest swing %+.2f mm at +%.3f s, overshoot %.1f %% (spring alone: %.1f %%), ",
-                s.stopSeconds, s.swingMm, s.swingSeconds, s.overshootPercent, s.springOvershootPercent);
+    std::printf(
+        "after the body stops at %.3f s: largest swing %+.2f mm at +%.3f s, overshoot %.1f %% "
+        "(spring alone: %.1f %%), ",
+        s.stopSeconds, s.swingMm, s.swingSeconds, s.overshootPercent, s.springOvershootPercent);
     if (std::isnan(s.settlingSeconds))
       std::printf("not settled by the end of the hold");
     else
       std::printf("settled in %.3f s", s.settlingSeconds);
-    std::printf(" (spring alone, a %.1f mm hair at %.2f Hz: %.3f s)\n", s.meanLengthMm, s.springFrequencyHz, s.springSettlingSeconds);
+    std::printf(" (spring alone, a %.1f mm hair at %.2f Hz: %.3f s)\n", s.meanLengthMm,
+                s.springFrequencyHz, s.springSettlingSeconds);
   }
 }
 
@@ -185,21 +218,26 @@ void printSummary(const scene::AnalysisResult& r) {
 
 void DynamicsArgs::add(CLI::App& cmd, bool fpsOption, bool preRollOption) {
   cmd.add_option("--dynamics", mode,
-                 "Fur dynamics: 'on' makes each hair's end follow the paper's (quasi-static) end through a damped "
+                 "Fur dynamics: 'on' makes each hair's end follow the paper's (quasi-static) end "
+                 "through a damped "
                  "spring; 'off' (default) is the paper's model")
       ->check(CLI::IsMember({"on", "off"}));
-  cmd.add_option("--frequency", frequency,
-                 "Dynamic spring natural frequency, Hz (0, 100]: one value for both coats or two (overcoat "
-                 "undercoat); default 4")
+  cmd.add_option(
+         "--frequency", frequency,
+         "Dynamic spring natural frequency, Hz (0, 100]: one value for both coats or two (overcoat "
+         "undercoat); default 4")
       ->expected(1, 2);
   cmd.add_option("--damping", damping,
-                 "Dynamic damping ratio [0, 10] (1 = critical): one value or two (overcoat undercoat); default 0.25")
+                 "Dynamic damping ratio [0, 10] (1 = critical): one value or two (overcoat "
+                 "undercoat); default 0.25")
       ->expected(1, 2);
-  if (fpsOption) cmd.add_option("--fps", fps, "Frames per second of the clip sampling, [1, 1000] (default 30)");
+  if (fpsOption)
+    cmd.add_option("--fps", fps, "Frames per second of the clip sampling, [1, 1000] (default 30)");
   if (preRollOption)
-    cmd.add_option("--preroll", preRoll,
-                   "Dynamics: frames simulated before the first one shown (default: from the clip's start, "
-                   "so any frame range matches a whole run exactly)");
+    cmd.add_option(
+        "--preroll", preRoll,
+        "Dynamics: frames simulated before the first one shown (default: from the clip's start, "
+        "so any frame range matches a whole run exactly)");
 }
 
 bool DynamicsArgs::enabled() const {
@@ -210,12 +248,15 @@ fur::DynamicsParams DynamicsArgs::resolve() const {
   fur::DynamicsParams p;
   for (int c = 0; c < fur::kCoatCount; ++c) {
     const auto ci = static_cast<std::size_t>(c);
-    if (!frequency.empty()) p.coats[ci].frequencyHz = static_cast<float>(frequency[std::min(ci, frequency.size() - 1)]);
-    if (!damping.empty()) p.coats[ci].dampingRatio = static_cast<float>(damping[std::min(ci, damping.size() - 1)]);
+    if (!frequency.empty())
+      p.coats[ci].frequencyHz = static_cast<float>(frequency[std::min(ci, frequency.size() - 1)]);
+    if (!damping.empty())
+      p.coats[ci].dampingRatio = static_cast<float>(damping[std::min(ci, damping.size() - 1)]);
   }
   fur::validateDynamicsParams(p, "--frequency/--damping");
   if (!(fps >= 1.0 && fps <= 1000.0)) inputError("--fps ", fps, " is out of range [1, 1000]");
-  if (preRoll < -1 || preRoll > 10000000) inputError("--preroll ", preRoll, " is out of range [0, 10000000] frames");
+  if (preRoll < -1 || preRoll > 10000000)
+    inputError("--preroll ", preRoll, " is out of range [0, 10000000] frames");
   return p;
 }
 
@@ -228,8 +269,9 @@ scene::DynamicsClock DynamicsArgs::clock() const {
 
 void addAnalyzeCommand(CLI::App& app) {
   auto* cmd = app.add_subcommand(
-      "analyze", "Measure the fur's response to gravity over a clip (body orientation, droop, tip height and "
-                 "speed; with --dynamics on, lag, overshoot and settling) into a CSV, with an optional plot");
+      "analyze",
+      "Measure the fur's response to gravity over a clip (body orientation, droop, tip height and "
+      "speed; with --dynamics on, lag, overshoot and settling) into a CSV, with an optional plot");
   auto model = std::make_shared<ModelArgs>();
   auto furArgs = std::make_shared<FurArgs>();
   auto dyn = std::make_shared<DynamicsArgs>();
@@ -241,17 +283,23 @@ void addAnalyzeCommand(CLI::App& app) {
   model->add(*cmd);
   furArgs->add(*cmd);
   dyn->add(*cmd);
-  cmd->add_option("--clip", o->clip, "Clip: one of the model's (see `pelage info`; the monkey's tumble is the standard "
-                                     "experiment) or a clip .json file")
+  cmd->add_option(
+         "--clip", o->clip,
+         "Clip: one of the model's (see `pelage info`; the monkey's tumble is the standard "
+         "experiment) or a clip .json file")
       ->required();
-  cmd->add_option("--frames", o->frames, "Frames A:B (inclusive; frame f is at time f / fps); default: one cycle, "
-                                         "0:duration*fps");
-  cmd->add_option("--hold", o->hold, "Seconds the last frame's pose is held still afterwards [0, 1000] (default 0); "
-                                     "with --dynamics on, overshoot and settling are measured there");
-  cmd->add_option("--groups", o->groups, "Per-group columns: region (skin regions) or segment (body segments)")
+  cmd->add_option("--frames", o->frames,
+                  "Frames A:B (inclusive; frame f is at time f / fps); default: one cycle, "
+                  "0:duration*fps");
+  cmd->add_option("--hold", o->hold,
+                  "Seconds the last frame's pose is held still afterwards [0, 1000] (default 0); "
+                  "with --dynamics on, overshoot and settling are measured there");
+  cmd->add_option("--groups", o->groups,
+                  "Per-group columns: region (skin regions) or segment (body segments)")
       ->check(CLI::IsMember({"region", "segment"}));
-  cmd->add_option("--sweep", o->sweep, "Sweep one parameter: stiffness=A:B:N (the paper's, [0, 1]), frequency=A:B:N "
-                                       "(Hz) or damping=A:B:N; one CSV with a column per value");
+  cmd->add_option("--sweep", o->sweep,
+                  "Sweep one parameter: stiffness=A:B:N (the paper's, [0, 1]), frequency=A:B:N "
+                  "(Hz) or damping=A:B:N; one CSV with a column per value");
   cmd->add_option("--out", o->out, "Output .csv file")->required();
   cmd->add_option("--plot", o->plot, "Also draw the main curves against time into this .png file");
   cmd->callback([=] {
@@ -262,8 +310,10 @@ void addAnalyzeCommand(CLI::App& app) {
     opt.dynamicsParams = dyn->resolve();
     opt.clock = dyn->clock();
     opt.holdSeconds = o->hold;
-    opt.groups = o->groups == "segment" ? scene::AnalysisGroups::Segment : scene::AnalysisGroups::Region;
-    if (!(o->hold >= 0.0 && o->hold <= 1000.0)) inputError("--hold ", o->hold, " is out of range [0, 1000] seconds");
+    opt.groups =
+        o->groups == "segment" ? scene::AnalysisGroups::Segment : scene::AnalysisGroups::Region;
+    if (!(o->hold >= 0.0 && o->hold <= 1000.0))
+      inputError("--hold ", o->hold, " is out of range [0, 1000] seconds");
     if (!o->plot.empty() && std::filesystem::path(o->plot).extension() != ".png")
       inputError("--plot '", o->plot, "' must name a .png file");
     scene::SweepSpec sweep;
@@ -272,22 +322,26 @@ void addAnalyzeCommand(CLI::App& app) {
     scene::Model m = model->load();
     opt.clip = findClipOrFile(m, o->clip);
     const animation::Clip& clip = m.clips[static_cast<std::size_t>(opt.clip)];
-    if (o->frames.empty()) opt.lastFrame = static_cast<int>(std::lround(static_cast<double>(clip.duration) * opt.clock.fps));
-    const scene::Fur fur = scene::growFur(m, params, "fur '" + params.name + "' with the command-line options");
-    std::string title = "pelage analyze: " + m.name + ", clip " + clip.name + ", fur " + params.name + ", " +
-                        std::to_string(fur.roots.total()) + " hairs";
+    if (o->frames.empty())
+      opt.lastFrame =
+          static_cast<int>(std::lround(static_cast<double>(clip.duration) * opt.clock.fps));
+    const scene::Fur fur =
+        scene::growFur(m, params, "fur '" + params.name + "' with the command-line options");
+    std::string title = "pelage analyze: " + m.name + ", clip " + clip.name + ", fur " +
+                        params.name + ", " + std::to_string(fur.roots.total()) + " hairs";
     if (opt.dynamics) {
       char buf[160];
       const fur::CoatDynamics& cd = opt.dynamicsParams.coats[0];
-      std::snprintf(buf, sizeof buf, ", dynamics f0 %g Hz, zeta %g", static_cast<double>(cd.frequencyHz),
-                    static_cast<double>(cd.dampingRatio));
+      std::snprintf(buf, sizeof buf, ", dynamics f0 %g Hz, zeta %g",
+                    static_cast<double>(cd.frequencyHz), static_cast<double>(cd.dampingRatio));
       title += buf;
     }
     if (!o->sweep.empty()) {
       const scene::SweepResult s = scene::sweepClip(m, fur, opt, sweep);
       writeFileAtomically(o->out, scene::sweepCsv(s));
-      std::printf("%s: %zu frames x %d values of %s (%s)\n", o->out.c_str(), s.runs.front().frames.size(), sweep.count,
-                  sweep.parameter.c_str(), opt.dynamics ? "dynamic" : "quasi-static");
+      std::printf("%s: %zu frames x %d values of %s (%s)\n", o->out.c_str(),
+                  s.runs.front().frames.size(), sweep.count, sweep.parameter.c_str(),
+                  opt.dynamics ? "dynamic" : "quasi-static");
       if (!o->plot.empty()) {
         scene::writePlotPng(o->plot, sweepPlot(s, title + ", sweep " + o->sweep));
         std::printf("%s: plot\n", o->plot.c_str());
@@ -296,10 +350,12 @@ void addAnalyzeCommand(CLI::App& app) {
     }
     const scene::AnalysisResult r = scene::analyzeClip(m, fur, opt);
     writeFileAtomically(o->out, scene::analysisCsv(r));
-    std::printf("%s: %zu frames of clip %s at %g fps, %lld hairs (%s); body orientation from segment '%s'\n",
-                o->out.c_str(), r.frames.size(), clip.name.c_str(), opt.clock.fps,
-                static_cast<long long>(fur.roots.total()), opt.dynamics ? "quasi-static and dynamic" : "quasi-static",
-                r.orientationSegment.c_str());
+    std::printf(
+        "%s: %zu frames of clip %s at %g fps, %lld hairs (%s); body orientation from segment "
+        "'%s'\n",
+        o->out.c_str(), r.frames.size(), clip.name.c_str(), opt.clock.fps,
+        static_cast<long long>(fur.roots.total()),
+        opt.dynamics ? "quasi-static and dynamic" : "quasi-static", r.orientationSegment.c_str());
     printSummary(r);
     if (!o->plot.empty()) {
       scene::writePlotPng(o->plot, analysisPlot(r, title));

@@ -43,7 +43,8 @@ fur::FurParams FurSettings::apply(const fur::FurParams& params) const {
     std::size_t start = 0;
     for (;;) {
       const std::size_t dot = field.find('.', start);
-      const std::string part = field.substr(start, dot == std::string::npos ? std::string::npos : dot - start);
+      const std::string part =
+          field.substr(start, dot == std::string::npos ? std::string::npos : dot - start);
       if (part.empty()) inputError("--fur-set '", s, "': empty field name in '", field, "'");
       pointer += "/" + part;
       if (dot == std::string::npos) break;
@@ -51,7 +52,8 @@ fur::FurParams FurSettings::apply(const fur::FurParams& params) const {
     }
     const nlohmann::json::json_pointer ptr(pointer);
     // The parent must be an object that the preset format has (unknown fields fail on parse).
-    if (!ptr.parent_pointer().empty() && (!doc.contains(ptr.parent_pointer()) || !doc[ptr.parent_pointer()].is_object()))
+    if (!ptr.parent_pointer().empty() &&
+        (!doc.contains(ptr.parent_pointer()) || !doc[ptr.parent_pointer()].is_object()))
       inputError("--fur-set '", s, "': no field group '", field.substr(0, field.rfind('.')),
                  "' (accepted: overcoat, undercoat, culling, lengthRegion, or top-level fields)");
     // "hairs" and "density" exclude each other: setting one drops the other.
@@ -73,7 +75,8 @@ int resolveClip(scene::Model& model, const std::string& clip) {
   std::string names;
   for (const animation::Clip& k : model.clips) names += (names.empty() ? "" : ", ") + k.name;
   inputError("--clip: model '", model.name, "' has no clip '", clip, "' (",
-             names.empty() ? std::string("it has no clips") : "its clips: " + names, "; or give a clip .json file)");
+             names.empty() ? std::string("it has no clips") : "its clips: " + names,
+             "; or give a clip .json file)");
 }
 
 namespace {
@@ -91,12 +94,14 @@ struct ExportArgs {
 void runExport(ExportArgs& a) {
   if (a.format != "usda" && a.format != "ply" && a.format != "glb")
     inputError("--format '", a.format, "' (accepted: usda, ply, glb)");
-  if (!(a.range.fps >= 1.0 && a.range.fps <= 1000.0)) inputError("--fps ", a.range.fps, " is out of range [1, 1000]");
+  if (!(a.range.fps >= 1.0 && a.range.fps <= 1000.0))
+    inputError("--fps ", a.range.fps, " is out of range [1, 1000]");
   const scene::FrameRange range = scene::parseFrameRange(a.range.frames);
   const int first = range.first, last = range.last;
   // Output place first: a bad path fails before the model is built.
   if (a.format == "usda") {
-    if (fs::path(a.out).extension() != ".usda") inputError("--out ", a.out, ": a USD ASCII layer must end in .usda");
+    if (fs::path(a.out).extension() != ".usda")
+      inputError("--out ", a.out, ": a USD ASCII layer must end in .usda");
     const fs::path parent = fs::path(a.out).parent_path();
     ensureWritableDirectory(parent.empty() ? std::string(".") : parent.string());
   } else {
@@ -109,12 +114,16 @@ void runExport(ExportArgs& a) {
   clock.fps = a.range.fps;
   scene::Model model = a.model.load();
   const int clip = resolveClip(model, a.range.clip);
-  if (a.dynamics.enabled() && clip < 0) inputError("--dynamics on needs a clip (--clip): the rest pose does not move");
+  if (a.dynamics.enabled() && clip < 0)
+    inputError("--dynamics on needs a clip (--clip): the rest pose does not move");
   const scene::Fur fur = scene::growFur(model, params, "fur '" + params.name + "'");
-  std::printf("export: %s (%d triangles), %s, fur %s: %lld hairs%s, frames %d..%d at %g fps -> %s\n", model.name.c_str(),
-              model.skin.numTriangles(), clip >= 0 ? ("clip " + model.clips[static_cast<std::size_t>(clip)].name).c_str() : "rest pose",
-              params.name.c_str(), static_cast<long long>(fur.roots.total()), a.dynamics.enabled() ? " (dynamic)" : "", first,
-              last, a.range.fps, a.out.c_str());
+  std::printf(
+      "export: %s (%d triangles), %s, fur %s: %lld hairs%s, frames %d..%d at %g fps -> %s\n",
+      model.name.c_str(), model.skin.numTriangles(),
+      clip >= 0 ? ("clip " + model.clips[static_cast<std::size_t>(clip)].name).c_str()
+                : "rest pose",
+      params.name.c_str(), static_cast<long long>(fur.roots.total()),
+      a.dynamics.enabled() ? " (dynamic)" : "", first, last, a.range.fps, a.out.c_str());
   std::fflush(stdout);
 
   const auto t0 = std::chrono::steady_clock::now();
@@ -126,8 +135,10 @@ void runExport(ExportArgs& a) {
     uo.framesPerSecond = a.range.fps;
     uo.firstFrame = first;
     uo.lastFrame = last;
-    uo.comment = str("pelage export: ", model.name, ", ", clip >= 0 ? model.clips[static_cast<std::size_t>(clip)].name : "rest pose",
-                     ", fur ", params.name, " (seed ", params.seed, "), ", fur.roots.total(), " hairs");
+    uo.comment =
+        str("pelage export: ", model.name, ", ",
+            clip >= 0 ? model.clips[static_cast<std::size_t>(clip)].name : "rest pose", ", fur ",
+            params.name, " (seed ", params.seed, "), ", fur.roots.total(), " hairs");
     usd = std::make_unique<scene::UsdaWriter>(a.out, model, fur.params, uo);
   }
   fur::FurDynamicsState dynamicState;
@@ -142,18 +153,20 @@ void runExport(ExportArgs& a) {
     else
       scene::evaluateFrame(model, rest, state);
     if (a.dynamics.enabled())
-      scene::stepClipDynamics(model, fur, dynamics, clock, state.skinBounds.center(), true, dynamicState, state);
+      scene::stepClipDynamics(model, fur, dynamics, clock, state.skinBounds.center(), true,
+                              dynamicState, state);
     else
       scene::evaluateFur(model, fur, state.skinBounds.center(), true, state);
     if (usd) {
       usd->addFrame(f, state);
     } else if (a.format == "ply") {
-      fur::writeHairPly((fs::path(a.out) / scene::frameFileName(f, ".ply")).string(), state.fur, fur.params,
-                        str("model ", model.name, ", frame ", f, " (", static_cast<double>(f) / a.range.fps, " s), fur ",
-                            params.name, ", seed ", params.seed));
+      fur::writeHairPly(
+          (fs::path(a.out) / scene::frameFileName(f, ".ply")).string(), state.fur, fur.params,
+          str("model ", model.name, ", frame ", f, " (", static_cast<double>(f) / a.range.fps,
+              " s), fur ", params.name, ", seed ", params.seed));
     } else {
-      scene::writeFrameGlb((fs::path(a.out) / scene::frameFileName(f, ".glb")).string(), model, fur.params, state,
-                           "pelage 0.1.0");
+      scene::writeFrameGlb((fs::path(a.out) / scene::frameFileName(f, ".glb")).string(), model,
+                           fur.params, state, "pelage 0.1.0");
     }
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     std::printf("frame %d/%d (%d): %lld hairs, %.2f s\n", f - first + 1, last - first + 1, f,
@@ -162,36 +175,47 @@ void runExport(ExportArgs& a) {
   }
   if (usd) {
     const scene::UsdExportCounts n = usd->finish();
-    std::printf("wrote %s: skin %d vertices, %d triangles; %lld overcoat and %lld undercoat curves; %d time samples\n",
-                a.out.c_str(), n.skinVertices, n.skinTriangles, static_cast<long long>(n.curves[0]),
-                static_cast<long long>(n.curves[1]), n.frames);
+    std::printf(
+        "wrote %s: skin %d vertices, %d triangles; %lld overcoat and %lld undercoat curves; %d "
+        "time samples\n",
+        a.out.c_str(), n.skinVertices, n.skinTriangles, static_cast<long long>(n.curves[0]),
+        static_cast<long long>(n.curves[1]), n.frames);
   } else {
     const std::string ext = a.format == "ply" ? ".ply" : ".glb";
-    std::printf("wrote %d file(s) %s\n", last - first + 1,
-                (fs::path(a.out) / (scene::frameFileName(first, ext) + (first == last ? "" : " .. " + scene::frameFileName(last, ext))))
-                    .string()
-                    .c_str());
+    std::printf(
+        "wrote %d file(s) %s\n", last - first + 1,
+        (fs::path(a.out) / (scene::frameFileName(first, ext) +
+                            (first == last ? "" : " .. " + scene::frameFileName(last, ext))))
+            .string()
+            .c_str());
   }
 }
 
 }  // namespace
 
 void ClipFramesArgs::add(CLI::App& cmd) {
-  cmd.add_option("--clip", clip, "Clip: one of the model's (see `pelage info`; default its first) or a clip .json file");
-  cmd.add_option("--frames", frames, "Frames FIRST:LAST (inclusive); frame f is clip time f / fps")->capture_default_str();
+  cmd.add_option(
+      "--clip", clip,
+      "Clip: one of the model's (see `pelage info`; default its first) or a clip .json file");
+  cmd.add_option("--frames", frames, "Frames FIRST:LAST (inclusive); frame f is clip time f / fps")
+      ->capture_default_str();
   cmd.add_option("--fps", fps, "Frames per second [1, 1000]")->capture_default_str();
 }
 
 void addExportCommand(CLI::App& app) {
-  auto* cmd = app.add_subcommand(
-      "export", "Write a clip's animated skin and hairs: a USD ASCII layer (usda), or one PLY or glTF binary (glb) "
-                "file per frame; one frame in memory at a time");
+  auto* cmd = app.add_subcommand("export",
+                                 "Write a clip's animated skin and hairs: a USD ASCII layer "
+                                 "(usda), or one PLY or glTF binary (glb) "
+                                 "file per frame; one frame in memory at a time");
   auto a = std::make_shared<ExportArgs>();
   a->model.add(*cmd);
   a->range.add(*cmd);
-  cmd->add_option("--format", a->format, "usda (one layer, time samples per frame), ply or glb (one file per frame)")
+  cmd->add_option("--format", a->format,
+                  "usda (one layer, time samples per frame), ply or glb (one file per frame)")
       ->required();
-  cmd->add_option("--out", a->out, "usda: the .usda file; ply, glb: the directory for frame_NNNNN.ply/.glb")->required();
+  cmd->add_option("--out", a->out,
+                  "usda: the .usda file; ply, glb: the directory for frame_NNNNN.ply/.glb")
+      ->required();
   a->fur.add(*cmd);
   a->furSet.add(*cmd);
   a->dynamics.add(*cmd, false, true);

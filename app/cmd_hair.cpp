@@ -148,7 +148,9 @@ void addHairCommand(CLI::App& app) {
       // hairs from the damped ends (scene/dynamic_fur.h).
       const fur::DynamicsParams dyn = dynamics->resolve();
       const int clip = m.findClip(pose->clip);
-      if (clip < 0) inputError("--dynamics on needs --clip naming one of the model's clips (see `pelage info`)");
+      if (clip < 0)
+        inputError(
+            "--dynamics on needs --clip naming one of the model's clips (see `pelage info`)");
       const scene::DynamicsClock clock = dynamics->clock();
       const auto last = static_cast<int>(std::lround(pose->time * clock.fps));
       const scene::Fur furModel{params, roots, 0};
@@ -156,10 +158,12 @@ void addHairCommand(CLI::App& app) {
       fur::FurDynamicsState springs;
       scene::preRollDynamics(m, furModel, dyn, clip, last, clock, springs, state);
       scene::evaluateClipFrame(m, clip, last / clock.fps, state);
-      fur::generateDynamicFur(m.skin, roots, params, dyn, state.skin, 1.0 / clock.fps, view, springs, ws, frame);
-      std::printf("dynamic fur: frame %d of clip %s at %g fps (time %.4f s), simulated from frame %d\n", last,
-                  m.clips[static_cast<std::size_t>(clip)].name.c_str(), clock.fps, last / clock.fps,
-                  scene::preRollStart(last, clock));
+      fur::generateDynamicFur(m.skin, roots, params, dyn, state.skin, 1.0 / clock.fps, view,
+                              springs, ws, frame);
+      std::printf(
+          "dynamic fur: frame %d of clip %s at %g fps (time %.4f s), simulated from frame %d\n",
+          last, m.clips[static_cast<std::size_t>(clip)].name.c_str(), clock.fps, last / clock.fps,
+          scene::preRollStart(last, clock));
     } else {
       fur::generateFur(m.skin, roots, params, deformed, view, ws, frame);
     }

@@ -35,26 +35,31 @@ void addInfoCommand(CLI::App& app) {
       for (const auto& seg : m.body.segments) {
         nlohmann::json e;
         e["name"] = seg.name;
-        e["parent"] = seg.parent < 0 ? nlohmann::json(nullptr)
-                                     : nlohmann::json(m.body.segments[static_cast<std::size_t>(seg.parent)].name);
+        e["parent"] =
+            seg.parent < 0
+                ? nlohmann::json(nullptr)
+                : nlohmann::json(m.body.segments[static_cast<std::size_t>(seg.parent)].name);
         segs.push_back(e);
       }
       j["segments"] = segs;
       j["unitScale"] = m.unitScale;
       nlohmann::json clips = nlohmann::json::array();
       for (const auto& c : m.clips)
-        clips.push_back({{"name", c.name}, {"durationSeconds", c.duration}, {"loop", c.loop},
+        clips.push_back({{"name", c.name},
+                         {"durationSeconds", c.duration},
+                         {"loop", c.loop},
                          {"channels", c.channels.size()}});
       j["clips"] = clips;
       std::cout << j.dump(2) << "\n";
       return;
     }
     std::printf("model      %s (%s)\n", m.name.c_str(), m.source.c_str());
-    std::printf("skin       %d vertices, %d triangles, area %.4f m^2\n", s.vertices, s.triangles, s.area);
-    std::printf("bounds     [%.4f %.4f %.4f] .. [%.4f %.4f %.4f] m\n", static_cast<double>(s.boundsMin.x()),
-                static_cast<double>(s.boundsMin.y()), static_cast<double>(s.boundsMin.z()),
-                static_cast<double>(s.boundsMax.x()), static_cast<double>(s.boundsMax.y()),
-                static_cast<double>(s.boundsMax.z()));
+    std::printf("skin       %d vertices, %d triangles, area %.4f m^2\n", s.vertices, s.triangles,
+                s.area);
+    std::printf("bounds     [%.4f %.4f %.4f] .. [%.4f %.4f %.4f] m\n",
+                static_cast<double>(s.boundsMin.x()), static_cast<double>(s.boundsMin.y()),
+                static_cast<double>(s.boundsMin.z()), static_cast<double>(s.boundsMax.x()),
+                static_cast<double>(s.boundsMax.y()), static_cast<double>(s.boundsMax.z()));
     std::printf("topology   %d boundary edges, %d non-manifold vertices, min angle %.1f deg\n",
                 s.boundaryEdges, s.nonManifoldVertices, s.minAngleDegrees);
     std::printf("regions   ");
@@ -62,11 +67,15 @@ void addInfoCommand(CLI::App& app) {
     std::printf("\nsegments   %d\n", m.body.size());
     for (const auto& seg : m.body.segments)
       std::printf("  %-20s parent %s\n", seg.name.c_str(),
-                  seg.parent < 0 ? "-" : m.body.segments[static_cast<std::size_t>(seg.parent)].name.c_str());
-    if (m.unitScale != 1.0f) std::printf("units      %g m per file unit\n", static_cast<double>(m.unitScale));
+                  seg.parent < 0
+                      ? "-"
+                      : m.body.segments[static_cast<std::size_t>(seg.parent)].name.c_str());
+    if (m.unitScale != 1.0f)
+      std::printf("units      %g m per file unit\n", static_cast<double>(m.unitScale));
     std::printf("clips      %zu\n", m.clips.size());
     for (const auto& c : m.clips)
-      std::printf("  %-20s %.4f s%s\n", c.name.c_str(), static_cast<double>(c.duration), c.loop ? "" : " (clamped)");
+      std::printf("  %-20s %.4f s%s\n", c.name.c_str(), static_cast<double>(c.duration),
+                  c.loop ? "" : " (clamped)");
   });
 }
 

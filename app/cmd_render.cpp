@@ -74,15 +74,16 @@ class Progress {
       const int filled = static_cast<int>(kWidth * p.done / std::max(p.total, 1));
       std::string bar(static_cast<std::size_t>(filled), '#');
       bar.resize(kWidth, '.');
-      std::fprintf(stderr, "\r[%s] frame %d/%d  %.2f frames/s  %s left   ", bar.c_str(), p.done, p.total,
-                   p.framesPerSecond, clock(p.secondsLeft).c_str());
+      std::fprintf(stderr, "\r[%s] frame %d/%d  %.2f frames/s  %s left   ", bar.c_str(), p.done,
+                   p.total, p.framesPerSecond, clock(p.secondsLeft).c_str());
       if (p.done == p.total) std::fprintf(stderr, "\n");
       std::fflush(stderr);
       return;
     }
-    std::printf("frame %d/%d (%.0f%%): frame_%05d.png%s, %.2f frames/s, %s left\n", p.done, p.total, pct, p.frame,
-                p.skipped > 0 && p.done == p.skipped ? " (resumed: complete frames skipped)" : "", p.framesPerSecond,
-                clock(p.secondsLeft).c_str());
+    std::printf("frame %d/%d (%.0f%%): frame_%05d.png%s, %.2f frames/s, %s left\n", p.done, p.total,
+                pct, p.frame,
+                p.skipped > 0 && p.done == p.skipped ? " (resumed: complete frames skipped)" : "",
+                p.framesPerSecond, clock(p.secondsLeft).c_str());
     std::fflush(stdout);
   }
 
@@ -107,7 +108,8 @@ void runRender(RenderArgs& a) {
     o.camera.path = viewer::loadCameraFile(a.cameraFile);
   else
     o.camera.preset = scene::parseCameraPreset(a.camera);
-  if (a.hairSource != "gpu" && a.hairSource != "cpu") inputError("--hair-source '", a.hairSource, "' (accepted: gpu, cpu)");
+  if (a.hairSource != "gpu" && a.hairSource != "cpu")
+    inputError("--hair-source '", a.hairSource, "' (accepted: gpu, cpu)");
   o.hairSource = a.hairSource == "cpu" ? scene::HairSource::Cpu : scene::HairSource::Gpu;
   o.shading = scene::parseHairShading(a.shading);
   o.hairWidth = a.ribbons ? scene::HairWidth::Ribbons : scene::HairWidth::Lines;
@@ -116,7 +118,8 @@ void runRender(RenderArgs& a) {
   const fur::DynamicsParams dynamics = a.dynamics.resolve();
   ensureWritableDirectory(o.outDir);
   if (!o.video.empty() && viewer::findOnPath("ffmpeg").empty())
-    inputError("--video ", o.video, " needs the ffmpeg program, which is not on PATH (Debian: apt-get install ffmpeg)");
+    inputError("--video ", o.video,
+               " needs the ffmpeg program, which is not on PATH (Debian: apt-get install ffmpeg)");
 
   fur::FurParams params = a.furSet.apply(a.fur.resolve());
   if (a.noCulling) params.culling.enabled = false;
@@ -129,22 +132,28 @@ void runRender(RenderArgs& a) {
   const scene::Fur fur = scene::growFur(model, params, "fur '" + params.name + "'");
   auto context = viewer::createHeadlessContext();
   const viewer::ContextInfo& info = context->info();
-  std::printf("render: %s (%d triangles), %s, fur %s: %lld hairs%s; frames %d..%d at %g fps, %dx%d -> %s/\n",
-              model.name.c_str(), model.skin.numTriangles(),
-              o.clip >= 0 ? ("clip " + model.clips[static_cast<std::size_t>(o.clip)].name).c_str() : "rest pose",
-              params.name.c_str(), static_cast<long long>(fur.roots.total()),
-              o.dynamics ? " (dynamic, CPU)" : "", o.frames.first, o.frames.last,
-              o.framesPerSecond, o.width, o.height, o.outDir.c_str());
-  std::printf("render: %s, %s (%s); %d worker threads\n", info.renderer.c_str(), info.version.c_str(),
-              info.backend.c_str(), threadCount());
+  std::printf(
+      "render: %s (%d triangles), %s, fur %s: %lld hairs%s; frames %d..%d at %g fps, %dx%d -> "
+      "%s/\n",
+      model.name.c_str(), model.skin.numTriangles(),
+      o.clip >= 0 ? ("clip " + model.clips[static_cast<std::size_t>(o.clip)].name).c_str()
+                  : "rest pose",
+      params.name.c_str(), static_cast<long long>(fur.roots.total()),
+      o.dynamics ? " (dynamic, CPU)" : "", o.frames.first, o.frames.last, o.framesPerSecond,
+      o.width, o.height, o.outDir.c_str());
+  std::printf("render: %s, %s (%s); %d worker threads\n", info.renderer.c_str(),
+              info.version.c_str(), info.backend.c_str(), threadCount());
   std::fflush(stdout);
   Progress progress(a.quiet);
-  const viewer::SequenceReport r =
-      viewer::renderSequence(model, fur, o, [&](const viewer::SequenceProgress& p) { progress(p); });
-  std::printf("rendered %d frame(s)%s in %.2f s: %.2f frames/s (%lld hairs drawn in the last)%s\n", r.rendered,
-              r.skipped > 0 ? str(", skipped ", r.skipped, " complete").c_str() : "", r.seconds,
-              r.seconds > 0.0 ? r.rendered / r.seconds : 0.0, static_cast<long long>(r.hairsDrawn),
-              r.removedTemporaries > 0 ? str("; removed ", r.removedTemporaries, " stale temporary file(s)").c_str() : "");
+  const viewer::SequenceReport r = viewer::renderSequence(
+      model, fur, o, [&](const viewer::SequenceProgress& p) { progress(p); });
+  std::printf("rendered %d frame(s)%s in %.2f s: %.2f frames/s (%lld hairs drawn in the last)%s\n",
+              r.rendered, r.skipped > 0 ? str(", skipped ", r.skipped, " complete").c_str() : "",
+              r.seconds, r.seconds > 0.0 ? r.rendered / r.seconds : 0.0,
+              static_cast<long long>(r.hairsDrawn),
+              r.removedTemporaries > 0
+                  ? str("; removed ", r.removedTemporaries, " stale temporary file(s)").c_str()
+                  : "");
   if (!o.video.empty()) std::printf("wrote %s\n", o.video.c_str());
 }
 
@@ -152,30 +161,44 @@ void runRender(RenderArgs& a) {
 
 void addRenderCommand(CLI::App& app) {
   auto* cmd = app.add_subcommand(
-      "render", "Render a clip to PNG frames DIR/frame_NNNNN.png (and an .mp4/.gif) offscreen through EGL; "
-                "deterministic per frame, so frame ranges can be split across processes");
+      "render",
+      "Render a clip to PNG frames DIR/frame_NNNNN.png (and an .mp4/.gif) offscreen through EGL; "
+      "deterministic per frame, so frame ranges can be split across processes");
   auto a = std::make_shared<RenderArgs>();
   a->model.add(*cmd);
   a->range.add(*cmd);
-  cmd->add_option("--size", a->size, "Image size WIDTHxHEIGHT [16, 16384] per side")->capture_default_str();
-  cmd->add_option("--out", a->out, "Output directory for frame_NNNNN.png (created if missing)")->required();
-  cmd->add_option("--video", a->video, "Also encode the frames, in order, to this .mp4 or .gif (needs ffmpeg)");
-  cmd->add_flag("--resume", a->resume, "Skip frames whose PNG is already complete (a killed or retried run)");
-  cmd->add_option("--camera", a->camera, "Camera preset, framed at clip time 0: front, side, three-quarter, face, follow")
+  cmd->add_option("--size", a->size, "Image size WIDTHxHEIGHT [16, 16384] per side")
       ->capture_default_str();
-  cmd->add_option("--camera-file", a->cameraFile, "Camera JSON file (one camera or keys per frame) instead of a preset");
-  cmd->add_flag("--track", a->track, "Move the camera with the creature (its root's horizontal motion)");
-  cmd->add_option("--fov", a->fov, "Vertical field of view of the presets, degrees (1, 179)")->capture_default_str();
+  cmd->add_option("--out", a->out, "Output directory for frame_NNNNN.png (created if missing)")
+      ->required();
+  cmd->add_option("--video", a->video,
+                  "Also encode the frames, in order, to this .mp4 or .gif (needs ffmpeg)");
+  cmd->add_flag("--resume", a->resume,
+                "Skip frames whose PNG is already complete (a killed or retried run)");
+  cmd->add_option("--camera", a->camera,
+                  "Camera preset, framed at clip time 0: front, side, three-quarter, face, follow")
+      ->capture_default_str();
+  cmd->add_option("--camera-file", a->cameraFile,
+                  "Camera JSON file (one camera or keys per frame) instead of a preset");
+  cmd->add_flag("--track", a->track,
+                "Move the camera with the creature (its root's horizontal motion)");
+  cmd->add_option("--fov", a->fov, "Vertical field of view of the presets, degrees (1, 179)")
+      ->capture_default_str();
   a->fur.add(*cmd);
   a->furSet.add(*cmd);
-  cmd->add_option("--samples", a->samples, "MSAA samples [0, 64]; -1 = 4 on a GPU, 0 on a software rasteriser")
+  cmd->add_option("--samples", a->samples,
+                  "MSAA samples [0, 64]; -1 = 4 on a GPU, 0 on a software rasteriser")
       ->capture_default_str();
-  cmd->add_option("--hair-source", a->hairSource, "Where hairs are computed each frame: gpu or cpu")->capture_default_str();
-  cmd->add_option("--shading", a->shading, "Hair shading: paper or kajiya-kay")->capture_default_str();
+  cmd->add_option("--hair-source", a->hairSource, "Where hairs are computed each frame: gpu or cpu")
+      ->capture_default_str();
+  cmd->add_option("--shading", a->shading, "Hair shading: paper or kajiya-kay")
+      ->capture_default_str();
   cmd->add_flag("--ribbons", a->ribbons, "Draw hairs as tapered ribbons instead of 1-pixel lines");
   cmd->add_flag("--shadows", a->shadows, "Shadow map: fur and skin shadow each other");
-  cmd->add_flag("--no-culling", a->noCulling, "Draw every hair at any distance (no sec. 3.3 culling)");
-  cmd->add_option("--encoders", a->encoders, "PNG encoder threads (0 = --threads)")->capture_default_str();
+  cmd->add_flag("--no-culling", a->noCulling,
+                "Draw every hair at any distance (no sec. 3.3 culling)");
+  cmd->add_option("--encoders", a->encoders, "PNG encoder threads (0 = --threads)")
+      ->capture_default_str();
   cmd->add_flag("--quiet", a->quiet, "No progress output");
   a->dynamics.add(*cmd, false, true);
   cmd->callback([a] { runRender(*a); });

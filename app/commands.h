@@ -7,12 +7,12 @@
 #include <vector>
 
 #include "pelage/anatomy/pose.h"
-#include "pelage/fur/fur_params.h"
 #include "pelage/fur/dynamics.h"
+#include "pelage/fur/fur_params.h"
 #include "pelage/fur/roots.h"
-#include "pelage/skin/deform.h"
 #include "pelage/scene/dynamic_fur.h"
 #include "pelage/scene/model.h"
+#include "pelage/skin/deform.h"
 
 namespace pelage::app {
 
@@ -113,7 +113,8 @@ struct ClipFramesArgs {
 // model's first clip, or -1 (the rest pose) when it has none. InputError listing the clips.
 int resolveClip(scene::Model& model, const std::string& clip);
 
-// `pelage render` (only with PELAGE_BUILD_VIEWER) and `pelage export` (cmd_render.cpp, cmd_export.cpp).
+// `pelage render` (only with PELAGE_BUILD_VIEWER) and `pelage export` (cmd_render.cpp,
+// cmd_export.cpp).
 void addRenderCommand(CLI::App& app);
 void addExportCommand(CLI::App& app);
 

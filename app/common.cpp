@@ -11,20 +11,23 @@
 namespace pelage::app {
 
 void ModelArgs::add(CLI::App& cmd) {
-  cmd.add_option("model", model,
-                 "Creature: 'monkey' (built-in, default), a creature .json, a .gltf/.glb, or a static "
-                 ".obj/.ply/.off/.stl mesh");
+  cmd.add_option(
+      "model", model,
+      "Creature: 'monkey' (built-in, default), a creature .json, a .gltf/.glb, or a static "
+      ".obj/.ply/.off/.stl mesh");
   cmd.add_option("--triangles", triangles,
                  "Skin triangles for creatures built from shapes [2000, 2000000] (default: the "
                  "creature's, 130000 for the monkey)");
   cmd.add_option("--unit-scale", unitScale,
                  "glTF: metres per file unit, (0, 1e6] (default: detected from the bounding box)");
-  cmd.add_option("--no-fur", noFur,
-                 "glTF: regions (material or node names, '*' wildcards) that grow no fur (default: Eye*, "
-                 "Hooves, Nose, *Horn*, ...)");
-  cmd.add_option("--directions", directions,
-                 "glTF: JSON side file of per-joint segment directions (default: <model>.directions.json "
-                 "if it exists)");
+  cmd.add_option(
+      "--no-fur", noFur,
+      "glTF: regions (material or node names, '*' wildcards) that grow no fur (default: Eye*, "
+      "Hooves, Nose, *Horn*, ...)");
+  cmd.add_option(
+      "--directions", directions,
+      "glTF: JSON side file of per-joint segment directions (default: <model>.directions.json "
+      "if it exists)");
 }
 
 scene::Model ModelArgs::load() const {
@@ -40,17 +43,22 @@ scene::Model ModelArgs::load() const {
 
 void PoseArgs::add(CLI::App& cmd) {
   cmd.add_option("--pose", posePath, "Pose file (JSON) bending segments from the rest pose");
-  cmd.add_option("--clip", clip, "Pose from this clip: one of the model's (see `pelage info`) or a clip .json file");
-  timeOpt = cmd.add_option("--time", time, "Time in the clip, seconds [0, 1000000] (default 0; loops wrap)");
+  cmd.add_option(
+      "--clip", clip,
+      "Pose from this clip: one of the model's (see `pelage info`) or a clip .json file");
+  timeOpt = cmd.add_option("--time", time,
+                           "Time in the clip, seconds [0, 1000000] (default 0; loops wrap)");
 }
 
 anatomy::Pose PoseArgs::resolve(const scene::Model& model) const {
   if (clip.empty()) {
     if (timeOpt && timeOpt->count() > 0) inputError("--time needs --clip");
-    return posePath.empty() ? anatomy::restPose(model.body) : anatomy::loadPose(model.body, posePath);
+    return posePath.empty() ? anatomy::restPose(model.body)
+                            : anatomy::loadPose(model.body, posePath);
   }
   if (!posePath.empty()) inputError("--pose and --clip cannot be used together");
-  if (!(time >= 0.0 && time <= 1e6)) inputError("--time ", time, " is out of range [0, 1000000] seconds");
+  if (!(time >= 0.0 && time <= 1e6))
+    inputError("--time ", time, " is out of range [0, 1000000] seconds");
   anatomy::Pose pose;
   const int c = model.findClip(clip);
   if (c >= 0) {

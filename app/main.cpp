@@ -12,7 +12,8 @@ int main(int argc, char** argv) {
   CLI::App app{"pelage: animated furred creatures (Van Gelder & Wilhelms 1997 fur model)"};
   app.require_subcommand(1);
   int threads = 0;
-  app.add_option("--threads", threads, "Worker threads (0 = all cores)")->check(CLI::Range(0, 1024));
+  app.add_option("--threads", threads, "Worker threads (0 = all cores)")
+      ->check(CLI::Range(0, 1024));
   app.set_version_flag("--version", "pelage 0.1.0");
   pelage::app::addInfoCommand(app);
   pelage::app::addSkinCommand(app);

@@ -1,9 +1,9 @@
 // One animation frame: sample a clip (keyframe search + interpolation into a Pose), forward
-// kinematics, then linear blend skinning with vertex normals (skin::deformSkin). Models: the default
-// monkey (130k triangles, its baked procedural `walk`) and each shared glTF model with its walk or
-// first clip; the largest are CesiumMan (4672 triangles) and the Stag (7438 stored vertices, 1875
-// after welding). Time advances 1/60 s per frame. Arguments: threads. Models that are missing are
-// skipped with a message.
+// kinematics, then linear blend skinning with vertex normals (skin::deformSkin). Models: the
+// default monkey (130k triangles, its baked procedural `walk`) and each shared glTF model with its
+// walk or first clip; the largest are CesiumMan (4672 triangles) and the Stag (7438 stored
+// vertices, 1875 after welding). Time advances 1/60 s per frame. Arguments: threads. Models that
+// are missing are skipped with a message.
 #include <benchmark/benchmark.h>
 
 #include <filesystem>
@@ -31,7 +31,8 @@ const scene::Model* model(const std::string& spec) {
 }
 
 // The model's walk (or first) clip, or null after skipping the benchmark when the model is absent.
-const animation::Clip* clipOf(benchmark::State& st, const scene::Model* m, const std::string& spec) {
+const animation::Clip* clipOf(benchmark::State& st, const scene::Model* m,
+                              const std::string& spec) {
   if (!m || m->clips.empty()) {
     st.SkipWithError(("model not found or without clips: " + spec).c_str());
     return nullptr;
@@ -100,12 +101,14 @@ int main(int argc, char** argv) {
       {"Horse", dir + "/Horse/Horse.gltf"},
       {"Wolf", dir + "/Wolf/Wolf.gltf"}};
   for (const auto& [name, spec] : models) {
-    benchmark::RegisterBenchmark((std::string("BM_AnimateFrame/") + name).c_str(), BM_AnimateFrame, spec)
+    benchmark::RegisterBenchmark((std::string("BM_AnimateFrame/") + name).c_str(), BM_AnimateFrame,
+                                 spec)
         ->Arg(1)
         ->Arg(2)
         ->Unit(benchmark::kMillisecond)
         ->UseRealTime();
-    benchmark::RegisterBenchmark((std::string("BM_SampleClip/") + name).c_str(), BM_SampleClip, spec)
+    benchmark::RegisterBenchmark((std::string("BM_SampleClip/") + name).c_str(), BM_SampleClip,
+                                 spec)
         ->Unit(benchmark::kMicrosecond);
   }
   benchmark::Initialize(&argc, argv);

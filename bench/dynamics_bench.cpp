@@ -31,7 +31,8 @@ struct Monkey {
 const Monkey& monkey() {
   static const Monkey m = [] {
     Monkey out;
-    out.creature = anatomy::parseCreature(std::string(*models::builtinFile("monkey.json")), "built-in monkey");
+    out.creature =
+        anatomy::parseCreature(std::string(*models::builtinFile("monkey.json")), "built-in monkey");
     out.skin = skin::buildSkin(out.creature, {out.creature.defaultTriangles});
     for (int k = 0; k < 2; ++k) {
       anatomy::Pose pose;
@@ -83,14 +84,19 @@ void BM_DynamicsFrame(benchmark::State& st) {
   st.counters["threads"] = threads;
   st.counters["hairs/s"] = benchmark::Counter(n, benchmark::Counter::kIsIterationInvariantRate);
   static const char* names[] = {"quasi-static", "dynamic", "dynamic step only"};
-  st.SetLabel(std::string(names[mode]) + " polyline " + fur::kernelPathName(fur::activeKernelPath()));
+  st.SetLabel(std::string(names[mode]) + " polyline " +
+              fur::kernelPathName(fur::activeKernelPath()));
 }
 
 void modes(benchmark::internal::Benchmark* b) {
   for (int threads : {1, 2})
     for (int mode : {0, 1, 2}) b->Args({mode, threads, 500000});
 }
-BENCHMARK(BM_DynamicsFrame)->Apply(modes)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(1.0);
+BENCHMARK(BM_DynamicsFrame)
+    ->Apply(modes)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->MinTime(1.0);
 
 }  // namespace
 

@@ -64,7 +64,8 @@ void BM_RenderFrame(benchmark::State& st) {
   int frame = 0;
   std::int64_t drawn = 0;
   for (auto _ : st) drawn = renderer.render(frame++ % 60, img).hairsDrawn;
-  st.counters["hairs/s"] = benchmark::Counter(static_cast<double>(drawn), benchmark::Counter::kIsIterationInvariantRate);
+  st.counters["hairs/s"] =
+      benchmark::Counter(static_cast<double>(drawn), benchmark::Counter::kIsIterationInvariantRate);
   st.SetLabel(context().info().renderer);
 }
 
@@ -84,7 +85,8 @@ void BM_ExportPlyFrame(benchmark::State& st) {
   const scene::Model& m = monkey();
   const scene::Fur fur = polylineFur(static_cast<double>(st.range(0)));
   const int clip = m.findClip("walk");
-  const std::string path = (std::filesystem::temp_directory_path() / "pelage_bench_frame.ply").string();
+  const std::string path =
+      (std::filesystem::temp_directory_path() / "pelage_bench_frame.ply").string();
   scene::FrameState state;
   int frame = 0;
   for (auto _ : st) {

@@ -26,7 +26,8 @@ void BM_DeformMonkey(benchmark::State& st) {
   for (auto _ : st) {
     t += 0.01f;
     for (std::size_t s = 1; s < pose.local.size(); ++s)
-      pose.local[s].rotation = Eigen::Quaternionf(Eigen::AngleAxisf(0.3f * std::sin(t + static_cast<float>(s)), Eigen::Vector3f::UnitY()));
+      pose.local[s].rotation = Eigen::Quaternionf(
+          Eigen::AngleAxisf(0.3f * std::sin(t + static_cast<float>(s)), Eigen::Vector3f::UnitY()));
     pelage::anatomy::forwardKinematics(m.body, pose, state);
     pelage::skin::deformSkin(m.skin, state, out);
     benchmark::DoNotOptimize(out.normals.data());

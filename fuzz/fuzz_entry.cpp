@@ -35,7 +35,8 @@ const anatomy::Body& monkeyBody() {
 class ScratchFile {
  public:
   explicit ScratchFile(const std::string& extension) {
-    std::filesystem::path dir = std::filesystem::exists("/dev/shm") ? "/dev/shm" : std::filesystem::temp_directory_path();
+    std::filesystem::path dir =
+        std::filesystem::exists("/dev/shm") ? "/dev/shm" : std::filesystem::temp_directory_path();
     path_ = (dir / ("pelage_fuzz_" + std::to_string(::getpid()) + "." + extension)).string();
   }
   ~ScratchFile() { std::remove(path_.c_str()); }
@@ -56,18 +57,22 @@ void runCreature(const std::uint8_t* data, std::size_t size) {
   anatomy::parseCreature(std::string(reinterpret_cast<const char*>(data), size), "fuzz.json");
 }
 void runPreset(const std::uint8_t* data, std::size_t size) {
-  fur::FurParams params = fur::parseFurPreset(std::string(reinterpret_cast<const char*>(data), size), "fuzz.json");
+  fur::FurParams params =
+      fur::parseFurPreset(std::string(reinterpret_cast<const char*>(data), size), "fuzz.json");
   // A preset that loads must also round-trip through the writer.
   fur::parseFurPreset(fur::furPresetJson(params), "round trip");
 }
 void runClip(const std::uint8_t* data, std::size_t size) {
-  animation::parseClip(monkeyBody(), std::string(reinterpret_cast<const char*>(data), size), "fuzz.json");
+  animation::parseClip(monkeyBody(), std::string(reinterpret_cast<const char*>(data), size),
+                       "fuzz.json");
 }
 void runPose(const std::uint8_t* data, std::size_t size) {
-  anatomy::parsePose(monkeyBody(), std::string(reinterpret_cast<const char*>(data), size), "fuzz.json");
+  anatomy::parsePose(monkeyBody(), std::string(reinterpret_cast<const char*>(data), size),
+                     "fuzz.json");
 }
 void runGltf(const std::uint8_t* data, std::size_t size) {
-  const bool glb = size >= 4 && data[0] == 'g' && data[1] == 'l' && data[2] == 'T' && data[3] == 'F';
+  const bool glb =
+      size >= 4 && data[0] == 'g' && data[1] == 'l' && data[2] == 'T' && data[3] == 'F';
   ScratchFile file(glb ? "glb" : "gltf");
   animation::importGltf(file.write(data, size));
 }
@@ -80,19 +85,27 @@ void runMesh(const std::uint8_t* data, std::size_t size) {
 }  // namespace
 
 const std::vector<std::string>& targetNames() {
-  static const std::vector<std::string> names = {"creature", "preset", "clip", "pose", "gltf", "mesh"};
+  static const std::vector<std::string> names = {"creature", "preset", "clip",
+                                                 "pose",     "gltf",   "mesh"};
   return names;
 }
 
 bool runTarget(std::string_view name, const std::uint8_t* data, std::size_t size) {
   try {
-    if (name == "creature") runCreature(data, size);
-    else if (name == "preset") runPreset(data, size);
-    else if (name == "clip") runClip(data, size);
-    else if (name == "pose") runPose(data, size);
-    else if (name == "gltf") runGltf(data, size);
-    else if (name == "mesh") runMesh(data, size);
-    else throw std::invalid_argument("unknown fuzz target " + std::string(name));
+    if (name == "creature")
+      runCreature(data, size);
+    else if (name == "preset")
+      runPreset(data, size);
+    else if (name == "clip")
+      runClip(data, size);
+    else if (name == "pose")
+      runPose(data, size);
+    else if (name == "gltf")
+      runGltf(data, size);
+    else if (name == "mesh")
+      runMesh(data, size);
+    else
+      throw std::invalid_argument("unknown fuzz target " + std::string(name));
     return true;
   } catch (const InputError&) {
     return false;
@@ -101,7 +114,8 @@ bool runTarget(std::string_view name, const std::uint8_t* data, std::size_t size
 
 std::string meshInput(std::string_view extension, std::string_view fileBytes) {
   for (int i = 0; i < 4; ++i) {
-    if (extension == kMeshExtensions[i]) return std::string(1, static_cast<char>(i)) + std::string(fileBytes);
+    if (extension == kMeshExtensions[i])
+      return std::string(1, static_cast<char>(i)) + std::string(fileBytes);
   }
   throw std::invalid_argument("unknown mesh extension " + std::string(extension));
 }

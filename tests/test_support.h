@@ -65,6 +65,8 @@ inline RunResult runShell(const std::string& command) {
 }
 
 // Runs `build/bin/pelage <args>` through the shell, capturing output and exit status.
-inline RunResult runPelage(const std::string& args) { return runShell(std::string(PELAGE_BIN_DIR) + "/pelage " + args); }
+inline RunResult runPelage(const std::string& args) {
+  return runShell(std::string(PELAGE_BIN_DIR) + "/pelage " + args);
+}
 
 }  // namespace pelage::test

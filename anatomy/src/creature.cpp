@@ -41,8 +41,8 @@ Creature parseCreature(const std::string& jsonText, const std::string& source) {
   const nlohmann::json doc = JsonReader::parseText(jsonText, source);
   const JsonReader root(doc, source);
   if (!root.isObject()) root.fail("a creature file must be a JSON object");
-  root.rejectUnknown({"name", "description", "units", "furLength", "skin", "segments", "shapes",
-                      "regions"});
+  root.rejectUnknown(
+      {"name", "description", "units", "furLength", "skin", "segments", "shapes", "regions"});
   Creature c;
   c.source = source;
   c.name = root.string("name", "creature");
@@ -105,7 +105,8 @@ Creature parseCreature(const std::string& jsonText, const std::string& source) {
       sh.center = point(s.at("center"));
       sh.radii = s.vec3("radii");
       if ((sh.radii.array() <= 1e-5f).any() || (sh.radii.array() > 1e3f).any())
-        s.at("radii").fail("ellipsoid radii must lie in (0.00001, 1000] metres (a zero-size shape)");
+        s.at("radii").fail(
+            "ellipsoid radii must lie in (0.00001, 1000] metres (a zero-size shape)");
       if (auto rot = s.find("rotation")) sh.rotation = rotationOf(*rot);
     } else if (type == "capsule") {
       s.rejectUnknown({"segment", "type", "from", "to", "radius", "radiusTo", "blend"});
@@ -126,10 +127,12 @@ Creature parseCreature(const std::string& jsonText, const std::string& source) {
   if (auto regions = root.find("regions")) {
     for (std::size_t i = 0; i < regions->size(); ++i) {
       const JsonReader r = regions->at(i);
-      r.rejectUnknown({"name", "lengthScale", "segments", "sphere", "spheres", "box", "boxes", "blend"});
+      r.rejectUnknown(
+          {"name", "lengthScale", "segments", "sphere", "spheres", "box", "boxes", "blend"});
       FurRegion reg;
       reg.name = r.string("name");
-      if (reg.name.empty() || reg.name == "body") r.at("name").fail("region name must be non-empty and not \"body\"");
+      if (reg.name.empty() || reg.name == "body")
+        r.at("name").fail("region name must be non-empty and not \"body\"");
       reg.lengthScale = static_cast<float>(r.number("lengthScale", 0.0, 100.0));
       if (auto segsSel = r.find("segments"))
         for (std::size_t k = 0; k < segsSel->size(); ++k)

@@ -31,7 +31,8 @@ Pose parsePose(const Body& body, const std::string& jsonText, const std::string&
     }
     if (auto tr = e.find("translate")) {
       const Eigen::Vector3f d = tr->asVec3();
-      if ((d.array().abs() > 1e4f).any()) tr->fail("translation must lie within [-10000, 10000] metres");
+      if ((d.array().abs() > 1e4f).any())
+        tr->fail("translation must lie within [-10000, 10000] metres");
       t.translation += d;
     }
   }

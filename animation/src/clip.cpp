@@ -43,7 +43,9 @@ void normalize4(float* q) {
     for (int i = 0; i < 4; ++i) q[i] = static_cast<float>(static_cast<double>(q[i]) / n);
 }
 
-Eigen::Quaternionf quat(const float* v) { return Eigen::Quaternionf(v[3], v[0], v[1], v[2]); }
+Eigen::Quaternionf quat(const float* v) {
+  return Eigen::Quaternionf(v[3], v[0], v[1], v[2]);
+}
 
 }  // namespace
 
@@ -65,7 +67,7 @@ void sampleChannel(const Channel& ch, double t, float* out) {
   const int C = ch.components();
   const int nK = ch.keys();
   const bool cubic = ch.interpolation == Interpolation::CubicSpline;
-  const int stride = cubic ? 3 * C : C;  // floats per key
+  const int stride = cubic ? 3 * C : C;   // floats per key
   const int valueOffset = cubic ? C : 0;  // the value inside a cubic key's (in, value, out)
   const float* v = ch.values.data();
   auto copyKey = [&](int k) {
@@ -98,7 +100,8 @@ void sampleChannel(const Channel& ch, double t, float* out) {
         slerp4(a, b, s, out);
       } else {
         for (int i = 0; i < C; ++i)
-          out[i] = static_cast<float>((1.0 - s) * static_cast<double>(a[i]) + s * static_cast<double>(b[i]));
+          out[i] = static_cast<float>((1.0 - s) * static_cast<double>(a[i]) +
+                                      s * static_cast<double>(b[i]));
       }
       return;
     }
@@ -112,8 +115,9 @@ void sampleChannel(const Channel& ch, double t, float* out) {
       const float* k0 = v + k * stride;
       const float* k1 = v + (k + 1) * stride;
       for (int i = 0; i < C; ++i)
-        out[i] = static_cast<float>(h00 * static_cast<double>(k0[C + i]) + h10 * static_cast<double>(k0[2 * C + i]) +
-                                    h01 * static_cast<double>(k1[C + i]) + h11 * static_cast<double>(k1[i]));
+        out[i] = static_cast<float>(
+            h00 * static_cast<double>(k0[C + i]) + h10 * static_cast<double>(k0[2 * C + i]) +
+            h01 * static_cast<double>(k1[C + i]) + h11 * static_cast<double>(k1[i]));
       if (C == 4) normalize4(out);
       return;
     }
@@ -127,16 +131,24 @@ void sampleClip(const Clip& clip, const anatomy::Body& body, double t, anatomy::
   const ClipTime ct = clipTime(clip, t);
   float v[4] = {0.0f, 0.0f, 0.0f, 1.0f};
   for (const Channel& ch : clip.channels) {
-    if (ch.segment < 0 || static_cast<std::size_t>(ch.segment) >= n) continue;  // checkClip rejects these
+    if (ch.segment < 0 || static_cast<std::size_t>(ch.segment) >= n)
+      continue;  // checkClip rejects these
     sampleChannel(ch, ct.local, v);
     anatomy::Transform& tr = pose.local[static_cast<std::size_t>(ch.segment)];
     switch (ch.path) {
-      case ChannelPath::Translation: tr.translation = Eigen::Vector3f(v[0], v[1], v[2]); break;
-      case ChannelPath::Rotation: tr.rotation = quat(v); break;
-      case ChannelPath::Scale: tr.scale = Eigen::Vector3f(v[0], v[1], v[2]); break;
+      case ChannelPath::Translation:
+        tr.translation = Eigen::Vector3f(v[0], v[1], v[2]);
+        break;
+      case ChannelPath::Rotation:
+        tr.rotation = quat(v);
+        break;
+      case ChannelPath::Scale:
+        tr.scale = Eigen::Vector3f(v[0], v[1], v[2]);
+        break;
     }
   }
-  if (ct.cycles != 0 && clip.rootMotionSegment >= 0 && static_cast<std::size_t>(clip.rootMotionSegment) < n)
+  if (ct.cycles != 0 && clip.rootMotionSegment >= 0 &&
+      static_cast<std::size_t>(clip.rootMotionSegment) < n)
     pose.local[static_cast<std::size_t>(clip.rootMotionSegment)].translation +=
         static_cast<float>(ct.cycles) * clip.rootMotion;
 }
@@ -184,7 +196,8 @@ anatomy::Pose bindPose(const anatomy::Body& body) {
     const int parent = body.segments[i].parent;
     const Eigen::Affine3d bind = body.inverseBind[i].cast<double>().inverse();
     const Eigen::Affine3d local =
-        parent < 0 ? bind : body.inverseBind[static_cast<std::size_t>(parent)].cast<double>() * bind;
+        parent < 0 ? bind
+                   : body.inverseBind[static_cast<std::size_t>(parent)].cast<double>() * bind;
     Eigen::Matrix3d a = local.linear();
     Eigen::Vector3d s(a.col(0).norm(), a.col(1).norm(), a.col(2).norm());
     if (a.determinant() < 0.0) s.x() = -s.x();
@@ -194,7 +207,8 @@ anatomy::Pose bindPose(const anatomy::Body& body) {
     if (s.cwiseAbs().minCoeff() > 0.0) {
       const Eigen::Matrix3d r = a * s.cwiseInverse().asDiagonal();
       const Eigen::JacobiSVD<Eigen::Matrix3d> svd(r, Eigen::ComputeFullU | Eigen::ComputeFullV);
-      t.rotation = Eigen::Quaternionf(Eigen::Quaterniond(svd.matrixU() * svd.matrixV().transpose()).normalized().cast<float>());
+      t.rotation = Eigen::Quaternionf(
+          Eigen::Quaterniond(svd.matrixU() * svd.matrixV().transpose()).normalized().cast<float>());
     }
   }
   return pose;
@@ -207,24 +221,28 @@ int findClip(const std::vector<Clip>& clips, std::string_view name) {
 }
 
 void checkClip(const Clip& clip, const anatomy::Body& body) {
-  PELAGE_CHECK(std::isfinite(clip.duration) && clip.duration >= 0.0f, "clip ", clip.name, " duration ",
-               clip.duration);
-  PELAGE_CHECK(clip.rootMotionSegment >= -1 && clip.rootMotionSegment < body.size(), "clip ", clip.name);
+  PELAGE_CHECK(std::isfinite(clip.duration) && clip.duration >= 0.0f, "clip ", clip.name,
+               " duration ", clip.duration);
+  PELAGE_CHECK(clip.rootMotionSegment >= -1 && clip.rootMotionSegment < body.size(), "clip ",
+               clip.name);
   PELAGE_CHECK(clip.rootMotion.allFinite(), "clip ", clip.name);
   for (const Channel& ch : clip.channels) {
-    PELAGE_CHECK(ch.segment >= 0 && ch.segment < body.size(), "clip ", clip.name, " segment ", ch.segment);
+    PELAGE_CHECK(ch.segment >= 0 && ch.segment < body.size(), "clip ", clip.name, " segment ",
+                 ch.segment);
     const std::size_t perKey = static_cast<std::size_t>(ch.components()) *
                                (ch.interpolation == Interpolation::CubicSpline ? 3u : 1u);
-    PELAGE_CHECK(!ch.times.empty() && ch.values.size() == ch.times.size() * perKey, "clip ", clip.name,
-                 " channel of segment ", ch.segment, ": ", ch.times.size(), " keys, ", ch.values.size(),
-                 " values");
+    PELAGE_CHECK(!ch.times.empty() && ch.values.size() == ch.times.size() * perKey, "clip ",
+                 clip.name, " channel of segment ", ch.segment, ": ", ch.times.size(), " keys, ",
+                 ch.values.size(), " values");
     for (std::size_t k = 0; k < ch.times.size(); ++k) {
       PELAGE_CHECK(std::isfinite(ch.times[k]), "clip ", clip.name);
-      PELAGE_CHECK(k == 0 || ch.times[k] >= ch.times[k - 1], "clip ", clip.name, " times not sorted");
+      PELAGE_CHECK(k == 0 || ch.times[k] >= ch.times[k - 1], "clip ", clip.name,
+                   " times not sorted");
     }
     PELAGE_CHECK(ch.times.back() <= clip.duration * (1.0f + 1e-6f) + 1e-6f, "clip ", clip.name,
                  " key after its duration");
-    for (float x : ch.values) PELAGE_CHECK(std::isfinite(x), "clip ", clip.name, " non-finite value");
+    for (float x : ch.values)
+      PELAGE_CHECK(std::isfinite(x), "clip ", clip.name, " non-finite value");
   }
 }
 
@@ -244,7 +262,8 @@ Channel cubicChannel(int segment, ChannelPath path, std::vector<float> times,
     if (C == 4 && k > 0) {
       double dot = 0.0;
       for (std::size_t i = 0; i < 4; ++i)
-        dot += static_cast<double>(values[k * 4 + i]) * static_cast<double>(values[(k - 1) * 4 + i]);
+        dot +=
+            static_cast<double>(values[k * 4 + i]) * static_cast<double>(values[(k - 1) * 4 + i]);
       if (dot < 0.0) sign = -sign;  // relative to the previous key as stored, then flipped
     }
     for (std::size_t i = 0; i < C; ++i) {

@@ -23,10 +23,10 @@ Interpolation interpolationOf(const JsonReader& r) {
 
 // Catmull-Rom tangents m_k = (v_k+1 - v_k-1) / (t_k+1 - t_k-1), one-sided at the ends. A periodic
 // channel (looping clip, keys at 0 and at the duration) wraps around at its ends: the neighbour of
-// key 0 is key n-2 one period earlier, mapped into key 0's frame (`sign` for quaternions, whose last
-// key may be -q of the first; `cycleOffset` for a root-motion translation).
-std::vector<float> catmullRomTangents(const std::vector<float>& t, const std::vector<float>& v, std::size_t C,
-                                      bool periodic, float duration, float sign,
+// key 0 is key n-2 one period earlier, mapped into key 0's frame (`sign` for quaternions, whose
+// last key may be -q of the first; `cycleOffset` for a root-motion translation).
+std::vector<float> catmullRomTangents(const std::vector<float>& t, const std::vector<float>& v,
+                                      std::size_t C, bool periodic, float duration, float sign,
                                       const Eigen::Vector3f& cycleOffset) {
   const std::size_t n = t.size();
   std::vector<float> m(n * C, 0.0f);
@@ -38,12 +38,15 @@ std::vector<float> catmullRomTangents(const std::vector<float>& t, const std::ve
       double dv = at(b, i) - at(a, i);
       double dt = static_cast<double>(t[b]) - static_cast<double>(t[a]);
       if (periodic && n >= 3 && (k == 0 || k == n - 1)) {
-        // Both ends: (v_1 - v_n-2 one period earlier) / (t_1 + duration - t_n-2), in the end's frame.
-        const double off = C == 3 ? static_cast<double>(cycleOffset[static_cast<Eigen::Index>(i)]) : 0.0;
+        // Both ends: (v_1 - v_n-2 one period earlier) / (t_1 + duration - t_n-2), in the end's
+        // frame.
+        const double off =
+            C == 3 ? static_cast<double>(cycleOffset[static_cast<Eigen::Index>(i)]) : 0.0;
         const double s = C == 4 ? static_cast<double>(sign) : 1.0;
         dv = at(1, i) - (s * at(n - 2, i) - off);
         if (k == n - 1) dv *= s;
-        dt = static_cast<double>(t[1]) + static_cast<double>(duration) - static_cast<double>(t[n - 2]);
+        dt = static_cast<double>(t[1]) + static_cast<double>(duration) -
+             static_cast<double>(t[n - 2]);
       }
       m[k * C + i] = dt > 0.0 ? static_cast<float>(dv / dt) : 0.0f;
     }
@@ -83,13 +86,18 @@ Clip parseClip(const anatomy::Body& body, const std::string& jsonText, const std
     ParsedChannel pc;
     Channel& ch = pc.channel;
     ch.segment = seg;
-    if (pathName == "rotate") ch.path = ChannelPath::Rotation;
-    else if (pathName == "translate") ch.path = ChannelPath::Translation;
-    else if (pathName == "scale") ch.path = ChannelPath::Scale;
-    else e.at("path").fail("unknown path '" + pathName + "' (accepted: rotate, translate, scale)");
+    if (pathName == "rotate")
+      ch.path = ChannelPath::Rotation;
+    else if (pathName == "translate")
+      ch.path = ChannelPath::Translation;
+    else if (pathName == "scale")
+      ch.path = ChannelPath::Scale;
+    else
+      e.at("path").fail("unknown path '" + pathName + "' (accepted: rotate, translate, scale)");
     if (!seen.emplace(seg, static_cast<int>(ch.path)).second)
       e.fail("segment '" + segName + "' already has a '" + pathName + "' channel");
-    ch.interpolation = e.has("interpolation") ? interpolationOf(e.at("interpolation")) : Interpolation::Linear;
+    ch.interpolation =
+        e.has("interpolation") ? interpolationOf(e.at("interpolation")) : Interpolation::Linear;
     const JsonReader keys = e.at("keys");
     if (keys.size() == 0) keys.fail("a channel needs at least one key");
     const anatomy::Transform& rest = body.segments[static_cast<std::size_t>(seg)].rest;
@@ -97,7 +105,8 @@ Clip parseClip(const anatomy::Body& body, const std::string& jsonText, const std
       const JsonReader key = keys.at(k);
       const float time = static_cast<float>(key.number("time", 0.0, kMaxTime));
       if (k > 0 && !(time > ch.times.back()))
-        key.at("time").fail(str("key times must increase (", time, " after ", ch.times.back(), ")"));
+        key.at("time").fail(
+            str("key times must increase (", time, " after ", ch.times.back(), ")"));
       ch.times.push_back(time);
       if (ch.path == ChannelPath::Rotation) {
         key.rejectUnknown({"time", "axis", "degrees"});
@@ -105,8 +114,8 @@ Clip parseClip(const anatomy::Body& body, const std::string& jsonText, const std
         if (!(axis.norm() > 1e-6f)) key.at("axis").fail("rotation axis must be non-zero");
         const double deg = key.number("degrees", -36000.0, 36000.0);
         const Eigen::Quaternionf q =
-            (rest.rotation * Eigen::Quaternionf(Eigen::AngleAxisf(static_cast<float>(deg * M_PI / 180.0),
-                                                                  axis.normalized())))
+            (rest.rotation * Eigen::Quaternionf(Eigen::AngleAxisf(
+                                 static_cast<float>(deg * M_PI / 180.0), axis.normalized())))
                 .normalized();
         pc.keyValues.insert(pc.keyValues.end(), {q.x(), q.y(), q.z(), q.w()});
       } else {
@@ -114,7 +123,8 @@ Clip parseClip(const anatomy::Body& body, const std::string& jsonText, const std
         const Eigen::Vector3f v = key.vec3("value");
         Eigen::Vector3f out;
         if (ch.path == ChannelPath::Translation) {
-          if ((v.array().abs() > 1e4f).any()) key.at("value").fail("translation must lie within [-10000, 10000] metres");
+          if ((v.array().abs() > 1e4f).any())
+            key.at("value").fail("translation must lie within [-10000, 10000] metres");
           out = rest.translation + v;
         } else {
           if ((v.array() <= 0.0f).any() || (v.array() > 1000.0f).any())
@@ -133,7 +143,8 @@ Clip parseClip(const anatomy::Body& body, const std::string& jsonText, const std
     const JsonReader d = root.at("duration");
     clip.duration = static_cast<float>(d.asNumber(0.0, kMaxTime));
     if (clip.duration < lastKey)
-      d.fail(str("duration ", clip.duration, " s is shorter than the last key time ", lastKey, " s"));
+      d.fail(
+          str("duration ", clip.duration, " s is shorter than the last key time ", lastKey, " s"));
   }
 
   if (auto rm = root.find("rootMotion")) {
@@ -152,19 +163,22 @@ Clip parseClip(const anatomy::Body& body, const std::string& jsonText, const std
       if (C == 4)  // sign-align so that differences between keys are short-arc
         for (std::size_t k = 1; k < ch.times.size(); ++k) {
           float dot = 0.0f;
-          for (std::size_t i = 0; i < 4; ++i) dot += pc.keyValues[k * 4 + i] * pc.keyValues[(k - 1) * 4 + i];
+          for (std::size_t i = 0; i < 4; ++i)
+            dot += pc.keyValues[k * 4 + i] * pc.keyValues[(k - 1) * 4 + i];
           if (dot < 0.0f)
             for (std::size_t i = 0; i < 4; ++i) pc.keyValues[k * 4 + i] = -pc.keyValues[k * 4 + i];
         }
       const std::size_t n = ch.times.size();
-      const bool periodic = clip.loop && ch.times.front() == 0.0f && ch.times.back() == clip.duration;
+      const bool periodic =
+          clip.loop && ch.times.front() == 0.0f && ch.times.back() == clip.duration;
       float sign = 1.0f;
       if (C == 4 && n >= 2) {
         float dot = 0.0f;
         for (std::size_t i = 0; i < 4; ++i) dot += pc.keyValues[(n - 1) * 4 + i] * pc.keyValues[i];
         sign = dot < 0.0f ? -1.0f : 1.0f;
       }
-      const bool rootTranslation = ch.path == ChannelPath::Translation && ch.segment == clip.rootMotionSegment;
+      const bool rootTranslation =
+          ch.path == ChannelPath::Translation && ch.segment == clip.rootMotionSegment;
       const Eigen::Vector3f offset = rootTranslation ? clip.rootMotion : Eigen::Vector3f::Zero();
       const std::vector<float> m =
           catmullRomTangents(ch.times, pc.keyValues, C, periodic, clip.duration, sign, offset);

@@ -13,7 +13,8 @@ namespace pelage::animation {
 namespace {
 
 std::string lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::transform(s.begin(), s.end(), s.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return s;
 }
 
@@ -22,8 +23,8 @@ constexpr float kMinBone = 1e-6f;  // relative to the skeleton's size
 }  // namespace
 
 const std::vector<std::string>& defaultNoFurRegions() {
-  static const std::vector<std::string> patterns = {"Eye*",    "*Eyes*",  "Eye_*",  "Hooves",
-                                                    "*Hoof*",  "Nose",    "*Horn*", "*Antler*",
+  static const std::vector<std::string> patterns = {"Eye*",    "*Eyes*",   "Eye_*",  "Hooves",
+                                                    "*Hoof*",  "Nose",     "*Horn*", "*Antler*",
                                                     "*Teeth*", "*Tongue*", "*Claw*"};
   return patterns;
 }
@@ -80,7 +81,9 @@ std::vector<Eigen::Vector3f> headToTailDirections(const anatomy::Body& body,
   PELAGE_CHECK(static_cast<int>(bindJoints.size()) == n && static_cast<int>(bound.size()) == n);
   std::vector<Eigen::Vector3f> dir(static_cast<std::size_t>(n), Eigen::Vector3f::Zero());
   auto joint = [&](int i) { return static_cast<bool>(bound[static_cast<std::size_t>(i)]); };
-  auto pos = [&](int i) -> const Eigen::Vector3f& { return bindJoints[static_cast<std::size_t>(i)]; };
+  auto pos = [&](int i) -> const Eigen::Vector3f& {
+    return bindJoints[static_cast<std::size_t>(i)];
+  };
   auto parentOf = [&](int i) { return body.segments[static_cast<std::size_t>(i)].parent; };
   std::vector<std::vector<int>> children(static_cast<std::size_t>(n));
   std::vector<int> depth(static_cast<std::size_t>(n), 0);
@@ -99,7 +102,8 @@ std::vector<Eigen::Vector3f> headToTailDirections(const anatomy::Body& body,
   // 1. The head.
   int head = -1;
   for (int i = 0; i < n; ++i)
-    if (joint(i) && lower(body.segments[static_cast<std::size_t>(i)].name).find("head") != std::string::npos &&
+    if (joint(i) &&
+        lower(body.segments[static_cast<std::size_t>(i)].name).find("head") != std::string::npos &&
         (head < 0 || depth[static_cast<std::size_t>(i)] < depth[static_cast<std::size_t>(head)]))
       head = i;
   if (head < 0) {
@@ -127,7 +131,8 @@ std::vector<Eigen::Vector3f> headToTailDirections(const anatomy::Body& body,
     for (int c : next)
       if (d[static_cast<std::size_t>(c)] < 0) {
         d[static_cast<std::size_t>(c)] = d[static_cast<std::size_t>(s)] + 1;
-        along[static_cast<std::size_t>(c)] = along[static_cast<std::size_t>(s)] + static_cast<double>((pos(c) - pos(s)).norm());
+        along[static_cast<std::size_t>(c)] =
+            along[static_cast<std::size_t>(s)] + static_cast<double>((pos(c) - pos(s)).norm());
         via[static_cast<std::size_t>(c)] = s;
         queue.push_back(c);
       }
@@ -138,7 +143,8 @@ std::vector<Eigen::Vector3f> headToTailDirections(const anatomy::Body& body,
     const float len = v.norm();
     if (len < minBone) return Eigen::Vector3f::Zero();
     v /= len;
-    return d[static_cast<std::size_t>(b)] > d[static_cast<std::size_t>(a)] ? v : Eigen::Vector3f(-v);
+    return d[static_cast<std::size_t>(b)] > d[static_cast<std::size_t>(a)] ? v
+                                                                           : Eigen::Vector3f(-v);
   };
 
   // 3. The spine: the tree path from the head to the joint farthest from it along the bones (the
@@ -146,12 +152,14 @@ std::vector<Eigen::Vector3f> headToTailDirections(const anatomy::Body& body,
   // chest and hips do not bend the back's direction.
   int tip = head;
   for (int i = 0; i < n; ++i)
-    if (joint(i) && along[static_cast<std::size_t>(i)] > along[static_cast<std::size_t>(tip)]) tip = i;
+    if (joint(i) && along[static_cast<std::size_t>(i)] > along[static_cast<std::size_t>(tip)])
+      tip = i;
   std::vector<bool> onPath(static_cast<std::size_t>(n), false);
   std::vector<int> nextOnPath(static_cast<std::size_t>(n), -1);
   for (int s = tip; s >= 0; s = via[static_cast<std::size_t>(s)]) {
     onPath[static_cast<std::size_t>(s)] = true;
-    if (via[static_cast<std::size_t>(s)] >= 0) nextOnPath[static_cast<std::size_t>(via[static_cast<std::size_t>(s)])] = s;
+    if (via[static_cast<std::size_t>(s)] >= 0)
+      nextOnPath[static_cast<std::size_t>(via[static_cast<std::size_t>(s)])] = s;
   }
 
   // 4. Per joint segment: the normalised mean of its oriented bones (path bones on the spine).
@@ -159,8 +167,10 @@ std::vector<Eigen::Vector3f> headToTailDirections(const anatomy::Body& body,
     if (!joint(s)) continue;
     Eigen::Vector3f sum = Eigen::Vector3f::Zero();
     if (onPath[static_cast<std::size_t>(s)]) {
-      if (via[static_cast<std::size_t>(s)] >= 0) sum += oriented(via[static_cast<std::size_t>(s)], s);
-      if (nextOnPath[static_cast<std::size_t>(s)] >= 0) sum += oriented(s, nextOnPath[static_cast<std::size_t>(s)]);
+      if (via[static_cast<std::size_t>(s)] >= 0)
+        sum += oriented(via[static_cast<std::size_t>(s)], s);
+      if (nextOnPath[static_cast<std::size_t>(s)] >= 0)
+        sum += oriented(s, nextOnPath[static_cast<std::size_t>(s)]);
     } else {
       for (int c : children[static_cast<std::size_t>(s)])
         if (joint(c)) sum += oriented(s, c);
@@ -171,7 +181,8 @@ std::vector<Eigen::Vector3f> headToTailDirections(const anatomy::Body& body,
       for (int p = parentOf(s); p >= 0 && sum.norm() < 1e-6f; p = parentOf(p)) sum = oriented(p, s);
     }
     const float len = sum.norm();
-    dir[static_cast<std::size_t>(s)] = len > 1e-6f ? Eigen::Vector3f(sum / len) : Eigen::Vector3f::Zero();
+    dir[static_cast<std::size_t>(s)] =
+        len > 1e-6f ? Eigen::Vector3f(sum / len) : Eigen::Vector3f::Zero();
   }
   return dir;
 }
@@ -189,8 +200,8 @@ void applyDirectionFile(anatomy::Body& body, const std::string& path) {
     const Eigen::Vector3f v = e.asVec3();
     if ((v.array().abs() > 1e6f).any()) e.fail("direction components must lie within [-1e6, 1e6]");
     const float len = v.norm();
-    body.segments[static_cast<std::size_t>(s)].direction = len > 1e-12f ? Eigen::Vector3f(v / len)
-                                                                        : Eigen::Vector3f::Zero();
+    body.segments[static_cast<std::size_t>(s)].direction =
+        len > 1e-12f ? Eigen::Vector3f(v / len) : Eigen::Vector3f::Zero();
   }
 }
 

@@ -26,9 +26,7 @@ using Vec3d = Eigen::Vector3d;
 // glTF (Y up, front +Z, left +X) -> pelage (Z up, front +X, left +Y): (x, y, z) -> (z, x, y).
 Eigen::Matrix3d basisChange() {
   Eigen::Matrix3d c;
-  c << 0, 0, 1,
-       1, 0, 0,
-       0, 1, 0;
+  c << 0, 0, 1, 1, 0, 0, 0, 1, 0;
   return c;
 }
 
@@ -36,7 +34,8 @@ struct ImportContext {
   std::string path;
   const tinygltf::Model& model;
   gltf::Accessors acc;
-  ImportContext(std::string p, const tinygltf::Model& m) : path(std::move(p)), model(m), acc(m, path) {}
+  ImportContext(std::string p, const tinygltf::Model& m)
+      : path(std::move(p)), model(m), acc(m, path) {}
   template <typename... Args>
   [[noreturn]] void fail(const Args&... args) const {
     inputError(path, ": ", args...);
@@ -55,7 +54,8 @@ anatomy::Transform nodeTransform(const ImportContext& ctx, int index) {
   const tinygltf::Node& n = ctx.model.nodes[static_cast<std::size_t>(index)];
   anatomy::Transform t;
   if (!n.matrix.empty()) {
-    if (n.matrix.size() != 16) ctx.fail("node ", index, " matrix has ", n.matrix.size(), " numbers (16 expected)");
+    if (n.matrix.size() != 16)
+      ctx.fail("node ", index, " matrix has ", n.matrix.size(), " numbers (16 expected)");
     if (!finite(n.matrix)) ctx.fail("node ", index, " matrix has a NaN or infinite value");
     Eigen::Matrix4d m;
     for (int c = 0; c < 4; ++c)
@@ -68,7 +68,9 @@ anatomy::Transform nodeTransform(const ImportContext& ctx, int index) {
     if (a.determinant() < 0.0) s.x() = -s.x();
     const Eigen::Matrix3d r = a * s.cwiseInverse().asDiagonal();
     if ((r.transpose() * r - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() > 1e-3)
-      ctx.fail("node ", index, " matrix has shear, which glTF does not allow (it must be translation * rotation * scale)");
+      ctx.fail("node ", index,
+               " matrix has shear, which glTF does not allow (it must be translation * rotation * "
+               "scale)");
     t.rotation = Eigen::Quaternionf(Eigen::Quaterniond(r).normalized().cast<float>());
     t.translation = m.topRightCorner<3, 1>().cast<float>();
     t.scale = s.cast<float>();
@@ -77,24 +79,29 @@ anatomy::Transform nodeTransform(const ImportContext& ctx, int index) {
   if (!n.translation.empty()) {
     if (n.translation.size() != 3 || !finite(n.translation))
       ctx.fail("node ", index, " translation must be 3 finite numbers");
-    t.translation = Eigen::Vector3f(static_cast<float>(n.translation[0]), static_cast<float>(n.translation[1]),
-                                    static_cast<float>(n.translation[2]));
+    t.translation =
+        Eigen::Vector3f(static_cast<float>(n.translation[0]), static_cast<float>(n.translation[1]),
+                        static_cast<float>(n.translation[2]));
   }
   if (!n.rotation.empty()) {
-    if (n.rotation.size() != 4 || !finite(n.rotation)) ctx.fail("node ", index, " rotation must be 4 finite numbers");
+    if (n.rotation.size() != 4 || !finite(n.rotation))
+      ctx.fail("node ", index, " rotation must be 4 finite numbers");
     Eigen::Quaterniond q(n.rotation[3], n.rotation[0], n.rotation[1], n.rotation[2]);
     if (q.norm() < 1e-6) ctx.fail("node ", index, " rotation is a zero quaternion");
     t.rotation = Eigen::Quaternionf(q.normalized().cast<float>());
   }
   if (!n.scale.empty()) {
-    if (n.scale.size() != 3 || !finite(n.scale)) ctx.fail("node ", index, " scale must be 3 finite numbers");
+    if (n.scale.size() != 3 || !finite(n.scale))
+      ctx.fail("node ", index, " scale must be 3 finite numbers");
     t.scale = Eigen::Vector3f(static_cast<float>(n.scale[0]), static_cast<float>(n.scale[1]),
                               static_cast<float>(n.scale[2]));
   }
   return t;
 }
 
-Affine3d toAffine(const anatomy::Transform& t) { return t.matrix().cast<double>(); }
+Affine3d toAffine(const anatomy::Transform& t) {
+  return t.matrix().cast<double>();
+}
 
 // One influence list before welding.
 struct RawVertex {
@@ -121,15 +128,18 @@ struct Primitives {
 };
 
 // Triangles of a primitive's index list for mode 4 (list), 5 (strip) or 6 (fan).
-void appendTriangles(const ImportContext& ctx, int mode, const std::vector<std::uint32_t>& idx, std::int32_t base,
-                     const std::string& what, Primitives& out) {
+void appendTriangles(const ImportContext& ctx, int mode, const std::vector<std::uint32_t>& idx,
+                     std::int32_t base, const std::string& what, Primitives& out) {
   auto push = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
-    out.triangles.push_back({base + static_cast<std::int32_t>(a), base + static_cast<std::int32_t>(b),
+    out.triangles.push_back({base + static_cast<std::int32_t>(a),
+                             base + static_cast<std::int32_t>(b),
                              base + static_cast<std::int32_t>(c)});
   };
   const std::size_t n = idx.size();
   if (mode == TINYGLTF_MODE_TRIANGLES) {
-    if (n % 3 != 0) warn(str(ctx.path, ": ", what, ": ", n, " indices is not a multiple of 3; the last ", n % 3, " ignored"));
+    if (n % 3 != 0)
+      warn(str(ctx.path, ": ", what, ": ", n, " indices is not a multiple of 3; the last ", n % 3,
+               " ignored"));
     for (std::size_t i = 0; i + 2 < n; i += 3) push(idx[i], idx[i + 1], idx[i + 2]);
   } else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
     for (std::size_t i = 0; i + 2 < n; ++i)
@@ -139,16 +149,21 @@ void appendTriangles(const ImportContext& ctx, int mode, const std::vector<std::
   }
 }
 
-// Keeps the 4 largest influences, merges repeats of one segment, renormalises; segment[0] = largest.
+// Keeps the 4 largest influences, merges repeats of one segment, renormalises; segment[0] =
+// largest.
 bool makeBinding(std::vector<std::pair<float, int>>& infl, skin::Binding& b) {
-  std::sort(infl.begin(), infl.end(), [](const auto& x, const auto& y) { return x.second < y.second; });
+  std::sort(infl.begin(), infl.end(),
+            [](const auto& x, const auto& y) { return x.second < y.second; });
   std::vector<std::pair<float, int>> merged;
   for (const auto& [w, s] : infl) {
     if (!(w > 0.0f)) continue;
-    if (!merged.empty() && merged.back().second == s) merged.back().first += w;
-    else merged.emplace_back(w, s);
+    if (!merged.empty() && merged.back().second == s)
+      merged.back().first += w;
+    else
+      merged.emplace_back(w, s);
   }
-  std::stable_sort(merged.begin(), merged.end(), [](const auto& x, const auto& y) { return x.first > y.first; });
+  std::stable_sort(merged.begin(), merged.end(),
+                   [](const auto& x, const auto& y) { return x.first > y.first; });
   if (merged.size() > 4) merged.resize(4);
   float sum = 0.0f;
   for (const auto& m : merged) sum += m.first;
@@ -170,9 +185,11 @@ struct SkinJoints {
 // Reads one primitive; `place` maps its stored positions into bind space (file units, glTF axes):
 // the mesh node's global rest transform for a skinned mesh, the node's bind transform for a rigid
 // one (bound to `rigidSegment`).
-void readPrimitive(const ImportContext& ctx, int meshIndex, std::size_t primIndex, const SkinJoints* joints,
-                   int rigidSegment, const Affine3d& place, const std::string& rigidRegion, Primitives& out) {
-  const tinygltf::Primitive& prim = ctx.model.meshes[static_cast<std::size_t>(meshIndex)].primitives[primIndex];
+void readPrimitive(const ImportContext& ctx, int meshIndex, std::size_t primIndex,
+                   const SkinJoints* joints, int rigidSegment, const Affine3d& place,
+                   const std::string& rigidRegion, Primitives& out) {
+  const tinygltf::Primitive& prim =
+      ctx.model.meshes[static_cast<std::size_t>(meshIndex)].primitives[primIndex];
   const std::string what = str("mesh ", meshIndex, " primitive ", primIndex);
   const int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
   if (mode >= 0 && mode <= 3) {  // points, lines, line loop, line strip: no surface to grow fur on
@@ -187,18 +204,22 @@ void readPrimitive(const ImportContext& ctx, int meshIndex, std::size_t primInde
   };
   const int posIdx = attr("POSITION");
   if (posIdx < 0) ctx.fail(what, " has no POSITION attribute");
-  const std::vector<float> pos = ctx.acc.floats(posIdx, TINYGLTF_TYPE_VEC3, false, what + " POSITION");
+  const std::vector<float> pos =
+      ctx.acc.floats(posIdx, TINYGLTF_TYPE_VEC3, false, what + " POSITION");
   const std::size_t n = pos.size() / 3;
-  if (n > static_cast<std::size_t>(INT32_MAX) - out.vertices.size()) ctx.fail(what, ": too many vertices");
+  if (n > static_cast<std::size_t>(INT32_MAX) - out.vertices.size())
+    ctx.fail(what, ": too many vertices");
 
   int material = prim.material;
   if (material >= static_cast<int>(ctx.model.materials.size()))
-    ctx.fail(what, " material ", material, " does not exist (", ctx.model.materials.size(), " materials)");
+    ctx.fail(what, " material ", material, " does not exist (", ctx.model.materials.size(),
+             " materials)");
   std::string regionName = rigidRegion;
   if (regionName.empty())
-    regionName = material >= 0 && !ctx.model.materials[static_cast<std::size_t>(material)].name.empty()
-                     ? ctx.model.materials[static_cast<std::size_t>(material)].name
-                     : std::string("body");
+    regionName =
+        material >= 0 && !ctx.model.materials[static_cast<std::size_t>(material)].name.empty()
+            ? ctx.model.materials[static_cast<std::size_t>(material)].name
+            : std::string("body");
   const int region = out.region(regionName, material);
 
   // Influences: JOINTS_n / WEIGHTS_n pairs (n = 0, 1).
@@ -210,14 +231,16 @@ void readPrimitive(const ImportContext& ctx, int meshIndex, std::size_t primInde
       const int w = attr(set == 0 ? "WEIGHTS_0" : "WEIGHTS_1");
       if (j < 0 && w < 0 && set > 0) break;
       if (j < 0 || w < 0)
-        ctx.fail(what, " is skinned but lacks ", j < 0 ? "JOINTS_" : "WEIGHTS_", set, " (JOINTS_n and WEIGHTS_n come in pairs)");
+        ctx.fail(what, " is skinned but lacks ", j < 0 ? "JOINTS_" : "WEIGHTS_", set,
+                 " (JOINTS_n and WEIGHTS_n come in pairs)");
       const std::string js = str(what, " JOINTS_", set), ws = str(what, " WEIGHTS_", set);
-      jointSets.push_back(ctx.acc.uints(j, TINYGLTF_TYPE_VEC4,
-                                        {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT}, js));
+      jointSets.push_back(ctx.acc.uints(
+          j, TINYGLTF_TYPE_VEC4,
+          {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT}, js));
       weightSets.push_back(ctx.acc.floats(w, TINYGLTF_TYPE_VEC4, true, ws));
       if (jointSets.back().size() != 4 * n || weightSets.back().size() != 4 * n)
-        ctx.fail(what, ": JOINTS_", set, "/WEIGHTS_", set, " have ", jointSets.back().size() / 4, "/",
-                 weightSets.back().size() / 4, " elements but POSITION has ", n);
+        ctx.fail(what, ": JOINTS_", set, "/WEIGHTS_", set, " have ", jointSets.back().size() / 4,
+                 "/", weightSets.back().size() / 4, " elements but POSITION has ", n);
     }
   }
 
@@ -234,17 +257,19 @@ void readPrimitive(const ImportContext& ctx, int meshIndex, std::size_t primInde
         for (std::size_t k = 0; k < 4; ++k) {
           const float w = weightSets[set][4 * v + k];
           const std::uint32_t j = jointSets[set][4 * v + k];
-          if (w < 0.0f) ctx.fail(what, " WEIGHTS_", set, " element ", v, " has a negative weight ", w);
+          if (w < 0.0f)
+            ctx.fail(what, " WEIGHTS_", set, " element ", v, " has a negative weight ", w);
           if (w == 0.0f) continue;
           if (j >= joints->segment.size())
-            ctx.fail(what, " JOINTS_", set, " element ", v, " names joint ", j, " but the skin has ",
-                     joints->segment.size(), " joints");
+            ctx.fail(what, " JOINTS_", set, " element ", v, " names joint ", j,
+                     " but the skin has ", joints->segment.size(), " joints");
           infl.emplace_back(w, joints->segment[j]);
         }
       if (!makeBinding(infl, rv.binding)) {  // all-zero weights: follow the skin's first joint
         ++out.zeroWeights;
         rv.binding = skin::Binding{};
-        rv.binding.segment = {joints->segment[0], joints->segment[0], joints->segment[0], joints->segment[0]};
+        rv.binding.segment = {joints->segment[0], joints->segment[0], joints->segment[0],
+                              joints->segment[0]};
       }
     } else {
       rv.binding.segment = {rigidSegment, rigidSegment, rigidSegment, rigidSegment};
@@ -254,20 +279,23 @@ void readPrimitive(const ImportContext& ctx, int meshIndex, std::size_t primInde
 
   std::vector<std::uint32_t> indices;
   if (prim.indices >= 0) {
-    indices = ctx.acc.uints(prim.indices, TINYGLTF_TYPE_SCALAR,
-                            {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
-                             TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT},
-                            what + " indices");
+    indices = ctx.acc.uints(
+        prim.indices, TINYGLTF_TYPE_SCALAR,
+        {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
+         TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT},
+        what + " indices");
     for (std::size_t i = 0; i < indices.size(); ++i)
       if (indices[i] >= n)
-        ctx.fail(what, " index ", i, " is ", indices[i], ", beyond the primitive's ", n, " vertices");
+        ctx.fail(what, " index ", i, " is ", indices[i], ", beyond the primitive's ", n,
+                 " vertices");
   } else {
     indices.resize(n);
     for (std::size_t i = 0; i < n; ++i) indices[i] = static_cast<std::uint32_t>(i);
   }
   const std::size_t before = out.triangles.size();
   appendTriangles(ctx, mode, indices, base, what, out);
-  out.regionTriangles[static_cast<std::size_t>(region)] += static_cast<std::int64_t>(out.triangles.size() - before);
+  out.regionTriangles[static_cast<std::size_t>(region)] +=
+      static_cast<std::int64_t>(out.triangles.size() - before);
 }
 
 // ---- The node tree -------------------------------------------------------------------------
@@ -284,11 +312,12 @@ Tree buildTree(const ImportContext& ctx) {
   t.parent.assign(static_cast<std::size_t>(N), -1);
   for (int i = 0; i < N; ++i)
     for (int c : m.nodes[static_cast<std::size_t>(i)].children) {
-      if (c < 0 || c >= N) ctx.fail("node ", i, " has child ", c, ", which does not exist (", N, " nodes)");
+      if (c < 0 || c >= N)
+        ctx.fail("node ", i, " has child ", c, ", which does not exist (", N, " nodes)");
       if (c == i) ctx.fail("node ", i, " is its own child");
       if (t.parent[static_cast<std::size_t>(c)] >= 0)
-        ctx.fail("node ", c, " has two parents (nodes ", t.parent[static_cast<std::size_t>(c)], " and ", i,
-                 "); glTF nodes form a tree");
+        ctx.fail("node ", c, " has two parents (nodes ", t.parent[static_cast<std::size_t>(c)],
+                 " and ", i, "); glTF nodes form a tree");
       t.parent[static_cast<std::size_t>(c)] = i;
     }
   for (int i = 0; i < N; ++i) {  // every walk up must reach a root within N steps
@@ -302,7 +331,8 @@ Tree buildTree(const ImportContext& ctx) {
     if (s >= static_cast<int>(m.scenes.size())) ctx.fail("default scene ", s, " does not exist");
     for (int r : m.scenes[static_cast<std::size_t>(s)].nodes) {
       if (r < 0 || r >= N) ctx.fail("scene ", s, " lists node ", r, ", which does not exist");
-      if (t.parent[static_cast<std::size_t>(r)] >= 0) ctx.fail("scene ", s, " root node ", r, " has a parent");
+      if (t.parent[static_cast<std::size_t>(r)] >= 0)
+        ctx.fail("scene ", s, " root node ", r, " has a parent");
       roots.push_back(r);
     }
   } else {
@@ -348,8 +378,10 @@ struct QuietOpenMesh {
 
 GltfCreature importGltf(const std::string& path, const GltfImportOptions& options) {
   if (options.unitScale != 0.0f && !(options.unitScale >= 1e-6f && options.unitScale <= 1e6f))
-    inputError("unit scale ", options.unitScale, " is out of range [1e-6, 1e6] metres per file unit");
-  if (options.furLengthMeters != 0.0f && !(options.furLengthMeters > 0.0f && options.furLengthMeters <= 10.0f))
+    inputError("unit scale ", options.unitScale,
+               " is out of range [1e-6, 1e6] metres per file unit");
+  if (options.furLengthMeters != 0.0f &&
+      !(options.furLengthMeters > 0.0f && options.furLengthMeters <= 10.0f))
     inputError("fur length ", options.furLengthMeters, " m is out of range (0, 10]");
   const tinygltf::Model model = gltf::loadModelFile(path);
   const ImportContext ctx(path, model);
@@ -357,15 +389,19 @@ GltfCreature importGltf(const std::string& path, const GltfImportOptions& option
   const Tree tree = buildTree(ctx);
 
   // Mesh instances in the scene.
-  struct Instance { int node, mesh, skin; };
+  struct Instance {
+    int node, mesh, skin;
+  };
   std::vector<Instance> instances;
   for (int n : tree.sceneNodes) {
     const tinygltf::Node& node = model.nodes[static_cast<std::size_t>(n)];
     if (node.mesh < 0) continue;
     if (node.mesh >= static_cast<int>(model.meshes.size()))
-      ctx.fail("node ", n, " uses mesh ", node.mesh, ", which does not exist (", model.meshes.size(), " meshes)");
+      ctx.fail("node ", n, " uses mesh ", node.mesh, ", which does not exist (",
+               model.meshes.size(), " meshes)");
     if (node.skin >= static_cast<int>(model.skins.size()))
-      ctx.fail("node ", n, " uses skin ", node.skin, ", which does not exist (", model.skins.size(), " skins)");
+      ctx.fail("node ", n, " uses skin ", node.skin, ", which does not exist (", model.skins.size(),
+               " skins)");
     instances.push_back({n, node.mesh, node.skin});
   }
   if (instances.empty()) ctx.fail("the scene has no mesh");
@@ -373,7 +409,8 @@ GltfCreature importGltf(const std::string& path, const GltfImportOptions& option
   // Segments: joints of the used skins, rigid mesh nodes, and all their ancestors.
   std::vector<bool> isSegment(static_cast<std::size_t>(N), false);
   auto markUp = [&](int n) {
-    for (; n >= 0 && !isSegment[static_cast<std::size_t>(n)]; n = tree.parent[static_cast<std::size_t>(n)])
+    for (; n >= 0 && !isSegment[static_cast<std::size_t>(n)];
+         n = tree.parent[static_cast<std::size_t>(n)])
       isSegment[static_cast<std::size_t>(n)] = true;
   };
   std::set<int> usedSkins;
@@ -386,7 +423,9 @@ GltfCreature importGltf(const std::string& path, const GltfImportOptions& option
     const tinygltf::Skin& s = model.skins[static_cast<std::size_t>(in.skin)];
     if (s.joints.empty()) ctx.fail("skin ", in.skin, " has no joints");
     for (int j : s.joints) {
-      if (j < 0 || j >= N) ctx.fail("skin ", in.skin, " lists joint node ", j, ", which does not exist (", N, " nodes)");
+      if (j < 0 || j >= N)
+        ctx.fail("skin ", in.skin, " lists joint node ", j, ", which does not exist (", N,
+                 " nodes)");
       markUp(j);
     }
   }
@@ -395,7 +434,8 @@ GltfCreature importGltf(const std::string& path, const GltfImportOptions& option
   {
     std::vector<int> stack;
     for (int i = N - 1; i >= 0; --i)
-      if (tree.parent[static_cast<std::size_t>(i)] < 0 && isSegment[static_cast<std::size_t>(i)]) stack.push_back(i);
+      if (tree.parent[static_cast<std::size_t>(i)] < 0 && isSegment[static_cast<std::size_t>(i)])
+        stack.push_back(i);
     while (!stack.empty()) {
       const int n = stack.back();
       stack.pop_back();
@@ -410,7 +450,8 @@ GltfCreature importGltf(const std::string& path, const GltfImportOptions& option
 
   // Rest transforms (file units) and bind transforms.
   std::vector<anatomy::Transform> rest(static_cast<std::size_t>(nS));
-  for (int s = 0; s < nS; ++s) rest[static_cast<std::size_t>(s)] = nodeTransform(ctx, order[static_cast<std::size_t>(s)]);
+  for (int s = 0; s < nS; ++s)
+    rest[static_cast<std::size_t>(s)] = nodeTransform(ctx, order[static_cast<std::size_t>(s)]);
   std::vector<bool> isJoint(static_cast<std::size_t>(nS), false);
   std::vector<Affine3d> bind(static_cast<std::size_t>(nS), Affine3d::Identity());
   // Global rest transforms of all nodes (parents first).
@@ -424,7 +465,8 @@ GltfCreature importGltf(const std::string& path, const GltfImportOptions& option
       stack.pop_back();
       const int p = tree.parent[static_cast<std::size_t>(n)];
       const Affine3d local = toAffine(nodeTransform(ctx, n));
-      global[static_cast<std::size_t>(n)] = p < 0 ? local : global[static_cast<std::size_t>(p)] * local;
+      global[static_cast<std::size_t>(n)] =
+          p < 0 ? local : global[static_cast<std::size_t>(p)] * local;
       for (int c : model.nodes[static_cast<std::size_t>(n)].children) stack.push_back(c);
     }
   }
@@ -437,16 +479,19 @@ GltfCreature importGltf(const std::string& path, const GltfImportOptions& option
     std::vector<Eigen::Matrix4d>& list = ibms[si];
     std::vector<float> ibm;
     if (sk.inverseBindMatrices >= 0) {
-      ibm = ctx.acc.floats(sk.inverseBindMatrices, TINYGLTF_TYPE_MAT4, false, str("skin ", si, " inverseBindMatrices"));
+      ibm = ctx.acc.floats(sk.inverseBindMatrices, TINYGLTF_TYPE_MAT4, false,
+                           str("skin ", si, " inverseBindMatrices"));
       if (ibm.size() / 16 < sk.joints.size())
-        ctx.fail("skin ", si, " has ", sk.joints.size(), " joints but ", ibm.size() / 16, " inverse bind matrices");
+        ctx.fail("skin ", si, " has ", sk.joints.size(), " joints but ", ibm.size() / 16,
+                 " inverse bind matrices");
     }
     SkinJoints& sj = skinJoints[si];
     for (std::size_t j = 0; j < sk.joints.size(); ++j) {
       Eigen::Matrix4d mm = Eigen::Matrix4d::Identity();
       if (!ibm.empty()) {
         for (int c = 0; c < 4; ++c)
-          for (int r = 0; r < 4; ++r) mm(r, c) = static_cast<double>(ibm[j * 16 + static_cast<std::size_t>(c * 4 + r)]);
+          for (int r = 0; r < 4; ++r)
+            mm(r, c) = static_cast<double>(ibm[j * 16 + static_cast<std::size_t>(c * 4 + r)]);
         if ((mm.row(3) - Eigen::RowVector4d(0, 0, 0, 1)).cwiseAbs().maxCoeff() > 1e-4)
           ctx.fail("skin ", si, " inverse bind matrix ", j, " is not affine");
         if (!(std::abs(mm.topLeftCorner<3, 3>().determinant()) > 1e-12))
@@ -469,7 +514,8 @@ GltfCreature importGltf(const std::string& path, const GltfImportOptions& option
       const std::size_t seg = static_cast<std::size_t>(segs[j]);
       if (isJoint[seg] && !bind[seg].matrix().isApprox(b.matrix(), 1e-4))
         ctx.fail("joint node ", model.skins[static_cast<std::size_t>(in.skin)].joints[j],
-                 " has two different bind transforms (shared by skins or mesh nodes that disagree; not supported)");
+                 " has two different bind transforms (shared by skins or mesh nodes that disagree; "
+                 "not supported)");
       isJoint[seg] = true;
       bind[seg] = b;
     }
@@ -478,7 +524,9 @@ GltfCreature importGltf(const std::string& path, const GltfImportOptions& option
     if (isJoint[static_cast<std::size_t>(s)]) continue;
     const int p = tree.parent[static_cast<std::size_t>(order[static_cast<std::size_t>(s)])];
     const Affine3d local = toAffine(rest[static_cast<std::size_t>(s)]);
-    bind[static_cast<std::size_t>(s)] = p < 0 ? local : bind[static_cast<std::size_t>(segmentOf[static_cast<std::size_t>(p)])] * local;
+    bind[static_cast<std::size_t>(s)] =
+        p < 0 ? local
+              : bind[static_cast<std::size_t>(segmentOf[static_cast<std::size_t>(p)])] * local;
   }
 
   // Geometry in bind space (file units, glTF axes).
@@ -490,22 +538,25 @@ GltfCreature importGltf(const std::string& path, const GltfImportOptions& option
     const std::string rigidRegion = node.name.empty() ? str("node", in.node) : node.name;
     for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
       if (in.skin >= 0) {
-        readPrimitive(ctx, in.mesh, p, &skinJoints.at(in.skin), -1, global[static_cast<std::size_t>(in.node)], "",
-                      prims);
+        readPrimitive(ctx, in.mesh, p, &skinJoints.at(in.skin), -1,
+                      global[static_cast<std::size_t>(in.node)], "", prims);
       } else {
         if (std::abs(bind[static_cast<std::size_t>(seg)].linear().determinant()) < 1e-18) {
           warn(str(path, ": mesh node ", in.node, " has a zero scale in its bind pose; skipped"));
           continue;
         }
-        readPrimitive(ctx, in.mesh, p, nullptr, seg, bind[static_cast<std::size_t>(seg)], rigidRegion, prims);
+        readPrimitive(ctx, in.mesh, p, nullptr, seg, bind[static_cast<std::size_t>(seg)],
+                      rigidRegion, prims);
       }
     }
   }
   if (prims.triangles.empty()) ctx.fail("the scene has no triangles (only points or lines)");
   if (prims.skippedPrimitives > 0)
-    warn(str(path, ": skipped ", prims.skippedPrimitives, " point/line primitives (no surface for fur)"));
+    warn(str(path, ": skipped ", prims.skippedPrimitives,
+             " point/line primitives (no surface for fur)"));
   if (prims.zeroWeights > 0)
-    warn(str(path, ": ", prims.zeroWeights, " vertices have all-zero skin weights; bound to the skin's first joint"));
+    warn(str(path, ": ", prims.zeroWeights,
+             " vertices have all-zero skin weights; bound to the skin's first joint"));
 
   // Unit scale from the bounds of the vertices the triangles use.
   std::vector<bool> used(prims.vertices.size(), false);
@@ -535,7 +586,9 @@ GltfCreature importGltf(const std::string& path, const GltfImportOptions& option
   for (int si = 0; si < nS; ++si) {
     const int n = order[static_cast<std::size_t>(si)];
     anatomy::Segment seg;
-    seg.name = model.nodes[static_cast<std::size_t>(n)].name.empty() ? str("node", n) : model.nodes[static_cast<std::size_t>(n)].name;
+    seg.name = model.nodes[static_cast<std::size_t>(n)].name.empty()
+                   ? str("node", n)
+                   : model.nodes[static_cast<std::size_t>(n)].name;
     if (!names.insert(seg.name).second) {
       seg.name = str(seg.name, "#", n);
       names.insert(seg.name);
@@ -561,10 +614,12 @@ GltfCreature importGltf(const std::string& path, const GltfImportOptions& option
     conv[v] = (K * prims.vertices[v].position).cast<float>();
     conv[v] += Eigen::Vector3f::Zero();  // -0 -> +0 so that equal positions hash equally
   }
-  const std::vector<std::string>& noFur = options.noFurRegions ? *options.noFurRegions : defaultNoFurRegions();
+  const std::vector<std::string>& noFur =
+      options.noFurRegions ? *options.noFurRegions : defaultNoFurRegions();
   std::vector<bool> bareRegion(prims.regionNames.size(), false);
   for (std::size_t r = 0; r < prims.regionNames.size(); ++r)
-    for (const std::string& pat : noFur) bareRegion[r] = bareRegion[r] || regionMatches(pat, prims.regionNames[r]);
+    for (const std::string& pat : noFur)
+      bareRegion[r] = bareRegion[r] || regionMatches(pat, prims.regionNames[r]);
   struct Key {
     std::array<std::uint32_t, 3> bits;
     bool operator<(const Key& o) const { return bits < o.bits; }
@@ -580,8 +635,9 @@ GltfCreature importGltf(const std::string& path, const GltfImportOptions& option
     std::vector<std::int32_t>& bucket = buckets[k];
     std::int32_t found = -1;
     for (std::int32_t w : bucket)
-      if (sameBinding(prims.vertices[static_cast<std::size_t>(welded[static_cast<std::size_t>(w)])].binding,
-                      prims.vertices[v].binding)) {
+      if (sameBinding(
+              prims.vertices[static_cast<std::size_t>(welded[static_cast<std::size_t>(w)])].binding,
+              prims.vertices[v].binding)) {
         found = w;
         break;
       }
@@ -593,7 +649,9 @@ GltfCreature importGltf(const std::string& path, const GltfImportOptions& option
     } else {
       int& r = weldRegion[static_cast<std::size_t>(found)];
       const int other = prims.vertices[v].region;
-      if (other != r && bareRegion[static_cast<std::size_t>(other)] && !bareRegion[static_cast<std::size_t>(r)]) r = other;
+      if (other != r && bareRegion[static_cast<std::size_t>(other)] &&
+          !bareRegion[static_cast<std::size_t>(r)])
+        r = other;
     }
     weldOf[v] = found;
   }
@@ -604,18 +662,23 @@ GltfCreature importGltf(const std::string& path, const GltfImportOptions& option
   std::vector<std::array<std::int32_t, 3>> tris;
   tris.reserve(prims.triangles.size());
   for (const auto& t : prims.triangles) {
-    const std::array<std::int32_t, 3> w = {weldOf[static_cast<std::size_t>(t[0])], weldOf[static_cast<std::size_t>(t[1])],
+    const std::array<std::int32_t, 3> w = {weldOf[static_cast<std::size_t>(t[0])],
+                                           weldOf[static_cast<std::size_t>(t[1])],
                                            weldOf[static_cast<std::size_t>(t[2])]};
-    const Eigen::Vector3f& a = conv[static_cast<std::size_t>(welded[static_cast<std::size_t>(w[0])])];
-    const Eigen::Vector3f& b = conv[static_cast<std::size_t>(welded[static_cast<std::size_t>(w[1])])];
-    const Eigen::Vector3f& c = conv[static_cast<std::size_t>(welded[static_cast<std::size_t>(w[2])])];
+    const Eigen::Vector3f& a =
+        conv[static_cast<std::size_t>(welded[static_cast<std::size_t>(w[0])])];
+    const Eigen::Vector3f& b =
+        conv[static_cast<std::size_t>(welded[static_cast<std::size_t>(w[1])])];
+    const Eigen::Vector3f& c =
+        conv[static_cast<std::size_t>(welded[static_cast<std::size_t>(w[2])])];
     if (w[0] == w[1] || w[1] == w[2] || w[0] == w[2] || !((b - a).cross(c - a).norm() > minArea2)) {
       ++prims.degenerate;
       continue;
     }
     tris.push_back(w);
   }
-  if (prims.degenerate > 0) warn(str(path, ": dropped ", prims.degenerate, " degenerate triangles"));
+  if (prims.degenerate > 0)
+    warn(str(path, ": dropped ", prims.degenerate, " degenerate triangles"));
   if (tris.empty()) ctx.fail("every triangle is degenerate");
 
   // OpenMesh: a triangle whose edge is already used in its direction, or whose addition OpenMesh
@@ -625,7 +688,8 @@ GltfCreature importGltf(const std::string& path, const GltfImportOptions& option
   std::vector<std::int32_t> meshOf(welded.size(), -1);
   auto vertexFor = [&](std::int32_t w, bool fresh) -> skin::TriMesh::VertexHandle {
     if (fresh || meshOf[static_cast<std::size_t>(w)] < 0) {
-      const Eigen::Vector3f& p = conv[static_cast<std::size_t>(welded[static_cast<std::size_t>(w)])];
+      const Eigen::Vector3f& p =
+          conv[static_cast<std::size_t>(welded[static_cast<std::size_t>(w)])];
       const auto vh = sk.mesh.add_vertex(skin::TriMesh::Point(p.x(), p.y(), p.z()));
       source.push_back(w);
       if (!fresh) meshOf[static_cast<std::size_t>(w)] = vh.idx();
@@ -639,18 +703,26 @@ GltfCreature importGltf(const std::string& path, const GltfImportOptions& option
     int split = 0;
     for (const auto& t : tris) {
       bool clash = false;
-      for (int e = 0; e < 3; ++e) clash = clash || directed.count({t[static_cast<std::size_t>(e)], t[static_cast<std::size_t>((e + 1) % 3)]}) > 0;
+      for (int e = 0; e < 3; ++e)
+        clash = clash || directed.count({t[static_cast<std::size_t>(e)],
+                                         t[static_cast<std::size_t>((e + 1) % 3)]}) > 0;
       skin::TriMesh::FaceHandle fh;
-      if (!clash) fh = sk.mesh.add_face(vertexFor(t[0], false), vertexFor(t[1], false), vertexFor(t[2], false));
+      if (!clash)
+        fh = sk.mesh.add_face(vertexFor(t[0], false), vertexFor(t[1], false),
+                              vertexFor(t[2], false));
       if (!fh.is_valid()) {
         fh = sk.mesh.add_face(vertexFor(t[0], true), vertexFor(t[1], true), vertexFor(t[2], true));
         ++split;
       }
       PELAGE_CHECK(fh.is_valid(), "an isolated triangle was rejected");
       if (!clash)
-        for (int e = 0; e < 3; ++e) directed.insert({t[static_cast<std::size_t>(e)], t[static_cast<std::size_t>((e + 1) % 3)]});
+        for (int e = 0; e < 3; ++e)
+          directed.insert(
+              {t[static_cast<std::size_t>(e)], t[static_cast<std::size_t>((e + 1) % 3)]});
     }
-    if (split > 0) warn(str(path, ": ", split, " triangles on non-manifold edges or vertices got their own vertices"));
+    if (split > 0)
+      warn(str(path, ": ", split,
+               " triangles on non-manifold edges or vertices got their own vertices"));
   }
 
   // Vertex properties.
@@ -659,17 +731,21 @@ GltfCreature importGltf(const std::string& path, const GltfImportOptions& option
   std::vector<bool> bound(static_cast<std::size_t>(nS), false);
   for (std::int32_t w : source)
     for (std::size_t k = 0; k < 4; ++k) {
-      const skin::Binding& b = prims.vertices[static_cast<std::size_t>(welded[static_cast<std::size_t>(w)])].binding;
+      const skin::Binding& b =
+          prims.vertices[static_cast<std::size_t>(welded[static_cast<std::size_t>(w)])].binding;
       if (b.weight[k] > 0.0f) bound[static_cast<std::size_t>(b.segment[k])] = true;
     }
   std::vector<Eigen::Vector3f> bindJoints(static_cast<std::size_t>(nS));
   for (int si = 0; si < nS; ++si)
-    bindJoints[static_cast<std::size_t>(si)] = body.inverseBind[static_cast<std::size_t>(si)].inverse().translation();
+    bindJoints[static_cast<std::size_t>(si)] =
+        body.inverseBind[static_cast<std::size_t>(si)].inverse().translation();
   const std::vector<Eigen::Vector3f> dirs = headToTailDirections(body, bindJoints, bound);
-  for (int si = 0; si < nS; ++si) body.segments[static_cast<std::size_t>(si)].direction = dirs[static_cast<std::size_t>(si)];
+  for (int si = 0; si < nS; ++si)
+    body.segments[static_cast<std::size_t>(si)].direction = dirs[static_cast<std::size_t>(si)];
   std::string sideFile = options.segmentDirections;
   if (sideFile.empty()) {
-    const std::filesystem::path auto_ = std::filesystem::path(path).replace_extension(".directions.json");
+    const std::filesystem::path auto_ =
+        std::filesystem::path(path).replace_extension(".directions.json");
     std::error_code ec;
     if (std::filesystem::is_regular_file(auto_, ec)) sideFile = auto_.string();
   }
@@ -678,17 +754,20 @@ GltfCreature importGltf(const std::string& path, const GltfImportOptions& option
   const float furLength = options.furLengthMeters > 0.0f ? options.furLengthMeters : 0.02f * diag;
   for (auto vh : sk.mesh.vertices()) {
     const std::int32_t w = source[static_cast<std::size_t>(vh.idx())];
-    const RawVertex& rv = prims.vertices[static_cast<std::size_t>(welded[static_cast<std::size_t>(w)])];
+    const RawVertex& rv =
+        prims.vertices[static_cast<std::size_t>(welded[static_cast<std::size_t>(w)])];
     const int region = weldRegion[static_cast<std::size_t>(w)];
     sk.mesh.property(sk.binding, vh) = rv.binding;
     sk.mesh.property(sk.region, vh) = region;
-    sk.mesh.property(sk.furLength, vh) = bareRegion[static_cast<std::size_t>(region)] ? 0.0f : furLength;
-    const Eigen::Vector3f& d = body.segments[static_cast<std::size_t>(rv.binding.segment[0])].direction;
+    sk.mesh.property(sk.furLength, vh) =
+        bareRegion[static_cast<std::size_t>(region)] ? 0.0f : furLength;
+    const Eigen::Vector3f& d =
+        body.segments[static_cast<std::size_t>(rv.binding.segment[0])].direction;
     sk.mesh.property(sk.segmentDirection, vh) = OpenMesh::Vec3f(d.x(), d.y(), d.z());
   }
-  // Skin colour: the base colour of the furred region with the most triangles. A textured material's
-  // factor only tints its texture (the Fox: factor 1, colour in the texture), and pelage reads no
-  // textures, so such materials leave the skin's default colour.
+  // Skin colour: the base colour of the furred region with the most triangles. A textured
+  // material's factor only tints its texture (the Fox: factor 1, colour in the texture), and pelage
+  // reads no textures, so such materials leave the skin's default colour.
   std::int64_t most = -1;
   for (std::size_t r = 0; r < prims.regionNames.size(); ++r) {
     const int mat = prims.regionMaterial[r];
@@ -698,7 +777,8 @@ GltfCreature importGltf(const std::string& path, const GltfImportOptions& option
     const std::vector<double>& f = pbr.baseColorFactor;
     if (f.size() >= 3 && finite(f)) {
       most = prims.regionTriangles[r];
-      sk.color = Eigen::Vector3f(static_cast<float>(std::clamp(f[0], 0.0, 1.0)), static_cast<float>(std::clamp(f[1], 0.0, 1.0)),
+      sk.color = Eigen::Vector3f(static_cast<float>(std::clamp(f[0], 0.0, 1.0)),
+                                 static_cast<float>(std::clamp(f[1], 0.0, 1.0)),
                                  static_cast<float>(std::clamp(f[2], 0.0, 1.0)));
     }
   }
@@ -713,7 +793,8 @@ GltfCreature importGltf(const std::string& path, const GltfImportOptions& option
     clip.name = an.name.empty() ? str("clip", ai) : an.name;
     if (!clipNames.insert(clip.name).second) {
       const std::string renamed = str(clip.name, "_", ai);
-      warn(str(path, ": two animations are called '", clip.name, "'; the second is '", renamed, "'"));
+      warn(str(path, ": two animations are called '", clip.name, "'; the second is '", renamed,
+               "'"));
       clip.name = renamed;
       clipNames.insert(renamed);
     }
@@ -723,41 +804,57 @@ GltfCreature importGltf(const std::string& path, const GltfImportOptions& option
       const tinygltf::AnimationChannel& ch = an.channels[ci];
       const std::string what = str("animation ", ai, " channel ", ci);
       if (ch.sampler < 0 || ch.sampler >= static_cast<int>(an.samplers.size()))
-        ctx.fail(what, " uses sampler ", ch.sampler, ", which does not exist (", an.samplers.size(), " samplers)");
-      if (ch.target_node >= N) ctx.fail(what, " targets node ", ch.target_node, ", which does not exist (", N, " nodes)");
+        ctx.fail(what, " uses sampler ", ch.sampler, ", which does not exist (", an.samplers.size(),
+                 " samplers)");
+      if (ch.target_node >= N)
+        ctx.fail(what, " targets node ", ch.target_node, ", which does not exist (", N, " nodes)");
       const tinygltf::AnimationSampler& sm = an.samplers[static_cast<std::size_t>(ch.sampler)];
       Channel chOut;
-      if (ch.target_path == "translation") chOut.path = ChannelPath::Translation;
-      else if (ch.target_path == "rotation") chOut.path = ChannelPath::Rotation;
-      else if (ch.target_path == "scale") chOut.path = ChannelPath::Scale;
+      if (ch.target_path == "translation")
+        chOut.path = ChannelPath::Translation;
+      else if (ch.target_path == "rotation")
+        chOut.path = ChannelPath::Rotation;
+      else if (ch.target_path == "scale")
+        chOut.path = ChannelPath::Scale;
       else if (ch.target_path == "weights") {
-        if (!warnedWeights) warn(str(path, ": morph-target (weights) animation channels are ignored"));
+        if (!warnedWeights)
+          warn(str(path, ": morph-target (weights) animation channels are ignored"));
         warnedWeights = true;
         continue;
       } else {
         ctx.fail(what, " has an unknown target path '", ch.target_path, "'");
       }
-      if (sm.interpolation.empty() || sm.interpolation == "LINEAR") chOut.interpolation = Interpolation::Linear;
-      else if (sm.interpolation == "STEP") chOut.interpolation = Interpolation::Step;
-      else if (sm.interpolation == "CUBICSPLINE") chOut.interpolation = Interpolation::CubicSpline;
-      else ctx.fail(what, " sampler has an unknown interpolation '", sm.interpolation, "'");
+      if (sm.interpolation.empty() || sm.interpolation == "LINEAR")
+        chOut.interpolation = Interpolation::Linear;
+      else if (sm.interpolation == "STEP")
+        chOut.interpolation = Interpolation::Step;
+      else if (sm.interpolation == "CUBICSPLINE")
+        chOut.interpolation = Interpolation::CubicSpline;
+      else
+        ctx.fail(what, " sampler has an unknown interpolation '", sm.interpolation, "'");
       chOut.times = ctx.acc.floats(sm.input, TINYGLTF_TYPE_SCALAR, false, what + " input (times)");
       for (std::size_t k = 0; k < chOut.times.size(); ++k) {
-        if (chOut.times[k] < 0.0f) ctx.fail(what, " key time ", k, " is negative (", chOut.times[k], " s)");
-        if (chOut.times[k] > 1e6f) ctx.fail(what, " key time ", k, " is ", chOut.times[k], " s (limit 1e6)");
+        if (chOut.times[k] < 0.0f)
+          ctx.fail(what, " key time ", k, " is negative (", chOut.times[k], " s)");
+        if (chOut.times[k] > 1e6f)
+          ctx.fail(what, " key time ", k, " is ", chOut.times[k], " s (limit 1e6)");
         if (k > 0 && chOut.times[k] < chOut.times[k - 1])
-          ctx.fail(what, " key times decrease at key ", k, " (", chOut.times[k - 1], " then ", chOut.times[k], " s)");
+          ctx.fail(what, " key times decrease at key ", k, " (", chOut.times[k - 1], " then ",
+                   chOut.times[k], " s)");
       }
       const bool cubic = chOut.interpolation == Interpolation::CubicSpline;
       const int nc = chOut.components();
-      chOut.values = ctx.acc.floats(sm.output, nc == 4 ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3, nc == 4,
-                                   what + " output (values)");
-      const std::size_t expect = chOut.times.size() * (cubic ? 3u : 1u) * static_cast<std::size_t>(nc);
+      chOut.values = ctx.acc.floats(sm.output, nc == 4 ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3,
+                                    nc == 4, what + " output (values)");
+      const std::size_t expect =
+          chOut.times.size() * (cubic ? 3u : 1u) * static_cast<std::size_t>(nc);
       if (chOut.values.size() != expect)
-        ctx.fail(what, ": ", chOut.times.size(), " key times need ", expect / static_cast<std::size_t>(nc),
-                 " output values, found ", chOut.values.size() / static_cast<std::size_t>(nc));
+        ctx.fail(what, ": ", chOut.times.size(), " key times need ",
+                 expect / static_cast<std::size_t>(nc), " output values, found ",
+                 chOut.values.size() / static_cast<std::size_t>(nc));
       duration = std::max(duration, chOut.times.back());
-      if (ch.target_node < 0 || segmentOf[static_cast<std::size_t>(ch.target_node)] < 0) continue;  // no effect
+      if (ch.target_node < 0 || segmentOf[static_cast<std::size_t>(ch.target_node)] < 0)
+        continue;  // no effect
       chOut.segment = segmentOf[static_cast<std::size_t>(ch.target_node)];
       const std::size_t nK = chOut.times.size();
       if (nc == 4)  // unit quaternions for the values (not the tangents)
@@ -772,11 +869,17 @@ GltfCreature importGltf(const std::string& path, const GltfImportOptions& option
         for (std::size_t e = 0; e < chOut.values.size() / static_cast<std::size_t>(nc); ++e) {
           float* v = chOut.values.data() + e * static_cast<std::size_t>(nc);
           if (nc == 4) {
-            const Eigen::Quaternionf q = qC.cast<float>() * Eigen::Quaternionf(v[3], v[0], v[1], v[2]);
-            v[0] = q.x(); v[1] = q.y(); v[2] = q.z(); v[3] = q.w();
+            const Eigen::Quaternionf q =
+                qC.cast<float>() * Eigen::Quaternionf(v[3], v[0], v[1], v[2]);
+            v[0] = q.x();
+            v[1] = q.y();
+            v[2] = q.z();
+            v[3] = q.w();
           } else if (chOut.path == ChannelPath::Translation) {
             const Eigen::Vector3f t = (s * C * Eigen::Vector3d(v[0], v[1], v[2])).cast<float>();
-            v[0] = t.x(); v[1] = t.y(); v[2] = t.z();
+            v[0] = t.x();
+            v[1] = t.y();
+            v[2] = t.z();
           } else {
             for (int i = 0; i < 3; ++i) v[i] *= out.unitScale;
           }

@@ -20,13 +20,15 @@ tinygltf::Model loadModelFile(const std::string& path);
 
 class Accessors {
  public:
-  Accessors(const tinygltf::Model& model, std::string path) : model_(model), path_(std::move(path)) {}
+  Accessors(const tinygltf::Model& model, std::string path)
+      : model_(model), path_(std::move(path)) {}
 
   // Element count of accessor `index` (validated index); `what` names its use in messages.
   std::size_t count(int index, const std::string& what) const;
   // Float components (count x components of `type`), row by row. FLOAT always; BYTE/UBYTE/SHORT/
   // USHORT too when `allowNormalized` and the accessor is normalized (glTF's decoding rules).
-  std::vector<float> floats(int index, int type, bool allowNormalized, const std::string& what) const;
+  std::vector<float> floats(int index, int type, bool allowNormalized,
+                            const std::string& what) const;
   // Unsigned integer components of one of `componentTypes` (UNSIGNED_BYTE/SHORT/INT).
   std::vector<std::uint32_t> uints(int index, int type, std::initializer_list<int> componentTypes,
                                    const std::string& what) const;

@@ -13,27 +13,53 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 
 enum Seg {
-  Pelvis, Spine, Chest, Neck, Head,
-  LUpperarm, LForearm, LHand, RUpperarm, RForearm, RHand,
-  LThigh, LShin, LFoot, RThigh, RShin, RFoot,
-  Tail1, Tail2, Tail3, Tail4, Tail5, kSegCount
+  Pelvis,
+  Spine,
+  Chest,
+  Neck,
+  Head,
+  LUpperarm,
+  LForearm,
+  LHand,
+  RUpperarm,
+  RForearm,
+  RHand,
+  LThigh,
+  LShin,
+  LFoot,
+  RThigh,
+  RShin,
+  RFoot,
+  Tail1,
+  Tail2,
+  Tail3,
+  Tail4,
+  Tail5,
+  kSegCount
 };
 constexpr const char* kSegNames[kSegCount] = {
-    "pelvis", "spine", "chest", "neck", "head",
-    "l_upperarm", "l_forearm", "l_hand", "r_upperarm", "r_forearm", "r_hand",
-    "l_thigh", "l_shin", "l_foot", "r_thigh", "r_shin", "r_foot",
-    "tail1", "tail2", "tail3", "tail4", "tail5"};
+    "pelvis",     "spine",     "chest",  "neck",    "head",   "l_upperarm", "l_forearm", "l_hand",
+    "r_upperarm", "r_forearm", "r_hand", "l_thigh", "l_shin", "l_foot",     "r_thigh",   "r_shin",
+    "r_foot",     "tail1",     "tail2",  "tail3",   "tail4",  "tail5"};
 
 const Eigen::Vector3f kX = Eigen::Vector3f::UnitX();  // the monkey's forward (roll axis)
 const Eigen::Vector3f kY = Eigen::Vector3f::UnitY();  // its left (pitch axis; + = nose down)
 const Eigen::Vector3f kZ = Eigen::Vector3f::UnitZ();  // up (yaw axis; + = turn left)
 
-double rad(double deg) { return deg * kPi / 180.0; }
-double wrapAngle(double a) { return std::remainder(a, 2.0 * kPi); }
+double rad(double deg) {
+  return deg * kPi / 180.0;
+}
+double wrapAngle(double a) {
+  return std::remainder(a, 2.0 * kPi);
+}
 // Angle of the (x, z) vector such that a rotation by theta about +Y adds theta to it:
 // R_y(theta) (x, z) = (x cos + z sin, -x sin + z cos).
-double sagittalAngle(double x, double z) { return std::atan2(x, z); }
-double fract(double x) { return x - std::floor(x); }
+double sagittalAngle(double x, double z) {
+  return std::atan2(x, z);
+}
+double fract(double x) {
+  return x - std::floor(x);
+}
 
 Eigen::Quaternionf rot(const Eigen::Vector3f& axis, double deg) {
   return Eigen::Quaternionf(Eigen::AngleAxisf(static_cast<float>(rad(deg)), axis));
@@ -55,11 +81,16 @@ struct Rig {
       if (idx[static_cast<std::size_t>(s)] < 0)
         inputError("the procedural monkey clips need a segment named '", kSegNames[s], "'");
     }
-    PELAGE_CHECK(b.segments[static_cast<std::size_t>(idx[Pelvis])].parent < 0, "pelvis must be the root");
+    PELAGE_CHECK(b.segments[static_cast<std::size_t>(idx[Pelvis])].parent < 0,
+                 "pelvis must be the root");
   }
   int operator[](Seg s) const { return idx[static_cast<std::size_t>(s)]; }
-  const anatomy::Segment& seg(Seg s) const { return body.segments[static_cast<std::size_t>((*this)[s])]; }
-  anatomy::Transform& local(anatomy::Pose& p, Seg s) const { return p.local[static_cast<std::size_t>((*this)[s])]; }
+  const anatomy::Segment& seg(Seg s) const {
+    return body.segments[static_cast<std::size_t>((*this)[s])];
+  }
+  anatomy::Transform& local(anatomy::Pose& p, Seg s) const {
+    return p.local[static_cast<std::size_t>((*this)[s])];
+  }
   // Turns segment s by `deg` about `axis` in its own frame, on top of its current rotation.
   void turn(anatomy::Pose& p, Seg s, const Eigen::Vector3f& axis, double deg) const {
     anatomy::Transform& t = local(p, s);
@@ -87,8 +118,8 @@ struct Rig {
 // r^2 = |a|^2 + |b|^2 + 2 |a||b| cos(phi), phi the angle between the bones, keeps the rest bend
 // direction (knees forward, elbows back). Finally the end segment (foot, hand) turns to the world
 // orientation "level, heading with the parent, pitched by endPitchDeg".
-void solveLimb(const Rig& rig, anatomy::Pose& p, Seg upper, Seg lower, Seg end, const Eigen::Vector3f& target,
-               double endPitchDeg) {
+void solveLimb(const Rig& rig, anatomy::Pose& p, Seg upper, Seg lower, Seg end,
+               const Eigen::Vector3f& target, double endPitchDeg) {
   const int parent = rig.seg(upper).parent;
   const Eigen::Affine3f W = rig.world(p, parent);
   const Eigen::Vector3f P = W.inverse() * target;
@@ -113,12 +144,15 @@ void solveLimb(const Rig& rig, anatomy::Pose& p, Seg upper, Seg lower, Seg end, 
   const double ez = az - bx * std::sin(th2) + bz * std::cos(th2);
   const double th1 = wrapAngle(sagittalAngle(dx, dz) - sagittalAngle(ex, ez));
   rig.local(p, upper).rotation =
-      (rig.seg(upper).rest.rotation * rot(kX, alpha * 180.0 / kPi) * rot(kY, th1 * 180.0 / kPi)).normalized();
-  rig.local(p, lower).rotation = (rig.seg(lower).rest.rotation * rot(kY, th2 * 180.0 / kPi)).normalized();
+      (rig.seg(upper).rest.rotation * rot(kX, alpha * 180.0 / kPi) * rot(kY, th1 * 180.0 / kPi))
+          .normalized();
+  rig.local(p, lower).rotation =
+      (rig.seg(lower).rest.rotation * rot(kY, th2 * 180.0 / kPi)).normalized();
   // The end segment: world rotation = R_z(heading of the parent) R_y(endPitch) R_rest-world.
   const Eigen::Vector3f fwd = W.linear() * kX;
   const double heading = std::atan2(static_cast<double>(fwd.y()), static_cast<double>(fwd.x()));
-  const Eigen::Quaternionf restWorld(rig.body.inverseBind[static_cast<std::size_t>(rig[end])].inverse().linear());
+  const Eigen::Quaternionf restWorld(
+      rig.body.inverseBind[static_cast<std::size_t>(rig[end])].inverse().linear());
   const Eigen::Quaternionf want = rot(kZ, heading * 180.0 / kPi) * rot(kY, endPitchDeg) * restWorld;
   const Eigen::Quaternionf lowerWorld(rig.world(p, lower).linear());
   rig.local(p, end).rotation = (lowerWorld.conjugate() * want).normalized();
@@ -141,8 +175,8 @@ double footStride(double u, double stride) {
   const double w = (u - kWalkDuty) / (1.0 - kWalkDuty);
   const double m = -stride * (1.0 - kWalkDuty) / kWalkDuty;  // stance velocity in swing time units
   const double w2 = w * w, w3 = w2 * w;
-  return (2 * w3 - 3 * w2 + 1) * (-stride / 2.0) + (w3 - 2 * w2 + w) * m + (-2 * w3 + 3 * w2) * (stride / 2.0) +
-         (w3 - w2) * m;
+  return (2 * w3 - 3 * w2 + 1) * (-stride / 2.0) + (w3 - 2 * w2 + w) * m +
+         (-2 * w3 + 3 * w2) * (stride / 2.0) + (w3 - w2) * m;
 }
 double footLift(double u) {
   if (u < kWalkDuty) return 0.0;
@@ -154,8 +188,9 @@ void walk(const Rig& rig, double t, anatomy::Pose& p) {
   const double ph = 2.0 * kPi * t / kWalkDuration;
   const double stride = kWalkSpeed * kWalkDuty * kWalkDuration;
   anatomy::Transform& root = rig.local(p, Pelvis);
-  root.translation += Eigen::Vector3f(static_cast<float>(kWalkSpeed * t), 0.0f,
-                                      static_cast<float>(-kWalkCrouch + 0.004 * std::cos(2.0 * ph)));
+  root.translation +=
+      Eigen::Vector3f(static_cast<float>(kWalkSpeed * t), 0.0f,
+                      static_cast<float>(-kWalkCrouch + 0.004 * std::cos(2.0 * ph)));
   rig.turn(p, Pelvis, kZ, 2.0 * std::sin(ph));
   rig.turn(p, Pelvis, kX, 2.0 * std::cos(ph));
   rig.turn(p, Pelvis, kY, 1.2 * std::sin(2.0 * ph));
@@ -170,9 +205,14 @@ void walk(const Rig& rig, double t, anatomy::Pose& p) {
     rig.turn(p, tails[i], kZ, (6.0 + 2.0 * i) * std::sin(ph - 0.6 * i));
     rig.turn(p, tails[i], kY, 3.0 * std::sin(2.0 * ph - 0.5 * i));
   }
-  struct Leg { Seg upper, lower, end; double phase, endFlex; };
-  const Leg legs[4] = {{LThigh, LShin, LFoot, 0.0, 25.0}, {LUpperarm, LForearm, LHand, 0.25, 30.0},
-                       {RThigh, RShin, RFoot, 0.5, 25.0}, {RUpperarm, RForearm, RHand, 0.75, 30.0}};
+  struct Leg {
+    Seg upper, lower, end;
+    double phase, endFlex;
+  };
+  const Leg legs[4] = {{LThigh, LShin, LFoot, 0.0, 25.0},
+                       {LUpperarm, LForearm, LHand, 0.25, 30.0},
+                       {RThigh, RShin, RFoot, 0.5, 25.0},
+                       {RUpperarm, RForearm, RHand, 0.75, 30.0}};
   for (const Leg& leg : legs) {
     const double u = fract(t / kWalkDuration + leg.phase);
     const Eigen::Vector3f rest = rig.restJoint(leg.end);
@@ -186,10 +226,11 @@ void walk(const Rig& rig, double t, anatomy::Pose& p) {
 // ---------------------------------------------------------------------------------------------
 // tumble: a slow forward roll. The body curls into a ball (spine, neck and head flexed, knees to
 // the chest, arms hugging them, the tail wrapped round the flank) and the root pitches a full turn
-// about +Y, theta = 2 pi t / T. The ball's centre c (mean of the body shapes' centres, pelvis frame)
-// moves forward uniformly, x = r theta, r its mean height; the root's height keeps the body's lowest
-// point on the ground: root z = smax_i(depth_i(theta)) over the body shapes (see Contact), smax the
-// log-sum-exp soft maximum (smooth, so the motion stays C1). Upside down at theta = pi.
+// about +Y, theta = 2 pi t / T. The ball's centre c (mean of the body shapes' centres, pelvis
+// frame) moves forward uniformly, x = r theta, r its mean height; the root's height keeps the
+// body's lowest point on the ground: root z = smax_i(depth_i(theta)) over the body shapes (see
+// Contact), smax the log-sum-exp soft maximum (smooth, so the motion stays C1). Upside down at
+// theta = pi.
 constexpr double kTumbleDuration = 3.0;
 
 void tumbleCurl(const Rig& rig, anatomy::Pose& p) {
@@ -215,12 +256,13 @@ void tumbleCurl(const Rig& rig, anatomy::Pose& p) {
 
 // The body's lowest point below the pelvis joint when the pelvis frame is pitched by theta, as
 // a list of "depths" (one per shape): for an ellipsoid with centre C, axes Q and radii r (in the
-// pelvis frame of the curled pose), depth = -(R C).z + |diag(r) (R Q)^T z|, its exact support in -z;
-// for a round cone, the deeper of its two end spheres. Without shapes: the joints with 5 cm of flesh.
+// pelvis frame of the curled pose), depth = -(R C).z + |diag(r) (R Q)^T z|, its exact support in
+// -z; for a round cone, the deeper of its two end spheres. Without shapes: the joints with 5 cm of
+// flesh.
 struct Contact {
-  std::vector<Eigen::Vector3d> centre;      // per shape (or joint)
-  std::vector<Eigen::Matrix3d> axes;        // columns scaled by the radii (ellipsoids)
-  std::vector<double> radius;               // sphere radius (capsule ends, joints); 0 for ellipsoids
+  std::vector<Eigen::Vector3d> centre;  // per shape (or joint)
+  std::vector<Eigen::Matrix3d> axes;    // columns scaled by the radii (ellipsoids)
+  std::vector<double> radius;           // sphere radius (capsule ends, joints); 0 for ellipsoids
   void depths(double theta, std::vector<double>& out) const {
     const Eigen::Matrix3d R = Eigen::AngleAxisd(theta, Eigen::Vector3d::UnitY()).toRotationMatrix();
     out.resize(centre.size());
@@ -236,13 +278,15 @@ Contact curledContact(const Rig& rig, const anatomy::Pose& curled) {
   anatomy::Pose ref = curled;
   rig.local(ref, Pelvis) = anatomy::Transform{};
   auto skinning = [&](int seg) {
-    return (rig.world(ref, seg) * rig.body.inverseBind[static_cast<std::size_t>(seg)]).cast<double>();
+    return (rig.world(ref, seg) * rig.body.inverseBind[static_cast<std::size_t>(seg)])
+        .cast<double>();
   };
   for (const anatomy::Shape& sh : rig.shapes) {
     const Eigen::Affine3d S = skinning(sh.segment);
     if (sh.kind == anatomy::Shape::Kind::Ellipsoid) {
       c.centre.push_back(S * sh.center.cast<double>());
-      c.axes.push_back(S.linear() * sh.rotation.cast<double>().toRotationMatrix() * sh.radii.cast<double>().asDiagonal());
+      c.axes.push_back(S.linear() * sh.rotation.cast<double>().toRotationMatrix() *
+                       sh.radii.cast<double>().asDiagonal());
       c.radius.push_back(0.0);
     } else {
       for (const auto& [p, r] : {std::pair{sh.from, sh.rFrom}, std::pair{sh.to, sh.rTo}}) {
@@ -294,7 +338,8 @@ const TumbleBall& tumbleBall(const Rig& rig, const anatomy::Pose& curled) {
     const int samples = 72;
     for (int i = 0; i < samples; ++i) {
       const double th = 2.0 * kPi * i / samples;
-      ball->radius += ball->rootHeight(th, scratch) + (Eigen::AngleAxisd(th, Eigen::Vector3d::UnitY()) * c).z();
+      ball->radius +=
+          ball->rootHeight(th, scratch) + (Eigen::AngleAxisd(th, Eigen::Vector3d::UnitY()) * c).z();
     }
     ball->radius /= samples;
     rig.ball = std::move(ball);
@@ -315,10 +360,10 @@ void tumble(const Rig& rig, double t, anatomy::Pose& p) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// hang: hanging from the left hand, which stays fixed at a point P above the ground. The arm reaches
-// overhead, the rest of the body dangles; the whole body is rotated so that its centre (the mean of
-// its joints) hangs straight below the grip, then swings about P like a pendulum,
-// phi(t) = A sin(2 pi t / T); legs, free arm and tail swing behind it with a phase lag.
+// hang: hanging from the left hand, which stays fixed at a point P above the ground. The arm
+// reaches overhead, the rest of the body dangles; the whole body is rotated so that its centre (the
+// mean of its joints) hangs straight below the grip, then swings about P like a pendulum, phi(t) =
+// A sin(2 pi t / T); legs, free arm and tail swing behind it with a phase lag.
 constexpr double kHangDuration = 1.4;
 constexpr double kHangSwingDeg = 16.0;
 
@@ -394,9 +439,11 @@ void shake(const Rig& rig, double t, anatomy::Pose& p) {
   rig.turn(p, Head, kX, env * 22.0 * std::sin(w - 1.6));
   rig.turn(p, Head, kY, env * 6.0);
   for (Seg leg : {LThigh, RThigh}) rig.turn(p, leg, kX, -rollPelvis);
-  for (Seg arm : {LUpperarm, RUpperarm}) rig.turn(p, arm, kX, -(rollPelvis + rollSpine + rollChest));
+  for (Seg arm : {LUpperarm, RUpperarm})
+    rig.turn(p, arm, kX, -(rollPelvis + rollSpine + rollChest));
   const Seg tails[5] = {Tail1, Tail2, Tail3, Tail4, Tail5};
-  for (int i = 0; i < 5; ++i) rig.turn(p, tails[i], kZ, env * (10.0 + 4.0 * i) * std::sin(w - 2.0 - 0.5 * i));
+  for (int i = 0; i < 5; ++i)
+    rig.turn(p, tails[i], kZ, env * (10.0 + 4.0 * i) * std::sin(w - 2.0 - 0.5 * i));
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -453,9 +500,12 @@ std::string missingMonkeySegment(const anatomy::Body& body) {
   return "";
 }
 
-double monkeyClipDuration(const std::string& name) { return clipDef(name).duration; }
+double monkeyClipDuration(const std::string& name) {
+  return clipDef(name).duration;
+}
 
-void evaluateMonkeyClip(const anatomy::Creature& creature, const std::string& name, double t, anatomy::Pose& pose) {
+void evaluateMonkeyClip(const anatomy::Creature& creature, const std::string& name, double t,
+                        anatomy::Pose& pose) {
   const ClipDef& def = clipDef(name);
   const Rig rig(creature);
   pose = anatomy::restPose(creature.body);
@@ -493,7 +543,8 @@ Clip bakeMonkeyClip(const anatomy::Creature& creature, const std::string& name, 
     bool moves = false;
     for (std::size_t k = 0; k < nK; ++k) {
       const Eigen::Vector4f c = at[k].local[s].rotation.coeffs();
-      Eigen::Vector4f b = before[k].local[s].rotation.coeffs(), a = after[k].local[s].rotation.coeffs();
+      Eigen::Vector4f b = before[k].local[s].rotation.coeffs(),
+                      a = after[k].local[s].rotation.coeffs();
       if (b.dot(c) < 0.0f) b = -b;
       if (a.dot(c) < 0.0f) a = -a;
       const Eigen::Vector4f d = (a - b) / static_cast<float>(2.0 * h);
@@ -503,21 +554,25 @@ Clip bakeMonkeyClip(const anatomy::Creature& creature, const std::string& name, 
       }
       moves = moves || !at[k].local[s].rotation.isApprox(body.segments[s].rest.rotation, 1e-6f);
     }
-    if (moves) clip.channels.push_back(cubicChannel(static_cast<int>(s), ChannelPath::Rotation, times, q, dq));
+    if (moves)
+      clip.channels.push_back(
+          cubicChannel(static_cast<int>(s), ChannelPath::Rotation, times, q, dq));
   }
   // The root's translation (the only translated segment).
   const std::size_t root = static_cast<std::size_t>(rig[Pelvis]);
   std::vector<float> x(nK * 3), dx(nK * 3);
   for (std::size_t k = 0; k < nK; ++k) {
     const Eigen::Vector3f v = at[k].local[root].translation;
-    const Eigen::Vector3f d = (after[k].local[root].translation - before[k].local[root].translation) /
-                              static_cast<float>(2.0 * h);
+    const Eigen::Vector3f d =
+        (after[k].local[root].translation - before[k].local[root].translation) /
+        static_cast<float>(2.0 * h);
     for (int i = 0; i < 3; ++i) {
       x[k * 3 + static_cast<std::size_t>(i)] = v[i];
       dx[k * 3 + static_cast<std::size_t>(i)] = d[i];
     }
   }
-  clip.channels.push_back(cubicChannel(static_cast<int>(root), ChannelPath::Translation, times, x, dx));
+  clip.channels.push_back(
+      cubicChannel(static_cast<int>(root), ChannelPath::Translation, times, x, dx));
   clip.rootMotionSegment = static_cast<int>(root);
   clip.rootMotion = at[nK - 1].local[root].translation - at[0].local[root].translation;
   if (clip.rootMotion.norm() < 1e-6f) clip.rootMotion.setZero();

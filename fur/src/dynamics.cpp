@@ -66,11 +66,12 @@ detail::CoatDynamicsArgs coatArgs(const DynamicsParams& dynamics, int coat, doub
 void checkState(const FurRoots& roots, const FurDynamicsState& state, double dt) {
   for (int c = 0; c < kCoatCount; ++c) {
     const auto ci = static_cast<std::size_t>(c);
-    PELAGE_CHECK(state.rootCounts[ci] == roots.coats[ci].size() &&
-                     state.coats[ci].size() == static_cast<std::size_t>(
-                                                   detail::kDynamicsStateFloats * roots.coats[ci].size()),
-                 "dynamics state sized for ", state.rootCounts[ci], " roots, coat ", c, " has ",
-                 roots.coats[ci].size(), " (call resetFurDynamics)");
+    PELAGE_CHECK(
+        state.rootCounts[ci] == roots.coats[ci].size() &&
+            state.coats[ci].size() ==
+                static_cast<std::size_t>(detail::kDynamicsStateFloats * roots.coats[ci].size()),
+        "dynamics state sized for ", state.rootCounts[ci], " roots, coat ", c, " has ",
+        roots.coats[ci].size(), " (call resetFurDynamics)");
   }
   PELAGE_CHECK(dt > 0.0 && dt <= 10.0, "frame time ", dt, " s");
 }
@@ -92,8 +93,8 @@ void validateDynamicsParams(const DynamicsParams& params, const std::string& sou
 
 SpringStep springStep(double frequencyHz, double dampingRatio, double dt) {
   // exp(A t) = e^(s t) [C I + S (A - s I)], s = -zeta w0 (half the trace of A), A - s I =
-  // [[zeta w0, 1], [-w0^2, -zeta w0]], and with q^2 = w0^2 (zeta^2 - 1) (the eigenvalues are s +- q):
-  // C = cosh(q t), S = sinh(q t) / q (q^2 > 0); cos, sin / q (q^2 < 0); 1, t (q = 0).
+  // [[zeta w0, 1], [-w0^2, -zeta w0]], and with q^2 = w0^2 (zeta^2 - 1) (the eigenvalues are s +-
+  // q): C = cosh(q t), S = sinh(q t) / q (q^2 > 0); cos, sin / q (q^2 < 0); 1, t (q = 0).
   const double w0 = 2.0 * kPi * frequencyHz;
   const double zeta = dampingRatio;
   const double s = -zeta * w0;

@@ -25,8 +25,8 @@ inline constexpr int kSpringBins = 12 * kSpringBinsPerOctave + 1;
 
 // One coat's dynamics for one kernel call.
 struct CoatDynamicsArgs {
-  float* state = nullptr;        // kDynamicsStateFloats x stride (planar), world coordinates
-  std::int64_t stride = 0;       // the coat's root count
+  float* state = nullptr;   // kDynamicsStateFloats x stride (planar), world coordinates
+  std::int64_t stride = 0;  // the coat's root count
   // Per length bin, the exact one-step propagator (uu, uv, vu, vv) of the free spring
   // u'' + 2 zeta w u' + w^2 u = 0 over dt at that length's w: (u, w) <- (uu u + uv w, vu u + vv w),
   // w = E' - E_qs' the velocity relative to the target. kSpringBins x 4.
@@ -39,8 +39,8 @@ struct CoatDynamicsArgs {
   // Steps since the reset, capped at 2: 0 = no previous target (start on it, at rest), 1 = its
   // velocity is unknown before this step (start moving with it), 2 = running.
   int history = 2;
-  bool update = true;            // advance the state (false: read this frame's state, as stored)
-  bool emit = true;              // hairs are drawn from the ends (else the hair plane is not needed)
+  bool update = true;  // advance the state (false: read this frame's state, as stored)
+  bool emit = true;    // hairs are drawn from the ends (else the hair plane is not needed)
 };
 
 namespace {
@@ -52,7 +52,8 @@ inline int springBin(const CoatDynamicsArgs& d, float length) {
   std::uint32_t bits;
   __builtin_memcpy(&bits, &r, sizeof bits);
   const int exponent = static_cast<int>((bits >> 23) & 0xffu) - 127;
-  const int b = kSpringBinsPerOctave * exponent + d.mantissaBins[(bits >> 15) & 0xffu] - kSpringBinOffset;
+  const int b =
+      kSpringBinsPerOctave * exponent + d.mantissaBins[(bits >> 15) & 0xffu] - kSpringBinOffset;
   return b < 0 ? 0 : (b >= kSpringBins ? kSpringBins - 1 : b);
 }
 
@@ -111,8 +112,8 @@ inline void dynamicEnds(const CoatShape& c, const CoatDynamicsArgs& d, const std
     const Vec3<T> w1 = flushTiny(u * vu + w * vv);
     const Vec3<T> velocity = v + w1;
     u = u1;
-    const T out[kDynamicsStateFloats] = {u.x, u.y, u.z, velocity.x, velocity.y, velocity.z,
-                                         target.x, target.y, target.z};
+    const T out[kDynamicsStateFloats] = {u.x,        u.y,      u.z,      velocity.x, velocity.y,
+                                         velocity.z, target.x, target.y, target.z};
     for (int q = 0; q < kDynamicsStateFloats; ++q) {
       __builtin_memcpy(rows[q], &out[q], sizeof(rows[q]));
       float* dst = d.state + q * d.stride;
@@ -123,7 +124,8 @@ inline void dynamicEnds(const CoatShape& c, const CoatDynamicsArgs& d, const std
     }
   }
   f.e = normalizeOr((target - f.root) + u, f.e, 1e-20f);
-  if (d.emit && c.style != HairStyle::Line) f.planeNormal = hairPlaneNormal(f.dTilde, f.e, f.normal);
+  if (d.emit && c.style != HairStyle::Line)
+    f.planeNormal = hairPlaneNormal(f.dTilde, f.e, f.normal);
 }
 
 }  // namespace

@@ -248,8 +248,8 @@ void ensureTwist(const FurParams& params, int coat, std::uint64_t seed, FurWorks
 void generateFur(const skin::SkinMesh& skin, const FurRoots& roots, const FurParams& params,
                  const skin::DeformedSkin& deformed, const FurView& view, FurWorkspace& ws,
                  FurFrame& frame) {
-  detail::generateFurWithDynamics(skin, roots, params, deformed, view, ws, frame, {nullptr, nullptr},
-                                  true);
+  detail::generateFurWithDynamics(skin, roots, params, deformed, view, ws, frame,
+                                  {nullptr, nullptr}, true);
 }
 
 void detail::generateFurWithDynamics(

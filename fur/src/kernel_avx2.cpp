@@ -1,8 +1,9 @@
 // The AVX2 build of the hair kernel (this file alone is compiled with -mavx2; it is only called
 // after a runtime check of the CPU). Gather and frame phases on 16 lanes (two ymm chains, F2),
 // emission on 8: per hair, an 8-float and a 4-float barycentric mix of the packed vertex records
-// (the latter joined with the root's jitter), transposed to lanes; eight points at a time transposed 8 x 8 so each hair's floats leave as whole 32-byte
-// rows (non-temporal for large outputs).
+// (the latter joined with the root's jitter), transposed to lanes; eight points at a time
+// transposed 8 x 8 so each hair's floats leave as whole 32-byte rows (non-temporal for large
+// outputs).
 #include "kernel_impl.h"
 #include "simd_avx2.h"
 

@@ -194,10 +194,10 @@ inline void gather8(const CoatKernelArgs& a, const std::int32_t* roots, const st
     rowA[l] = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(b1, _mm256_loadu_ps(v[0])),
                                           _mm256_mul_ps(b2, _mm256_loadu_ps(v[1]))),
                             _mm256_mul_ps(b3, _mm256_loadu_ps(v[2])));
-    const __m128 d = _mm_add_ps(
-        _mm_add_ps(_mm_mul_ps(_mm256_castps256_ps128(b1), _mm_loadu_ps(v[0] + 8)),
-                   _mm_mul_ps(_mm256_castps256_ps128(b2), _mm_loadu_ps(v[1] + 8))),
-        _mm_mul_ps(_mm256_castps256_ps128(b3), _mm_loadu_ps(v[2] + 8)));
+    const __m128 d =
+        _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm256_castps256_ps128(b1), _mm_loadu_ps(v[0] + 8)),
+                              _mm_mul_ps(_mm256_castps256_ps128(b2), _mm_loadu_ps(v[1] + 8))),
+                   _mm_mul_ps(_mm256_castps256_ps128(b3), _mm_loadu_ps(v[2] + 8)));
     rowB[l] = _mm256_insertf128_ps(_mm256_castps128_ps256(d),
                                    _mm_loadu_ps(a.jitter + 4 * static_cast<std::int64_t>(r)), 1);
   }

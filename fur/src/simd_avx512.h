@@ -107,14 +107,11 @@ inline void gather16(const CoatKernelArgs& a, const std::int32_t* roots, const s
     const float* v[3];
     triangleRecords(a, tris[l], v);
     const float* b = a.barycentric + 4 * static_cast<std::int64_t>(a.tableIndex[r]);
-    const __m512 m =
-        _mm512_add_ps(_mm512_add_ps(_mm512_mul_ps(_mm512_set1_ps(b[0]),
-                                                  _mm512_maskz_loadu_ps(kRecord, v[0])),
-                                    _mm512_mul_ps(_mm512_set1_ps(b[1]),
-                                                  _mm512_maskz_loadu_ps(kRecord, v[1]))),
-                      _mm512_mul_ps(_mm512_set1_ps(b[2]), _mm512_maskz_loadu_ps(kRecord, v[2])));
-    rows[l] =
-        _mm512_insertf32x4(m, _mm_loadu_ps(a.jitter + 4 * static_cast<std::int64_t>(r)), 3);
+    const __m512 m = _mm512_add_ps(
+        _mm512_add_ps(_mm512_mul_ps(_mm512_set1_ps(b[0]), _mm512_maskz_loadu_ps(kRecord, v[0])),
+                      _mm512_mul_ps(_mm512_set1_ps(b[1]), _mm512_maskz_loadu_ps(kRecord, v[1]))),
+        _mm512_mul_ps(_mm512_set1_ps(b[2]), _mm512_maskz_loadu_ps(kRecord, v[2])));
+    rows[l] = _mm512_insertf32x4(m, _mm_loadu_ps(a.jitter + 4 * static_cast<std::int64_t>(r)), 3);
   }
   transpose16(rows, cols);
   in.root = {F(cols[0]), F(cols[1]), F(cols[2])};

@@ -68,18 +68,20 @@ EndStats endStats(const std::vector<double>& a, int offset, const Layout& layout
     e.droopBodyUpMm = s[5] / n * 1e3;
     e.tipSpeed = s[6] / n;
   }
-  for (int g = 0; g < layout.groups; ++g) e.groups.push_back(droopStats(s[7 + 3 * g], s[8 + 3 * g], s[9 + 3 * g]));
+  for (int g = 0; g < layout.groups; ++g)
+    e.groups.push_back(droopStats(s[7 + 3 * g], s[8 + 3 * g], s[9 + 3 * g]));
   return e;
 }
 
 // The hairs' sites and their groups (empty groups dropped).
-void makeSites(const Model& model, const Fur& fur, AnalysisGroups groups, std::vector<HairSite>& sites,
-               std::vector<std::string>& names) {
+void makeSites(const Model& model, const Fur& fur, AnalysisGroups groups,
+               std::vector<HairSite>& sites, std::vector<std::string>& names) {
   const skin::SkinMesh& skin = model.skin;
   const std::int32_t* regions = skin.regions();
   const skin::Binding* bindings = skin.bindings();
-  const std::size_t groupCount =
-      groups == AnalysisGroups::Region ? skin.regionNames.size() : static_cast<std::size_t>(model.body.size());
+  const std::size_t groupCount = groups == AnalysisGroups::Region
+                                     ? skin.regionNames.size()
+                                     : static_cast<std::size_t>(model.body.size());
   std::vector<std::int64_t> count(groupCount, 0);
   for (int c = 0; c < fur::kCoatCount; ++c) {
     const fur::CoatRoots& cr = fur.roots.coats[static_cast<std::size_t>(c)];
@@ -88,7 +90,8 @@ void makeSites(const Model& model, const Fur& fur, AnalysisGroups groups, std::v
       HairSite h;
       h.coat = c;
       h.root = static_cast<std::int32_t>(r);
-      const std::int32_t* tv = skin.triangles.data() + 3 * static_cast<std::int64_t>(cr.triangle[ru]);
+      const std::int32_t* tv =
+          skin.triangles.data() + 3 * static_cast<std::int64_t>(cr.triangle[ru]);
       const float* b = fur.roots.barycentric.data() + 4 * cr.tableIndex[ru];
       int nearest = 0;
       for (int k = 0; k < 3; ++k) {
@@ -112,7 +115,8 @@ void makeSites(const Model& model, const Fur& fur, AnalysisGroups groups, std::v
   for (std::size_t g = 0; g < groupCount; ++g) {
     if (count[g] == 0) continue;
     remap[g] = static_cast<std::int32_t>(names.size());
-    names.push_back(groups == AnalysisGroups::Region ? skin.regionNames[g] : model.body.segments[g].name);
+    names.push_back(groups == AnalysisGroups::Region ? skin.regionNames[g]
+                                                     : model.body.segments[g].name);
   }
   for (HairSite& h : sites) h.group = remap[static_cast<std::size_t>(h.group)];
 }
@@ -131,7 +135,7 @@ struct Run {
   Layout layout;
   std::vector<HairSite> sites;
   std::array<fur::CoatShape, fur::kCoatCount> shapes;
-  std::vector<float> previousEnds;  // sites x 6: quasi-static and dynamic ending points (m)
+  std::vector<float> previousEnds;    // sites x 6: quasi-static and dynamic ending points (m)
   std::vector<float> stopDirections;  // sites x 3: unit E_dyn - E_qs at the stop (0 if none)
   std::vector<std::vector<double>> partial;
   fur::FurDynamicsState state;
@@ -155,23 +159,28 @@ struct Run {
       if (s >= 0 && s < model.body.size()) ++perSegment[static_cast<std::size_t>(s)];
     }
     if (!perSegment.empty() && perSegment[0] == 0)
-      orientationSegment = static_cast<int>(std::max_element(perSegment.begin(), perSegment.end()) - perSegment.begin());
+      orientationSegment = static_cast<int>(std::max_element(perSegment.begin(), perSegment.end()) -
+                                            perSegment.begin());
     layout.groups = static_cast<int>(names.size());
-    for (int c = 0; c < fur::kCoatCount; ++c) shapes[static_cast<std::size_t>(c)] = fur::makeCoatShape(fur.params, c);
+    for (int c = 0; c < fur::kCoatCount; ++c)
+      shapes[static_cast<std::size_t>(c)] = fur::makeCoatShape(fur.params, c);
     previousEnds.assign(sites.size() * 6, 0.0f);
     stopDirections.assign(sites.size() * 3, 0.0f);
-    const auto chunks = static_cast<std::size_t>((static_cast<std::int64_t>(sites.size()) + kHairsPerChunk - 1) / kHairsPerChunk);
+    const auto chunks = static_cast<std::size_t>(
+        (static_cast<std::int64_t>(sites.size()) + kHairsPerChunk - 1) / kHairsPerChunk);
     partial.assign(chunks, std::vector<double>(static_cast<std::size_t>(layout.size()), 0.0));
   }
 
   // The overcoat's mean rest hair length (m): interpolated vertex lengths times the length scales.
   double meanOvercoatLength() const {
     const float* lengths = model.skin.furLengths();
-    const double mul = static_cast<double>(fur.params.lengthScale * fur.params.coats[fur::kOvercoat].lengthFactor);
+    const double mul =
+        static_cast<double>(fur.params.lengthScale * fur.params.coats[fur::kOvercoat].lengthFactor);
     double sum = 0.0, n = 0.0;
     for (const HairSite& h : sites) {
       if (h.coat != fur::kOvercoat) continue;
-      sum += mul * static_cast<double>(h.b[0] * lengths[h.v[0]] + h.b[1] * lengths[h.v[1]] + h.b[2] * lengths[h.v[2]]);
+      sum += mul * static_cast<double>(h.b[0] * lengths[h.v[0]] + h.b[1] * lengths[h.v[1]] +
+                                       h.b[2] * lengths[h.v[2]]);
       n += 1.0;
     }
     return n > 0 ? sum / n : 0.0;
@@ -186,11 +195,13 @@ struct Run {
     out.held = held;
     // Body orientation: the orientation segment's rotation relative to its bind pose.
     const auto seg = static_cast<std::size_t>(orientationSegment);
-    const Eigen::Matrix3f rel = frame.body.world[seg].linear() * model.body.inverseBind[seg].linear();
+    const Eigen::Matrix3f rel =
+        frame.body.world[seg].linear() * model.body.inverseBind[seg].linear();
     const Eigen::Vector3d up = (rel * Eigen::Vector3f::UnitZ()).cast<double>().normalized();
     const Eigen::Vector3d U = fur.params.up.cast<double>().normalized();
     out.bodyUp = up;
-    const double pitch0 = std::atan2(up.x(), up.z()) * kDeg, roll0 = std::atan2(-up.y(), up.z()) * kDeg;
+    const double pitch0 = std::atan2(up.x(), up.z()) * kDeg,
+                 roll0 = std::atan2(-up.y(), up.z()) * kDeg;
     pitch = first ? pitch0 : unwrapDeg(pitch0, pitch);
     roll = first ? roll0 : unwrapDeg(roll0, roll);
     out.pitchDeg = pitch;
@@ -204,82 +215,93 @@ struct Run {
     const double invDt = options.clock.fps;
     const Eigen::Vector3f upF = up.cast<float>(), Uf = U.cast<float>();
     const Layout L = layout;
-    parallelForChunks(static_cast<std::int64_t>(sites.size()), kHairsPerChunk, [&](std::int64_t b, std::int64_t e) {
-      std::vector<double>& acc = partial[static_cast<std::size_t>(b / kHairsPerChunk)];
-      std::fill(acc.begin(), acc.end(), 0.0);
-      for (std::int64_t i = b; i < e; ++i) {
-        const HairSite& h = sites[static_cast<std::size_t>(i)];
-        const fur::CoatShape& shape = shapes[static_cast<std::size_t>(h.coat)];
-        // Sec. 3.2: the hair's inputs interpolated at its root, then sec. 3.4-3.5 (hair_math.h).
-        fur::HairInput<float> in{};
-        auto mix = [&](auto get) { return fur::barycentricMix(h.b[0], h.b[1], h.b[2], get(h.v[0]), get(h.v[1]), get(h.v[2])); };
-        in.root = {mix([&](int v) { return d.positions[static_cast<std::size_t>(v)].x(); }),
-                   mix([&](int v) { return d.positions[static_cast<std::size_t>(v)].y(); }),
-                   mix([&](int v) { return d.positions[static_cast<std::size_t>(v)].z(); })};
-        in.normalSum = {mix([&](int v) { return d.normals[static_cast<std::size_t>(v)].x(); }),
-                        mix([&](int v) { return d.normals[static_cast<std::size_t>(v)].y(); }),
-                        mix([&](int v) { return d.normals[static_cast<std::size_t>(v)].z(); })};
-        in.directionSum = {mix([&](int v) { return d.directions[static_cast<std::size_t>(v)].x(); }),
-                           mix([&](int v) { return d.directions[static_cast<std::size_t>(v)].y(); }),
-                           mix([&](int v) { return d.directions[static_cast<std::size_t>(v)].z(); })};
-        in.length = mix([&](int v) { return lengths[v]; });
-        in.xi = {h.xi[0], h.xi[1], h.xi[2]};
-        in.phase = h.phase;
-        fur::HairFrame<float> f;
-        fur::hairFrame(shape, in, f);
-        if (!(f.length > 0.0f)) continue;
-        const Eigen::Vector3f R(f.root.x, f.root.y, f.root.z);
-        const Eigen::Vector3f dT(f.dTilde.x, f.dTilde.y, f.dTilde.z);
-        const Eigen::Vector3f eQs(f.e.x, f.e.y, f.e.z);
-        Eigen::Vector3f ends[2] = {eQs, eQs};
-        if (dynamic) {
-          const std::int64_t n = state.rootCounts[static_cast<std::size_t>(h.coat)];
-          const float* s = state.coats[static_cast<std::size_t>(h.coat)].data();
-          const Eigen::Vector3f u(s[h.root], s[n + h.root], s[2 * n + h.root]);
-          const Eigen::Vector3f T(s[6 * n + h.root], s[7 * n + h.root], s[8 * n + h.root]);
-          const Eigen::Vector3f y = (T - R) + u;
-          if (y.squaredNorm() > 1e-20f) ends[1] = y.normalized();
-        }
-        const double len = f.length;
-        float* prev = previousEnds.data() + 6 * i;
-        for (int m = 0; m < (dynamic ? 2 : 1); ++m) {
-          double* a = acc.data() + L.model(m);
-          const Eigen::Vector3f& ev = ends[m];
-          const double droop = angleDeg(static_cast<double>(ev.dot(dT)));
-          const Eigen::Vector3f E = R + ev * f.length;
-          a[0] += 1.0;
-          a[1] += droop;
-          a[2] += droop * droop;
-          a[3] += angleDeg(-static_cast<double>(ev.dot(Uf)));
-          a[4] += len * static_cast<double>(ev.dot(Uf));
-          a[5] += len * static_cast<double>((ev - dT).dot(upF));
-          if (hasPrevious)
-            a[6] += static_cast<double>((E - Eigen::Map<const Eigen::Vector3f>(prev + 3 * m)).norm()) * invDt;
-          Eigen::Map<Eigen::Vector3f>(prev + 3 * m) = E;
-          if (h.group >= 0) {
-            a[7 + 3 * h.group] += 1.0;
-            a[8 + 3 * h.group] += droop;
-            a[9 + 3 * h.group] += droop * droop;
+    parallelForChunks(
+        static_cast<std::int64_t>(sites.size()), kHairsPerChunk,
+        [&](std::int64_t b, std::int64_t e) {
+          std::vector<double>& acc = partial[static_cast<std::size_t>(b / kHairsPerChunk)];
+          std::fill(acc.begin(), acc.end(), 0.0);
+          for (std::int64_t i = b; i < e; ++i) {
+            const HairSite& h = sites[static_cast<std::size_t>(i)];
+            const fur::CoatShape& shape = shapes[static_cast<std::size_t>(h.coat)];
+            // Sec. 3.2: the hair's inputs interpolated at its root, then sec. 3.4-3.5
+            // (hair_math.h).
+            fur::HairInput<float> in{};
+            auto mix = [&](auto get) {
+              return fur::barycentricMix(h.b[0], h.b[1], h.b[2], get(h.v[0]), get(h.v[1]),
+                                         get(h.v[2]));
+            };
+            in.root = {mix([&](int v) { return d.positions[static_cast<std::size_t>(v)].x(); }),
+                       mix([&](int v) { return d.positions[static_cast<std::size_t>(v)].y(); }),
+                       mix([&](int v) { return d.positions[static_cast<std::size_t>(v)].z(); })};
+            in.normalSum = {mix([&](int v) { return d.normals[static_cast<std::size_t>(v)].x(); }),
+                            mix([&](int v) { return d.normals[static_cast<std::size_t>(v)].y(); }),
+                            mix([&](int v) { return d.normals[static_cast<std::size_t>(v)].z(); })};
+            in.directionSum = {
+                mix([&](int v) { return d.directions[static_cast<std::size_t>(v)].x(); }),
+                mix([&](int v) { return d.directions[static_cast<std::size_t>(v)].y(); }),
+                mix([&](int v) { return d.directions[static_cast<std::size_t>(v)].z(); })};
+            in.length = mix([&](int v) { return lengths[v]; });
+            in.xi = {h.xi[0], h.xi[1], h.xi[2]};
+            in.phase = h.phase;
+            fur::HairFrame<float> f;
+            fur::hairFrame(shape, in, f);
+            if (!(f.length > 0.0f)) continue;
+            const Eigen::Vector3f R(f.root.x, f.root.y, f.root.z);
+            const Eigen::Vector3f dT(f.dTilde.x, f.dTilde.y, f.dTilde.z);
+            const Eigen::Vector3f eQs(f.e.x, f.e.y, f.e.z);
+            Eigen::Vector3f ends[2] = {eQs, eQs};
+            if (dynamic) {
+              const std::int64_t n = state.rootCounts[static_cast<std::size_t>(h.coat)];
+              const float* s = state.coats[static_cast<std::size_t>(h.coat)].data();
+              const Eigen::Vector3f u(s[h.root], s[n + h.root], s[2 * n + h.root]);
+              const Eigen::Vector3f T(s[6 * n + h.root], s[7 * n + h.root], s[8 * n + h.root]);
+              const Eigen::Vector3f y = (T - R) + u;
+              if (y.squaredNorm() > 1e-20f) ends[1] = y.normalized();
+            }
+            const double len = f.length;
+            float* prev = previousEnds.data() + 6 * i;
+            for (int m = 0; m < (dynamic ? 2 : 1); ++m) {
+              double* a = acc.data() + L.model(m);
+              const Eigen::Vector3f& ev = ends[m];
+              const double droop = angleDeg(static_cast<double>(ev.dot(dT)));
+              const Eigen::Vector3f E = R + ev * f.length;
+              a[0] += 1.0;
+              a[1] += droop;
+              a[2] += droop * droop;
+              a[3] += angleDeg(-static_cast<double>(ev.dot(Uf)));
+              a[4] += len * static_cast<double>(ev.dot(Uf));
+              a[5] += len * static_cast<double>((ev - dT).dot(upF));
+              if (hasPrevious)
+                a[6] += static_cast<double>(
+                            (E - Eigen::Map<const Eigen::Vector3f>(prev + 3 * m)).norm()) *
+                        invDt;
+              Eigen::Map<Eigen::Vector3f>(prev + 3 * m) = E;
+              if (h.group >= 0) {
+                a[7 + 3 * h.group] += 1.0;
+                a[8 + 3 * h.group] += droop;
+                a[9 + 3 * h.group] += droop * droop;
+              }
+            }
+            if (dynamic) {
+              acc[static_cast<std::size_t>(L.lag())] +=
+                  angleDeg(static_cast<double>(ends[1].dot(eQs)));
+              const Eigen::Vector3f deviation = (ends[1] - eQs) * f.length;
+              acc[static_cast<std::size_t>(L.offset())] += static_cast<double>(deviation.norm());
+              float* sd = stopDirections.data() + 3 * i;
+              if (stop == 1) {
+                const float n = deviation.norm();
+                const Eigen::Vector3f unit =
+                    n > 0.0f ? Eigen::Vector3f(deviation / n) : Eigen::Vector3f::Zero();
+                sd[0] = unit.x();
+                sd[1] = unit.y();
+                sd[2] = unit.z();
+              }
+              if (stop > 0)
+                acc[static_cast<std::size_t>(L.response())] +=
+                    static_cast<double>(deviation.dot(Eigen::Map<const Eigen::Vector3f>(sd)));
+            }
           }
-        }
-        if (dynamic) {
-          acc[static_cast<std::size_t>(L.lag())] += angleDeg(static_cast<double>(ends[1].dot(eQs)));
-          const Eigen::Vector3f deviation = (ends[1] - eQs) * f.length;
-          acc[static_cast<std::size_t>(L.offset())] += static_cast<double>(deviation.norm());
-          float* sd = stopDirections.data() + 3 * i;
-          if (stop == 1) {
-            const float n = deviation.norm();
-            const Eigen::Vector3f unit = n > 0.0f ? Eigen::Vector3f(deviation / n) : Eigen::Vector3f::Zero();
-            sd[0] = unit.x();
-            sd[1] = unit.y();
-            sd[2] = unit.z();
-          }
-          if (stop > 0)
-            acc[static_cast<std::size_t>(L.response())] +=
-                static_cast<double>(deviation.dot(Eigen::Map<const Eigen::Vector3f>(sd)));
-        }
-      }
-    });
+        });
     std::vector<double> total(static_cast<std::size_t>(layout.size()), 0.0);
     for (const std::vector<double>& p : partial)  // in chunk order: deterministic
       for (std::size_t k = 0; k < total.size(); ++k) total[k] += p[k];
@@ -289,7 +311,8 @@ struct Run {
       const double n = total[static_cast<std::size_t>(layout.model(1))];
       out.lagDeg = n > 0 ? total[static_cast<std::size_t>(layout.lag())] / n : 0.0;
       out.offsetMm = n > 0 ? total[static_cast<std::size_t>(layout.offset())] / n * 1e3 : 0.0;
-      out.stopResponseMm = n > 0 ? total[static_cast<std::size_t>(layout.response())] / n * 1e3 : 0.0;
+      out.stopResponseMm =
+          n > 0 ? total[static_cast<std::size_t>(layout.response())] / n * 1e3 : 0.0;
     }
     first = false;
     return out;
@@ -329,15 +352,18 @@ SettlingAnalysis settle(const AnalysisResult& r, const AnalysisOptions& o, doubl
   s.springFrequencyHz = meanLength > 0.0 ? fur::hairFrequencyHz(cd, meanLength) : 0.0;
   s.springOvershootPercent = 100.0 * fur::overshootFraction(static_cast<double>(cd.dampingRatio));
   if (s.springFrequencyHz > 0.0)
-    s.springSettlingSeconds = fur::settlingTime(s.springFrequencyHz, static_cast<double>(cd.dampingRatio), o.settleTolerance);
+    s.springSettlingSeconds = fur::settlingTime(
+        s.springFrequencyHz, static_cast<double>(cd.dampingRatio), o.settleTolerance);
   return s;
 }
 
 void checkOptions(const Model& model, const AnalysisOptions& o) {
   PELAGE_CHECK(o.clip >= 0 && o.clip < static_cast<int>(model.clips.size()), "clip ", o.clip);
-  if (!(o.clock.fps >= 1.0 && o.clock.fps <= 1000.0)) inputError("--fps ", o.clock.fps, " is out of range [1, 1000]");
+  if (!(o.clock.fps >= 1.0 && o.clock.fps <= 1000.0))
+    inputError("--fps ", o.clock.fps, " is out of range [1, 1000]");
   if (o.firstFrame < 0 || o.lastFrame < o.firstFrame || o.lastFrame > 10000000)
-    inputError("--frames ", o.firstFrame, ":", o.lastFrame, " is not a range A:B with 0 <= A <= B <= 10000000");
+    inputError("--frames ", o.firstFrame, ":", o.lastFrame,
+               " is not a range A:B with 0 <= A <= B <= 10000000");
   if (!(o.holdSeconds >= 0.0 && o.holdSeconds <= 1000.0))
     inputError("--hold ", o.holdSeconds, " is out of range [0, 1000] seconds");
   if (!(o.settleTolerance > 0.0 && o.settleTolerance < 1.0))
@@ -368,7 +394,8 @@ void appendEndHeader(std::string& h, const std::string& p, const std::vector<std
 }
 
 void appendEndRow(std::string& row, const EndStats& e) {
-  for (double v : {e.all.droopMeanDeg, e.all.droopStdDeg, e.gravityAngleDeg, e.tipHeightMm, e.droopBodyUpMm, e.tipSpeed})
+  for (double v : {e.all.droopMeanDeg, e.all.droopStdDeg, e.gravityAngleDeg, e.tipHeightMm,
+                   e.droopBodyUpMm, e.tipSpeed})
     row += "," + number(v);
   for (const DroopStats& g : e.groups) row += "," + number(g.droopMeanDeg);
   for (const DroopStats& g : e.groups) row += "," + number(g.droopStdDeg);
@@ -379,7 +406,8 @@ double parseNumber(const std::string& text, const std::string& option, const std
   const char* end = text.data() + text.size();
   const auto [ptr, ec] = std::from_chars(text.data(), end, v);
   if (text.empty() || ec != std::errc() || ptr != end || !std::isfinite(v))
-    inputError(option, " '", spec, "': '", text, "' is not a number (expected NAME=A:B:N, e.g. stiffness=0.2:1.0:5)");
+    inputError(option, " '", spec, "': '", text,
+               "' is not a number (expected NAME=A:B:N, e.g. stiffness=0.2:1.0:5)");
   return v;
 }
 
@@ -392,22 +420,26 @@ AnalysisResult analyzeClip(const Model& model, const Fur& fur, const AnalysisOpt
   result.fps = options.clock.fps;
   result.dynamics = options.dynamics;
   Run run(model, fur, options, result.groupNames);
-  result.orientationSegment = model.body.segments[static_cast<std::size_t>(run.orientationSegment)].name;
+  result.orientationSegment =
+      model.body.segments[static_cast<std::size_t>(run.orientationSegment)].name;
   if (options.dynamics)
-    preRollDynamics(model, fur, options.dynamicsParams, options.clip, options.firstFrame, options.clock, run.state,
-                    run.frame);
+    preRollDynamics(model, fur, options.dynamicsParams, options.clip, options.firstFrame,
+                    options.clock, run.state, run.frame);
   const Eigen::Vector3f camera = Eigen::Vector3f::Zero();
   for (int f = options.firstFrame; f <= options.lastFrame; ++f) {
     evaluateClipFrame(model, options.clip, f / options.clock.fps, run.frame);
     if (options.dynamics)
-      stepClipDynamics(model, fur, options.dynamicsParams, options.clock, camera, false, run.state, run.frame);
+      stepClipDynamics(model, fur, options.dynamicsParams, options.clock, camera, false, run.state,
+                       run.frame);
     const auto holdFrames = static_cast<int>(std::lround(options.holdSeconds * options.clock.fps));
-    result.frames.push_back(run.measure(f, false, f == options.lastFrame && holdFrames > 0 ? 1 : 0));
+    result.frames.push_back(
+        run.measure(f, false, f == options.lastFrame && holdFrames > 0 ? 1 : 0));
   }
   const auto holdFrames = static_cast<int>(std::lround(options.holdSeconds * options.clock.fps));
   for (int k = 1; k <= holdFrames; ++k) {  // the last pose, still: the skin in run.frame stays
     if (options.dynamics)
-      stepClipDynamics(model, fur, options.dynamicsParams, options.clock, camera, false, run.state, run.frame);
+      stepClipDynamics(model, fur, options.dynamicsParams, options.clock, camera, false, run.state,
+                       run.frame);
     result.frames.push_back(run.measure(options.lastFrame + k, true, 2));
   }
   result.settling = settle(result, options, run.meanOvercoatLength());
@@ -423,8 +455,10 @@ std::string analysisCsv(const AnalysisResult& r) {
   }
   out += "\n";
   for (const FrameAnalysis& f : r.frames) {
-    std::string row = std::to_string(f.frame) + "," + number(f.seconds) + "," + (f.held ? "1" : "0");
-    for (double v : {f.bodyUp.x(), f.bodyUp.y(), f.bodyUp.z(), f.pitchDeg, f.rollDeg, f.tiltDeg}) row += "," + number(v);
+    std::string row =
+        std::to_string(f.frame) + "," + number(f.seconds) + "," + (f.held ? "1" : "0");
+    for (double v : {f.bodyUp.x(), f.bodyUp.y(), f.bodyUp.z(), f.pitchDeg, f.rollDeg, f.tiltDeg})
+      row += "," + number(v);
     appendEndRow(row, f.quasiStatic);
     if (r.dynamics) {
       appendEndRow(row, f.dynamic);
@@ -437,14 +471,17 @@ std::string analysisCsv(const AnalysisResult& r) {
 
 std::vector<double> SweepSpec::values() const {
   std::vector<double> v;
-  for (int i = 0; i < count; ++i) v.push_back(count == 1 ? from : from + (to - from) * i / (count - 1));
+  for (int i = 0; i < count; ++i)
+    v.push_back(count == 1 ? from : from + (to - from) * i / (count - 1));
   return v;
 }
 
 SweepSpec parseSweep(const std::string& text, const std::string& option) {
   SweepSpec s;
   const std::size_t eq = text.find('=');
-  const std::string form = " (expected NAME=A:B:N with NAME stiffness [0, 1], frequency (0, 100] Hz or damping [0, 10], N in [1, 100])";
+  const std::string form =
+      " (expected NAME=A:B:N with NAME stiffness [0, 1], frequency (0, 100] Hz or damping [0, 10], "
+      "N in [1, 100])";
   if (eq == std::string::npos) inputError(option, " '", text, "' has no '='", form);
   s.parameter = text.substr(0, eq);
   const std::string rest = text.substr(eq + 1);
@@ -455,7 +492,8 @@ SweepSpec parseSweep(const std::string& text, const std::string& option) {
   s.from = parseNumber(rest.substr(0, c1), option, text);
   s.to = parseNumber(rest.substr(c1 + 1, c2 - c1 - 1), option, text);
   const double n = parseNumber(rest.substr(c2 + 1), option, text);
-  if (!(n >= 1 && n <= 100 && n == std::floor(n))) inputError(option, " '", text, "': N = ", n, " is not a whole number in [1, 100]");
+  if (!(n >= 1 && n <= 100 && n == std::floor(n)))
+    inputError(option, " '", text, "': N = ", n, " is not a whole number in [1, 100]");
   s.count = static_cast<int>(n);
   double lo = 0.0, hi = 0.0;
   bool openLow = false;
@@ -471,11 +509,13 @@ SweepSpec parseSweep(const std::string& text, const std::string& option) {
   }
   for (double v : {s.from, s.to})
     if (v > hi || (openLow ? v <= lo : v < lo))
-      inputError(option, " '", text, "': ", s.parameter, " ", v, " is out of range ", openLow ? "(" : "[", lo, ", ", hi, "]");
+      inputError(option, " '", text, "': ", s.parameter, " ", v, " is out of range ",
+                 openLow ? "(" : "[", lo, ", ", hi, "]");
   return s;
 }
 
-SweepResult sweepClip(const Model& model, const Fur& fur, const AnalysisOptions& options, const SweepSpec& spec) {
+SweepResult sweepClip(const Model& model, const Fur& fur, const AnalysisOptions& options,
+                      const SweepSpec& spec) {
   SweepResult out;
   out.spec = spec;
   for (double v : spec.values()) {
@@ -484,8 +524,10 @@ SweepResult sweepClip(const Model& model, const Fur& fur, const AnalysisOptions&
     for (int c = 0; c < fur::kCoatCount; ++c) {
       const auto ci = static_cast<std::size_t>(c);
       if (spec.parameter == "stiffness") varied.params.coats[ci].stiffness = static_cast<float>(v);
-      if (spec.parameter == "frequency") o.dynamicsParams.coats[ci].frequencyHz = static_cast<float>(v);
-      if (spec.parameter == "damping") o.dynamicsParams.coats[ci].dampingRatio = static_cast<float>(v);
+      if (spec.parameter == "frequency")
+        o.dynamicsParams.coats[ci].frequencyHz = static_cast<float>(v);
+      if (spec.parameter == "damping")
+        o.dynamicsParams.coats[ci].dampingRatio = static_cast<float>(v);
     }
     fur::validateFurParams(varied.params, "--sweep " + spec.parameter);
     out.runs.push_back(analyzeClip(model, varied, o));
@@ -499,12 +541,13 @@ std::string sweepCsv(const SweepResult& sweep) {
   const std::vector<double> values = sweep.spec.values();
   std::string out = "frame,time_s,held,pitch_deg,tilt_deg";
   for (const char* column : {"droop_mean_deg", "tip_height_mm"})
-    for (double v : values) out += std::string(",") + column + "[" + sweep.spec.parameter + "=" + number(v) + "]";
+    for (double v : values)
+      out += std::string(",") + column + "[" + sweep.spec.parameter + "=" + number(v) + "]";
   out += "\n";
   for (std::size_t i = 0; i < first.frames.size(); ++i) {
     const FrameAnalysis& f = first.frames[i];
-    std::string row = std::to_string(f.frame) + "," + number(f.seconds) + "," + (f.held ? "1" : "0") + "," +
-                      number(f.pitchDeg) + "," + number(f.tiltDeg);
+    std::string row = std::to_string(f.frame) + "," + number(f.seconds) + "," +
+                      (f.held ? "1" : "0") + "," + number(f.pitchDeg) + "," + number(f.tiltDeg);
     for (const AnalysisResult& r : sweep.runs) {
       const FrameAnalysis& g = r.frames[i];
       row += "," + number(r.dynamics ? g.dynamic.all.droopMeanDeg : g.quasiStatic.all.droopMeanDeg);

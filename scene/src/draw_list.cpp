@@ -13,7 +13,9 @@ namespace pelage::scene {
 namespace {
 
 constexpr float kPi = 3.14159265358979f;
-float radians(float deg) { return deg * kPi / 180.0f; }
+float radians(float deg) {
+  return deg * kPi / 180.0f;
+}
 
 // Whether `text` contains the lower-case `word`, ignoring case (no allocation: runs per frame).
 bool containsNoCase(std::string_view text, std::string_view word) {
@@ -35,7 +37,8 @@ int headSegment(const anatomy::Body& body) {
 
 // Centre and radius of the bounding sphere (about the box centre) of the selected vertices.
 template <typename Select>
-bool sphereOf(const std::vector<Eigen::Vector3f>& p, Select select, Eigen::Vector3f& center, float& radius) {
+bool sphereOf(const std::vector<Eigen::Vector3f>& p, Select select, Eigen::Vector3f& center,
+              float& radius) {
   Eigen::AlignedBox3f box;
   for (std::size_t v = 0; v < p.size(); ++v)
     if (select(v)) box.extend(p[v]);
@@ -56,19 +59,21 @@ float fitDistance(float radius, float fovYDegrees, float aspect) {
   return 1.1f * radius / std::sin(half);
 }
 
-Eigen::Vector3f direction(const Eigen::Vector3f& forward, float azimuthFromForwardDeg, float elevationDeg) {
+Eigen::Vector3f direction(const Eigen::Vector3f& forward, float azimuthFromForwardDeg,
+                          float elevationDeg) {
   const Eigen::Vector3f left = Eigen::Vector3f::UnitZ().cross(forward).normalized();
   const float az = radians(azimuthFromForwardDeg), el = radians(elevationDeg);
   return (std::cos(el) * (std::cos(az) * forward + std::sin(az) * left) +
-          std::sin(el) * Eigen::Vector3f::UnitZ()).normalized();
+          std::sin(el) * Eigen::Vector3f::UnitZ())
+      .normalized();
 }
 
 // Places `cam` (looking along -dir) as close as it can be with every corner of `box` inside the
-// view with a 10% margin, the box centred on screen: for a corner at lateral offsets (x, y) from the
-// view axis and height z above the box centre along dir, the eye distance D must satisfy
-// |x - cx| <= tan(halfX) (D - z) / 1.1 (and the same for y), where (cx, cy) centres the corners'
-// lateral extent. Tighter than the bounding sphere for long, thin creatures (a monkey with its tail
-// up), so the creature fills the view. Also sets the clip planes around the corners.
+// view with a 10% margin, the box centred on screen: for a corner at lateral offsets (x, y) from
+// the view axis and height z above the box centre along dir, the eye distance D must satisfy |x -
+// cx| <= tan(halfX) (D - z) / 1.1 (and the same for y), where (cx, cy) centres the corners' lateral
+// extent. Tighter than the bounding sphere for long, thin creatures (a monkey with its tail up), so
+// the creature fills the view. Also sets the clip planes around the corners.
 void fitBox(Camera& cam, const Eigen::AlignedBox3f& box, const Eigen::Vector3f& dir) {
   const Eigen::Vector3f f = -dir;
   Eigen::Vector3f s = f.cross(cam.up);
@@ -79,8 +84,10 @@ void fitBox(Camera& cam, const Eigen::AlignedBox3f& box, const Eigen::Vector3f& 
   float minX = 0, maxX = 0, minY = 0, maxY = 0;
   std::array<Eigen::Vector3f, 8> corners;
   for (int i = 0; i < 8; ++i) {
-    corners[static_cast<std::size_t>(i)] = box.corner(static_cast<Eigen::AlignedBox3f::CornerType>(i)) - c;
-    const float x = corners[static_cast<std::size_t>(i)].dot(s), y = corners[static_cast<std::size_t>(i)].dot(u);
+    corners[static_cast<std::size_t>(i)] =
+        box.corner(static_cast<Eigen::AlignedBox3f::CornerType>(i)) - c;
+    const float x = corners[static_cast<std::size_t>(i)].dot(s),
+                y = corners[static_cast<std::size_t>(i)].dot(u);
     minX = i ? std::min(minX, x) : x;
     maxX = i ? std::max(maxX, x) : x;
     minY = i ? std::min(minY, y) : y;
@@ -146,11 +153,16 @@ Eigen::Matrix4f Camera::projection() const {
 
 std::string_view cameraPresetName(CameraPreset preset) {
   switch (preset) {
-    case CameraPreset::Front: return "front";
-    case CameraPreset::Side: return "side";
-    case CameraPreset::ThreeQuarter: return "three-quarter";
-    case CameraPreset::Face: return "face";
-    case CameraPreset::Follow: return "follow";
+    case CameraPreset::Front:
+      return "front";
+    case CameraPreset::Side:
+      return "side";
+    case CameraPreset::ThreeQuarter:
+      return "three-quarter";
+    case CameraPreset::Face:
+      return "face";
+    case CameraPreset::Follow:
+      return "follow";
   }
   return "?";
 }
@@ -159,7 +171,8 @@ CameraPreset parseCameraPreset(std::string_view name) {
   for (CameraPreset p : {CameraPreset::Front, CameraPreset::Side, CameraPreset::ThreeQuarter,
                          CameraPreset::Face, CameraPreset::Follow})
     if (name == cameraPresetName(p)) return p;
-  inputError("unknown camera preset '", name, "' (accepted: front, side, three-quarter, face, follow)");
+  inputError("unknown camera preset '", name,
+             "' (accepted: front, side, three-quarter, face, follow)");
 }
 
 std::string_view hairShadingName(HairShading shading) {
@@ -180,9 +193,11 @@ Framing framingOf(const Model& model, const FrameState& frame, float maxHairLeng
   f.bounds = frame.skinBounds;
   f.bounds.extend(frame.skinBounds.min() - Eigen::Vector3f::Constant(margin));
   f.bounds.extend(frame.skinBounds.max() + Eigen::Vector3f::Constant(margin));
-  sphereOf(p, [](std::size_t) { return true; }, f.center, f.radius);
+  sphereOf(
+      p, [](std::size_t) { return true; }, f.center, f.radius);
   f.radius += margin;
-  f.rootPosition = frame.body.world.empty() ? f.center : Eigen::Vector3f(frame.body.world[0].translation());
+  f.rootPosition =
+      frame.body.world.empty() ? f.center : Eigen::Vector3f(frame.body.world[0].translation());
 
   const int head = headSegment(model.body);
   if (head >= 0) {
@@ -199,9 +214,11 @@ Framing framingOf(const Model& model, const FrameState& frame, float maxHairLeng
   const skin::Binding* bind = model.skin.bindings();
   bool found = false;
   if (faceRegion >= 0)
-    found = sphereOf(p, [&](std::size_t v) { return regions[v] == faceRegion; }, f.faceCenter, f.faceRadius);
+    found = sphereOf(
+        p, [&](std::size_t v) { return regions[v] == faceRegion; }, f.faceCenter, f.faceRadius);
   if (!found && head >= 0)
-    found = sphereOf(p, [&](std::size_t v) { return bind[v].segment[0] == head; }, f.faceCenter, f.faceRadius);
+    found = sphereOf(
+        p, [&](std::size_t v) { return bind[v].segment[0] == head; }, f.faceCenter, f.faceRadius);
   if (!found) {
     f.faceCenter = f.center;
     f.faceRadius = f.radius;
@@ -211,7 +228,8 @@ Framing framingOf(const Model& model, const FrameState& frame, float maxHairLeng
   return f;
 }
 
-Camera presetCamera(const Framing& framing, CameraPreset preset, int width, int height, float fovYDegrees) {
+Camera presetCamera(const Framing& framing, CameraPreset preset, int width, int height,
+                    float fovYDegrees) {
   PELAGE_CHECK(width > 0 && height > 0);
   Camera cam;
   cam.width = width;
@@ -221,9 +239,15 @@ Camera presetCamera(const Framing& framing, CameraPreset preset, int width, int 
   float radius = framing.radius;
   Eigen::Vector3f dir = Eigen::Vector3f::UnitX();
   switch (preset) {
-    case CameraPreset::Front: dir = direction(framing.forward, 0.0f, 10.0f); break;
-    case CameraPreset::Side: dir = direction(framing.forward, 90.0f, 5.0f); break;
-    case CameraPreset::ThreeQuarter: dir = direction(framing.forward, 45.0f, 20.0f); break;
+    case CameraPreset::Front:
+      dir = direction(framing.forward, 0.0f, 10.0f);
+      break;
+    case CameraPreset::Side:
+      dir = direction(framing.forward, 90.0f, 5.0f);
+      break;
+    case CameraPreset::ThreeQuarter:
+      dir = direction(framing.forward, 45.0f, 20.0f);
+      break;
     case CameraPreset::Face:
       dir = direction(framing.forward, 30.0f, 10.0f);
       target = framing.faceCenter;
@@ -236,8 +260,8 @@ Camera presetCamera(const Framing& framing, CameraPreset preset, int width, int 
       radius = framing.radius + (framing.center - framing.rootPosition).norm();
       break;
   }
-  const bool wholeBody =
-      preset == CameraPreset::Front || preset == CameraPreset::Side || preset == CameraPreset::ThreeQuarter;
+  const bool wholeBody = preset == CameraPreset::Front || preset == CameraPreset::Side ||
+                         preset == CameraPreset::ThreeQuarter;
   if (wholeBody && !framing.bounds.isEmpty()) {
     fitBox(cam, framing.bounds, dir);
     return cam;
@@ -245,7 +269,8 @@ Camera presetCamera(const Framing& framing, CameraPreset preset, int width, int 
   cam.target = target;
   cam.eye = target + dir * fitDistance(radius, fovYDegrees, cam.aspect());
   setClipPlanes(cam, framing.center, framing.radius);
-  if (preset == CameraPreset::Face) cam.nearMeters = std::min(cam.nearMeters, (cam.eye - target).norm() * 0.5f);
+  if (preset == CameraPreset::Face)
+    cam.nearMeters = std::min(cam.nearMeters, (cam.eye - target).norm() * 0.5f);
   return cam;
 }
 
@@ -257,7 +282,8 @@ Camera orbitCamera(const Orbit& orbit, int width, int height, float fovYDegrees)
   cam.target = orbit.target;
   const float az = radians(orbit.azimuthDegrees), el = radians(orbit.elevationDegrees);
   cam.eye = orbit.target + orbit.distanceMeters * Eigen::Vector3f(std::cos(el) * std::cos(az),
-                                                                  std::cos(el) * std::sin(az), std::sin(el));
+                                                                  std::cos(el) * std::sin(az),
+                                                                  std::sin(el));
   cam.nearMeters = orbit.distanceMeters * 0.02f;
   cam.farMeters = orbit.distanceMeters * 20.0f;
   return cam;
@@ -269,7 +295,8 @@ Orbit orbitOf(const Camera& camera) {
   const Eigen::Vector3f d = camera.eye - camera.target;
   o.distanceMeters = d.norm();
   if (o.distanceMeters > 0.0f) {
-    o.elevationDegrees = std::asin(std::clamp(d.z() / o.distanceMeters, -1.0f, 1.0f)) * 180.0f / kPi;
+    o.elevationDegrees =
+        std::asin(std::clamp(d.z() / o.distanceMeters, -1.0f, 1.0f)) * 180.0f / kPi;
     o.azimuthDegrees = std::atan2(d.y(), d.x()) * 180.0f / kPi;
   }
   return o;
@@ -304,8 +331,9 @@ Material furMaterial(const fur::Material& m) {
   return out;
 }
 
-void buildDrawList(const Model& model, const FrameState& frame, const Fur* fur, const Camera& camera,
-                   const Light& light, const DrawOptions& options, DrawList& list) {
+void buildDrawList(const Model& model, const FrameState& frame, const Fur* fur,
+                   const Camera& camera, const Light& light, const DrawOptions& options,
+                   DrawList& list) {
   list.camera = camera;
   list.light = light;
   list.hairShading = options.hairShading;
@@ -325,7 +353,9 @@ void buildDrawList(const Model& model, const FrameState& frame, const Fur* fur, 
   if (!fur || !options.drawFur) return;
   const bool cpu = options.hairSource == HairSource::Cpu;
   PELAGE_CHECK(!cpu || frame.cpuFur, "CPU hair source without evaluateFur(..., cpuHairs = true)");
-  if (!cpu) list.gpuFur = GpuFurInputs{&fur->params, &fur->roots, fur->generation, &model.skin, &frame.skin};
+  if (!cpu)
+    list.gpuFur =
+        GpuFurInputs{&fur->params, &fur->roots, fur->generation, &model.skin, &frame.skin};
   const float pad = maxHairLength(model, fur->params);
   list.bounds.extend(frame.skinBounds.min() - Eigen::Vector3f::Constant(pad));
   list.bounds.extend(frame.skinBounds.max() + Eigen::Vector3f::Constant(pad));
@@ -339,9 +369,15 @@ void buildDrawList(const Model& model, const FrameState& frame, const Fur* fur, 
     item.style = cp.style;
     item.material = furMaterial(cp.material);
     switch (cp.style) {
-      case fur::HairStyle::Line: item.strandPoints = 2; break;
-      case fur::HairStyle::Polyline: item.strandPoints = fur::kPolylinePoints; break;
-      case fur::HairStyle::Curve: item.strandPoints = cp.curvePoints; break;
+      case fur::HairStyle::Line:
+        item.strandPoints = 2;
+        break;
+      case fur::HairStyle::Polyline:
+        item.strandPoints = fur::kPolylinePoints;
+        break;
+      case fur::HairStyle::Curve:
+        item.strandPoints = cp.curvePoints;
+        break;
       case fur::HairStyle::Tube:
         item.strandPoints = cp.curvePoints;
         item.strandStride = cp.tubeSides;
@@ -354,8 +390,8 @@ void buildDrawList(const Model& model, const FrameState& frame, const Fur* fur, 
     item.source = options.hairSource;
     if (cpu) {
       const fur::HairBuffers& hb = frame.fur.coats[ci];
-      PELAGE_CHECK(hb.pointsPerHair == item.pointsPerHair(), "CPU hairs of coat ", c, " have ", hb.pointsPerHair,
-                   " points, the parameters ", item.pointsPerHair());
+      PELAGE_CHECK(hb.pointsPerHair == item.pointsPerHair(), "CPU hairs of coat ", c, " have ",
+                   hb.pointsPerHair, " points, the parameters ", item.pointsPerHair());
       item.positions = hb.positions.data();
       item.normals = hb.normals.data();
     }

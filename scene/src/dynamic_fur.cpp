@@ -11,9 +11,9 @@ int preRollStart(int firstFrame, const DynamicsClock& clock) {
   return std::max(0, firstFrame - clock.preRollFrames);
 }
 
-void preRollDynamics(const Model& model, const Fur& fur, const fur::DynamicsParams& dynamics, int clip,
-                     int firstFrame, const DynamicsClock& clock, fur::FurDynamicsState& state,
-                     FrameState& scratch) {
+void preRollDynamics(const Model& model, const Fur& fur, const fur::DynamicsParams& dynamics,
+                     int clip, int firstFrame, const DynamicsClock& clock,
+                     fur::FurDynamicsState& state, FrameState& scratch) {
   PELAGE_CHECK(clock.fps >= 1.0 && clock.fps <= 1000.0, "fps ", clock.fps);
   fur::resetFurDynamics(fur.roots, state);
   for (int f = preRollStart(firstFrame, clock); f < firstFrame; ++f) {
@@ -33,10 +33,11 @@ void stepClipDynamics(const Model& model, const Fur& fur, const fur::DynamicsPar
   }
   frame.furView = fur::makeFurView(model.skin, fur.params, frame.skin, cameraEye);
   frame.cullFactor = fur::cullingFactor(frame.furView);
-  fur::generateDynamicFur(model.skin, fur.roots, fur.params, dynamics, frame.skin, dt, frame.furView, state,
-                          frame.furWorkspace, frame.fur);
+  fur::generateDynamicFur(model.skin, fur.roots, fur.params, dynamics, frame.skin, dt,
+                          frame.furView, state, frame.furWorkspace, frame.fur);
   for (int c = 0; c < fur::kCoatCount; ++c)
-    frame.drawnHairs[static_cast<std::size_t>(c)] = frame.fur.coats[static_cast<std::size_t>(c)].drawn;
+    frame.drawnHairs[static_cast<std::size_t>(c)] =
+        frame.fur.coats[static_cast<std::size_t>(c)].drawn;
   frame.cpuFur = true;
 }
 

@@ -76,7 +76,9 @@ nlohmann::json vec(const Eigen::Vector3f& v) {
 nlohmann::json material(const std::string& name, const Eigen::Vector3f& color) {
   return {{"name", name},
           {"pbrMetallicRoughness",
-           {{"baseColorFactor", {color.x(), color.y(), color.z(), 1.0f}}, {"metallicFactor", 0.0f}, {"roughnessFactor", 0.8f}}}};
+           {{"baseColorFactor", {color.x(), color.y(), color.z(), 1.0f}},
+            {"metallicFactor", 0.0f},
+            {"roughnessFactor", 0.8f}}}};
 }
 
 }  // namespace
@@ -96,10 +98,12 @@ GlbCounts glbCounts(const Model& model, const fur::FurParams& params, const Fram
 
 GlbCounts writeFrameGlb(const std::string& path, const Model& model, const fur::FurParams& params,
                         const FrameState& state, const std::string& generator) {
-  static_assert(std::endian::native == std::endian::little && std::numeric_limits<float>::is_iec559);
+  static_assert(std::endian::native == std::endian::little &&
+                std::numeric_limits<float>::is_iec559);
   const skin::SkinMesh& skin = model.skin;
   const std::size_t nV = static_cast<std::size_t>(skin.numVertices());
-  PELAGE_CHECK(state.skin.positions.size() == nV && state.skin.normals.size() == nV, "frame not evaluated");
+  PELAGE_CHECK(state.skin.positions.size() == nV && state.skin.normals.size() == nV,
+               "frame not evaluated");
   const std::vector<CoatPart> parts = coatParts(params, state);
   GlbCounts counts = glbCounts(model, params, state);
 
@@ -107,12 +111,14 @@ GlbCounts writeFrameGlb(const std::string& path, const Model& model, const fur::
   nlohmann::json views = nlohmann::json::array(), accessors = nlohmann::json::array();
   std::uint64_t offset = 0;
   auto addView = [&](std::uint64_t bytes, int target) {
-    views.push_back({{"buffer", 0}, {"byteOffset", offset}, {"byteLength", bytes}, {"target", target}});
+    views.push_back(
+        {{"buffer", 0}, {"byteOffset", offset}, {"byteLength", bytes}, {"target", target}});
     offset += bytes;
     return static_cast<int>(views.size()) - 1;
   };
   auto addAccessor = [&](int view, int componentType, std::int64_t count, const char* type) {
-    accessors.push_back({{"bufferView", view}, {"componentType", componentType}, {"count", count}, {"type", type}});
+    accessors.push_back(
+        {{"bufferView", view}, {"componentType", componentType}, {"count", count}, {"type", type}});
     return static_cast<int>(accessors.size()) - 1;
   };
   auto setBounds = [&](int accessor, const Eigen::AlignedBox3f& box) {
@@ -123,9 +129,11 @@ GlbCounts writeFrameGlb(const std::string& path, const Model& model, const fur::
   nlohmann::json meshes = nlohmann::json::array(), nodes = nlohmann::json::array();
   nlohmann::json materials = nlohmann::json::array();
   materials.push_back(material("skin", skin.color));
-  const int skinPos = addAccessor(addView(nV * 12, kArrayBuffer), kFloat, static_cast<std::int64_t>(nV), "VEC3");
+  const int skinPos =
+      addAccessor(addView(nV * 12, kArrayBuffer), kFloat, static_cast<std::int64_t>(nV), "VEC3");
   setBounds(skinPos, state.skinBounds);
-  const int skinNrm = addAccessor(addView(nV * 12, kArrayBuffer), kFloat, static_cast<std::int64_t>(nV), "VEC3");
+  const int skinNrm =
+      addAccessor(addView(nV * 12, kArrayBuffer), kFloat, static_cast<std::int64_t>(nV), "VEC3");
   const int skinIdx = addAccessor(addView(skin.triangles.size() * 4, kElementArrayBuffer), kUint,
                                   static_cast<std::int64_t>(skin.triangles.size()), "SCALAR");
   meshes.push_back({{"name", "skin"},
@@ -146,17 +154,21 @@ GlbCounts writeFrameGlb(const std::string& path, const Model& model, const fur::
     Eigen::AlignedBox3f box;
     for (std::int64_t h = 0; h < p.hairs; ++h) {
       detail::hairCenterLine(b, p.layout, h, line.data());
-      for (int k = 0; k < K; ++k) box.extend(Eigen::Vector3f(line[static_cast<std::size_t>(k) * 3],
-                                                             line[static_cast<std::size_t>(k) * 3 + 1],
-                                                             line[static_cast<std::size_t>(k) * 3 + 2]));
+      for (int k = 0; k < K; ++k)
+        box.extend(Eigen::Vector3f(line[static_cast<std::size_t>(k) * 3],
+                                   line[static_cast<std::size_t>(k) * 3 + 1],
+                                   line[static_cast<std::size_t>(k) * 3 + 2]));
     }
     const std::string name = p.coat == fur::kOvercoat ? "overcoat" : "undercoat";
     if (p.vertices > std::numeric_limits<std::uint32_t>::max())
-      inputError(path, ": coat ", name, " has ", p.vertices, " hair vertices, more than a glTF index can address");
-    const int pos = addAccessor(addView(static_cast<std::uint64_t>(p.vertices) * 12, kArrayBuffer), kFloat, p.vertices, "VEC3");
+      inputError(path, ": coat ", name, " has ", p.vertices,
+                 " hair vertices, more than a glTF index can address");
+    const int pos = addAccessor(addView(static_cast<std::uint64_t>(p.vertices) * 12, kArrayBuffer),
+                                kFloat, p.vertices, "VEC3");
     setBounds(pos, box);
-    const int idx = addAccessor(addView(static_cast<std::uint64_t>(p.segments) * 8, kElementArrayBuffer), kUint,
-                                p.segments * 2, "SCALAR");
+    const int idx =
+        addAccessor(addView(static_cast<std::uint64_t>(p.segments) * 8, kElementArrayBuffer), kUint,
+                    p.segments * 2, "SCALAR");
     materials.push_back(material(name, cp.material.diffuse));
     meshes.push_back({{"name", name},
                       {"primitives",
@@ -182,7 +194,8 @@ GlbCounts writeFrameGlb(const std::string& path, const Model& model, const fur::
   while (json.size() % 4 != 0) json += ' ';
   const std::uint64_t total = 12 + 8 + json.size() + 8 + binBytes;
   if (total > std::numeric_limits<std::uint32_t>::max())
-    inputError(path, ": the frame needs ", total, " bytes, over glTF binary's 4 GiB limit (fewer hairs, or "
+    inputError(path, ": the frame needs ", total,
+               " bytes, over glTF binary's 4 GiB limit (fewer hairs, or "
                "--format usda/ply)");
   counts.bytes = total;
 

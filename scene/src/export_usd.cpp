@@ -37,8 +37,8 @@ class Spool {
   Spool(const std::string& output, const std::string& tag) : output_(output) {
     const fs::path p(output);
     const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
-    path_ = (dir / ("." + p.filename().string() + ".spool-" + tag + "-" + std::to_string(::getpid()) + "-" +
-                    std::to_string(spoolCounter++)))
+    path_ = (dir / ("." + p.filename().string() + ".spool-" + tag + "-" +
+                    std::to_string(::getpid()) + "-" + std::to_string(spoolCounter++)))
                 .string();
     file_ = std::fopen(path_.c_str(), "w+b");
     if (!file_) {
@@ -54,7 +54,8 @@ class Spool {
   Spool& operator=(const Spool&) = delete;
 
   void write(const std::string& text) {
-    if (!text.empty() && std::fwrite(text.data(), 1, text.size(), file_) != text.size()) fail(errno);
+    if (!text.empty() && std::fwrite(text.data(), 1, text.size(), file_) != text.size())
+      fail(errno);
   }
   // Appends the spooled text to `out`.
   void copyTo(AtomicFileWriter& out) {
@@ -199,9 +200,11 @@ UsdaWriter::~UsdaWriter() = default;
 void UsdaWriter::addFrame(int frame, const FrameState& state) {
   Impl& m = *impl_;
   PELAGE_CHECK(frame >= m.options.firstFrame && frame <= m.options.lastFrame && frame > m.lastAdded,
-               "frame ", frame, " after ", m.lastAdded, " in [", m.options.firstFrame, ", ", m.options.lastFrame, "]");
+               "frame ", frame, " after ", m.lastAdded, " in [", m.options.firstFrame, ", ",
+               m.options.lastFrame, "]");
   PELAGE_CHECK(state.cpuFur, "UsdaWriter::addFrame needs the frame's CPU hairs");
-  PELAGE_CHECK(state.skin.positions.size() == static_cast<std::size_t>(m.model->skin.numVertices()));
+  PELAGE_CHECK(state.skin.positions.size() ==
+               static_cast<std::size_t>(m.model->skin.numVertices()));
   if (m.first) {
     for (int c = 0; c < fur::kCoatCount; ++c) {
       const fur::HairBuffers& b = state.fur.coats[static_cast<std::size_t>(c)];
@@ -218,7 +221,10 @@ void UsdaWriter::addFrame(int frame, const FrameState& state) {
     }
     m.first = false;
   }
-  const auto key = [&](Text& t) { t << "            "; t.num(std::int64_t{frame}) << ": "; };
+  const auto key = [&](Text& t) {
+    t << "            ";
+    t.num(std::int64_t{frame}) << ": ";
+  };
 
   // The skin.
   {
@@ -226,12 +232,14 @@ void UsdaWriter::addFrame(int frame, const FrameState& state) {
     const std::vector<Eigen::Vector3f>& n = state.skin.normals;
     Text t(m.skinPoints.get());
     key(t);
-    pointArray(t, static_cast<std::int64_t>(p.size()), [&](std::int64_t i) { return p[static_cast<std::size_t>(i)].data(); });
+    pointArray(t, static_cast<std::int64_t>(p.size()),
+               [&](std::int64_t i) { return p[static_cast<std::size_t>(i)].data(); });
     t << ",\n";
     t.flush();
     Text tn(m.skinNormals.get());
     key(tn);
-    pointArray(tn, static_cast<std::int64_t>(n.size()), [&](std::int64_t i) { return n[static_cast<std::size_t>(i)].data(); });
+    pointArray(tn, static_cast<std::int64_t>(n.size()),
+               [&](std::int64_t i) { return n[static_cast<std::size_t>(i)].data(); });
     tn << ",\n";
     tn.flush();
     Text te(m.skinExtent.get());
@@ -241,7 +249,8 @@ void UsdaWriter::addFrame(int frame, const FrameState& state) {
   // The coats: every root's hair each frame (no culling), so the curve counts never change.
   for (CoatOut& co : m.coats) {
     const fur::HairBuffers& b = state.fur.coats[static_cast<std::size_t>(co.coat)];
-    PELAGE_CHECK(b.drawn == co.curves, "coat ", co.name, " has ", b.drawn, " hairs in frame ", frame, ", ", co.curves,
+    PELAGE_CHECK(b.drawn == co.curves, "coat ", co.name, " has ", b.drawn, " hairs in frame ",
+                 frame, ", ", co.curves,
                  " in the first: export needs every hair in every frame (culling off)");
     const int V = co.layout.curveVertices;
     m.curve.resize(static_cast<std::size_t>(V) * 3);
@@ -255,7 +264,8 @@ void UsdaWriter::addFrame(int frame, const FrameState& state) {
         const std::int64_t i = h * V + v;
         if (i > 0) t << ((i % 8) == 0 ? ",\n                " : ", ");
         t.tuple(m.curve.data() + v * 3);
-        box.extend(Eigen::Vector3f(m.curve[static_cast<std::size_t>(v) * 3], m.curve[static_cast<std::size_t>(v) * 3 + 1],
+        box.extend(Eigen::Vector3f(m.curve[static_cast<std::size_t>(v) * 3],
+                                   m.curve[static_cast<std::size_t>(v) * 3 + 1],
                                    m.curve[static_cast<std::size_t>(v) * 3 + 2]));
       }
     }
@@ -288,9 +298,11 @@ UsdExportCounts UsdaWriter::finish() {
   };
   std::string doc = m.options.comment;
   std::replace(doc.begin(), doc.end(), '"', '\'');
-  t << "#usda 1.0\n(\n    defaultPrim = \"" << root << "\"\n    doc = \"\"\"" << doc << "\"\"\"\n    endTimeCode = ";
+  t << "#usda 1.0\n(\n    defaultPrim = \"" << root << "\"\n    doc = \"\"\"" << doc
+    << "\"\"\"\n    endTimeCode = ";
   t.num(std::int64_t{m.options.lastFrame}) << "\n    framesPerSecond = ";
-  t.num(static_cast<float>(m.options.framesPerSecond)) << "\n    metersPerUnit = 1\n    startTimeCode = ";
+  t.num(static_cast<float>(m.options.framesPerSecond))
+      << "\n    metersPerUnit = 1\n    startTimeCode = ";
   t.num(std::int64_t{m.options.firstFrame}) << "\n    timeCodesPerSecond = ";
   t.num(static_cast<float>(m.options.framesPerSecond)) << "\n    upAxis = \"Z\"\n)\n\n";
   t << "def Xform \"" << root << "\" (\n    kind = \"component\"\n)\n{\n";
@@ -315,7 +327,8 @@ UsdExportCounts UsdaWriter::finish() {
   t << "        }\n        point3f[] points.timeSamples = {\n";
   emit();
   m.skinPoints->copyTo(out);
-  t << "        }\n        normal3f[] normals (\n            interpolation = \"vertex\"\n        )\n"
+  t << "        }\n        normal3f[] normals (\n            interpolation = \"vertex\"\n        "
+       ")\n"
        "        normal3f[] normals.timeSamples = {\n";
   emit();
   m.skinNormals->copyTo(out);
@@ -353,7 +366,8 @@ UsdExportCounts UsdaWriter::finish() {
       t << "] (\n            interpolation = \"varying\"\n        )\n";
     } else {
       t << "        float[] widths = [";
-      t.num(2.0f * cp.tubeRadiusMeters) << "] (\n            interpolation = \"constant\"\n        )\n";
+      t.num(2.0f * cp.tubeRadiusMeters)
+          << "] (\n            interpolation = \"constant\"\n        )\n";
     }
     t << "        float3[] extent.timeSamples = {\n";
     emit();

@@ -19,8 +19,8 @@ Fur growFur(const Model& model, fur::FurParams params, const std::string& source
 }
 
 bool rootsDiffer(const fur::FurParams& a, const fur::FurParams& b) {
-  return a.hairs != b.hairs || a.densityPerM2 != b.densityPerM2 || a.undercoatShare != b.undercoatShare ||
-         a.seed != b.seed;
+  return a.hairs != b.hairs || a.densityPerM2 != b.densityPerM2 ||
+         a.undercoatShare != b.undercoatShare || a.seed != b.seed;
 }
 
 float maxHairLength(const Model& model, const fur::FurParams& params) {
@@ -36,8 +36,8 @@ float maxHairLength(const Model& model, const fur::FurParams& params) {
 }
 
 void evaluateFrame(const Model& model, const anatomy::Pose& pose, FrameState& frame) {
-  PELAGE_CHECK(static_cast<int>(pose.local.size()) == model.body.size(), "pose has ", pose.local.size(),
-               " segments, body ", model.body.size());
+  PELAGE_CHECK(static_cast<int>(pose.local.size()) == model.body.size(), "pose has ",
+               pose.local.size(), " segments, body ", model.body.size());
   if (&frame.pose != &pose) frame.pose.local.assign(pose.local.begin(), pose.local.end());
   anatomy::forwardKinematics(model.body, frame.pose, frame.body);
   skin::deformSkin(model.skin, frame.body, frame.skin);
@@ -48,22 +48,26 @@ void evaluateFrame(const Model& model, const anatomy::Pose& pose, FrameState& fr
 }
 
 void evaluateClipFrame(const Model& model, int clip, double seconds, FrameState& frame) {
-  PELAGE_CHECK(clip >= 0 && clip < static_cast<int>(model.clips.size()), "clip ", clip, " of ", model.clips.size());
-  animation::sampleClip(model.clips[static_cast<std::size_t>(clip)], model.body, seconds, frame.pose);
+  PELAGE_CHECK(clip >= 0 && clip < static_cast<int>(model.clips.size()), "clip ", clip, " of ",
+               model.clips.size());
+  animation::sampleClip(model.clips[static_cast<std::size_t>(clip)], model.body, seconds,
+                        frame.pose);
   evaluateFrame(model, frame.pose, frame);
 }
 
-void evaluateFur(const Model& model, const Fur& fur, const Eigen::Vector3f& cameraEye, bool cpuHairs,
-                 FrameState& frame) {
+void evaluateFur(const Model& model, const Fur& fur, const Eigen::Vector3f& cameraEye,
+                 bool cpuHairs, FrameState& frame) {
   PELAGE_CHECK(frame.skin.positions.size() == static_cast<std::size_t>(model.skin.numVertices()),
                "evaluateFur before evaluateFrame");
   frame.furView = fur::makeFurView(model.skin, fur.params, frame.skin, cameraEye);
   frame.cullFactor = fur::cullingFactor(frame.furView);
   if (cpuHairs) {
     // Van Gelder & Wilhelms 1997, sec. 3.2 to 3.8 on the CPU (fur::generateFur).
-    fur::generateFur(model.skin, fur.roots, fur.params, frame.skin, frame.furView, frame.furWorkspace, frame.fur);
+    fur::generateFur(model.skin, fur.roots, fur.params, frame.skin, frame.furView,
+                     frame.furWorkspace, frame.fur);
     for (int c = 0; c < fur::kCoatCount; ++c)
-      frame.drawnHairs[static_cast<std::size_t>(c)] = frame.fur.coats[static_cast<std::size_t>(c)].drawn;
+      frame.drawnHairs[static_cast<std::size_t>(c)] =
+          frame.fur.coats[static_cast<std::size_t>(c)].drawn;
     frame.cpuFur = true;
     return;
   }
@@ -71,10 +75,11 @@ void evaluateFur(const Model& model, const Fur& fur, const Eigen::Vector3f& came
   for (int c = 0; c < fur::kCoatCount; ++c) {
     const auto ci = static_cast<std::size_t>(c);
     const fur::CoatRoots& cr = fur.roots.coats[ci];
-    frame.drawnHairs[ci] = frame.cullFactor > 1.0f
-                               ? fur::computeDrawnStart(cr, fur::coatSeed(fur.roots.seed, c), frame.cullFactor,
-                                                        frame.drawnStartScratch[ci])
-                               : cr.size();
+    frame.drawnHairs[ci] =
+        frame.cullFactor > 1.0f
+            ? fur::computeDrawnStart(cr, fur::coatSeed(fur.roots.seed, c), frame.cullFactor,
+                                     frame.drawnStartScratch[ci])
+            : cr.size();
   }
   frame.cpuFur = false;
 }

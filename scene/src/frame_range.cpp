@@ -17,14 +17,17 @@ bool parseInt(std::string_view s, int& out) {
 FrameRange parseFrameRange(std::string_view text, std::string_view option) {
   FrameRange r;
   const std::size_t colon = text.find(':');
-  const bool ok = colon == std::string_view::npos
-                      ? parseInt(text, r.first) && ((r.last = r.first), true)
-                      : parseInt(text.substr(0, colon), r.first) && parseInt(text.substr(colon + 1), r.last);
+  const bool ok =
+      colon == std::string_view::npos
+          ? parseInt(text, r.first) && ((r.last = r.first), true)
+          : parseInt(text.substr(0, colon), r.first) && parseInt(text.substr(colon + 1), r.last);
   if (!ok)
     inputError(option, " '", text,
-               "' is not a frame range FIRST:LAST (inclusive frame numbers, e.g. 0:99) or a single frame number");
+               "' is not a frame range FIRST:LAST (inclusive frame numbers, e.g. 0:99) or a single "
+               "frame number");
   if (r.first < 0 || r.last > kMaxFrameNumber || r.first > r.last)
-    inputError(option, " ", r.first, ":", r.last, " is out of range: need 0 <= FIRST <= LAST <= ", kMaxFrameNumber);
+    inputError(option, " ", r.first, ":", r.last,
+               " is out of range: need 0 <= FIRST <= LAST <= ", kMaxFrameNumber);
   return r;
 }
 

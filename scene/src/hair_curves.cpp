@@ -28,9 +28,11 @@ CurveLayout curveLayout(const fur::CoatParams& coat) {
   return l;
 }
 
-void hairCenterLine(const fur::HairBuffers& b, const CurveLayout& layout, std::int64_t h, float* out) {
+void hairCenterLine(const fur::HairBuffers& b, const CurveLayout& layout, std::int64_t h,
+                    float* out) {
   const int K = layout.centerPoints, M = layout.ringSides;
-  PELAGE_CHECK(b.pointsPerHair == K * M, "hair buffers of ", b.pointsPerHair, " points, layout ", K, " x ", M);
+  PELAGE_CHECK(b.pointsPerHair == K * M, "hair buffers of ", b.pointsPerHair, " points, layout ", K,
+               " x ", M);
   const float* p = b.positions.data() + h * b.pointsPerHair * 3;
   if (M == 1) {
     std::copy(p, p + K * 3, out);
@@ -53,12 +55,13 @@ void bezierFromTessellation(const fur::CoatShape& shape, const float* points, fl
   double num[3] = {0.0, 0.0, 0.0}, den = 0.0;
   for (int k = 1; k < K - 1; ++k) {
     const double c1 = d(shape.curveC1[k]), c2 = d(shape.curveC2[k]);
-    for (int a = 0; a < 3; ++a) num[a] += c1 * (d(points[k * 3 + a]) - d(R[a]) - c2 * (d(E[a]) - d(R[a])));
+    for (int a = 0; a < 3; ++a)
+      num[a] += c1 * (d(points[k * 3 + a]) - d(R[a]) - c2 * (d(E[a]) - d(R[a])));
     den += c1 * c1;
   }
   for (int a = 0; a < 3; ++a) {
     const double lnp = den > 0.0 ? num[a] / den : 0.0;  // L n_p
-    const double e = d(E[a]) - d(R[a]);                // E - R
+    const double e = d(E[a]) - d(R[a]);                 // E - R
     control[0 + a] = R[a];
     control[3 + a] = static_cast<float>(d(R[a]) + lnp / 3.0);
     control[6 + a] = static_cast<float>(d(R[a]) + 2.0 * e / 3.0);

@@ -63,10 +63,12 @@ Model loadModel(const std::string& spec, const LoadOptions& options) {
     inputError("--triangles ", options.triangles, " is out of range [2000, 2000000]");
   const std::string ext = lowerExtension(spec);
   const bool gltf = ext == ".gltf" || ext == ".glb";
-  if (!gltf && (options.unitScale != 0.0f || options.noFurRegions || !options.segmentDirections.empty()))
+  if (!gltf &&
+      (options.unitScale != 0.0f || options.noFurRegions || !options.segmentDirections.empty()))
     inputError("--unit-scale, --no-fur and --directions apply to glTF models (.gltf/.glb) only");
   if (gltf) return fromGltf(spec, options);
-  if (spec.empty() || spec == kDefaultModel) return fromCreature(builtinCreature(kDefaultModel), options);
+  if (spec.empty() || spec == kDefaultModel)
+    return fromCreature(builtinCreature(kDefaultModel), options);
   if (ext == ".json") return fromCreature(anatomy::loadCreature(spec), options);
   if (ext == ".obj" || ext == ".ply" || ext == ".off" || ext == ".stl") {
     Model m;

@@ -25,15 +25,19 @@ using Color = std::array<std::uint8_t, 3>;
 
 class Canvas {
  public:
-  Canvas(int w, int h) : w_(w), h_(h), rgb_(static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 3, 255) {}
+  Canvas(int w, int h)
+      : w_(w), h_(h), rgb_(static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 3, 255) {}
 
   // Blends `c` over pixel (x, y) with coverage a in [0, 1].
   void blend(int x, int y, const Color& c, double a) {
     if (x < 0 || y < 0 || x >= w_ || y >= h_ || a <= 0.0) return;
     a = std::min(a, 1.0);
-    std::uint8_t* p = rgb_.data() + (static_cast<std::size_t>(y) * static_cast<std::size_t>(w_) + static_cast<std::size_t>(x)) * 3;
+    std::uint8_t* p = rgb_.data() + (static_cast<std::size_t>(y) * static_cast<std::size_t>(w_) +
+                                     static_cast<std::size_t>(x)) *
+                                        3;
     for (int k = 0; k < 3; ++k)
-      p[k] = static_cast<std::uint8_t>(std::lround(p[k] * (1.0 - a) + c[static_cast<std::size_t>(k)] * a));
+      p[k] = static_cast<std::uint8_t>(
+          std::lround(p[k] * (1.0 - a) + c[static_cast<std::size_t>(k)] * a));
   }
 
   void fillRect(double x0, double y0, double x1, double y1, const Color& c) {
@@ -49,8 +53,10 @@ class Canvas {
   // An anti-aliased segment of width `width` (pixels): coverage from the distance to the segment.
   void line(double x0, double y0, double x1, double y1, double width, const Color& c) {
     const double r = width / 2.0;
-    const int xa = static_cast<int>(std::floor(std::min(x0, x1) - r - 1)), xb = static_cast<int>(std::ceil(std::max(x0, x1) + r + 1));
-    const int ya = static_cast<int>(std::floor(std::min(y0, y1) - r - 1)), yb = static_cast<int>(std::ceil(std::max(y0, y1) + r + 1));
+    const int xa = static_cast<int>(std::floor(std::min(x0, x1) - r - 1)),
+              xb = static_cast<int>(std::ceil(std::max(x0, x1) + r + 1));
+    const int ya = static_cast<int>(std::floor(std::min(y0, y1) - r - 1)),
+              yb = static_cast<int>(std::ceil(std::max(y0, y1) + r + 1));
     const double dx = x1 - x0, dy = y1 - y0, len2 = dx * dx + dy * dy;
     for (int y = std::max(ya, 0); y <= std::min(yb, h_ - 1); ++y)
       for (int x = std::max(xa, 0); x <= std::min(xb, w_ - 1); ++x) {
@@ -66,12 +72,16 @@ class Canvas {
   void text(double x, double y, const std::string& s, double scale, const Color& c) {
     std::vector<char> buf(s.size() * 300 + 1000);
     std::string copy = s;
-    const int quads = stb_easy_font_print(0.0f, 0.0f, copy.data(), nullptr, buf.data(), static_cast<int>(buf.size()));
+    const int quads = stb_easy_font_print(0.0f, 0.0f, copy.data(), nullptr, buf.data(),
+                                          static_cast<int>(buf.size()));
     for (int q = 0; q < quads; ++q) {
       float v[4][2];
-      for (int k = 0; k < 4; ++k) std::memcpy(v[k], buf.data() + (q * 4 + k) * 16, 2 * sizeof(float));
-      const double qx0 = std::min({v[0][0], v[1][0], v[2][0], v[3][0]}), qx1 = std::max({v[0][0], v[1][0], v[2][0], v[3][0]});
-      const double qy0 = std::min({v[0][1], v[1][1], v[2][1], v[3][1]}), qy1 = std::max({v[0][1], v[1][1], v[2][1], v[3][1]});
+      for (int k = 0; k < 4; ++k)
+        std::memcpy(v[k], buf.data() + (q * 4 + k) * 16, 2 * sizeof(float));
+      const double qx0 = std::min({v[0][0], v[1][0], v[2][0], v[3][0]}),
+                   qx1 = std::max({v[0][0], v[1][0], v[2][0], v[3][0]});
+      const double qy0 = std::min({v[0][1], v[1][1], v[2][1], v[3][1]}),
+                   qy1 = std::max({v[0][1], v[1][1], v[2][1], v[3][1]});
       fillRect(x + qx0 * scale, y + qy0 * scale, x + qx1 * scale, y + qy1 * scale, c);
     }
   }
@@ -111,19 +121,21 @@ std::vector<double> niceTicks(double lo, double hi, int target) {
       step = m * mag;
       break;
     }
-  for (double t = std::ceil(lo / step - 1e-9) * step; t <= hi + step * 1e-9; t += step) ticks.push_back(t);
+  for (double t = std::ceil(lo / step - 1e-9) * step; t <= hi + step * 1e-9; t += step)
+    ticks.push_back(t);
   return ticks;
 }
 
 std::array<std::uint8_t, 3> plotColor(int index) {
-  static const Color palette[10] = {{31, 119, 180}, {255, 127, 14}, {44, 160, 44},  {214, 39, 40},  {148, 103, 189},
-                                    {140, 86, 75},  {227, 119, 194}, {127, 127, 127}, {188, 189, 34}, {23, 190, 207}};
+  static const Color palette[10] = {
+      {31, 119, 180}, {255, 127, 14},  {44, 160, 44},   {214, 39, 40},  {148, 103, 189},
+      {140, 86, 75},  {227, 119, 194}, {127, 127, 127}, {188, 189, 34}, {23, 190, 207}};
   return palette[((index % 10) + 10) % 10];
 }
 
 RgbImage renderPlot(const PlotSpec& spec) {
-  PELAGE_CHECK(spec.width >= 200 && spec.width <= 8000 && spec.height >= 150 && spec.height <= 8000, "plot size ",
-               spec.width, "x", spec.height);
+  PELAGE_CHECK(spec.width >= 200 && spec.width <= 8000 && spec.height >= 150 && spec.height <= 8000,
+               "plot size ", spec.width, "x", spec.height);
   PELAGE_CHECK(!spec.panels.empty(), "a plot without panels");
   Canvas canvas(spec.width, spec.height);
   const double scale = std::clamp(spec.width / 650.0, 1.0, 4.0);  // font units to pixels
@@ -131,8 +143,10 @@ RgbImage renderPlot(const PlotSpec& spec) {
   // Legend width: the longest label of any panel.
   double legend = 0.0;
   for (const PlotPanel& p : spec.panels)
-    for (const PlotSeries& s : p.series) legend = std::max(legend, Canvas::textWidth(s.label, scale));
-  const double left = 8.0 * scale + Canvas::textWidth("-0000.0", scale), right = legend + 40.0 * scale;
+    for (const PlotSeries& s : p.series)
+      legend = std::max(legend, Canvas::textWidth(s.label, scale));
+  const double left = 8.0 * scale + Canvas::textWidth("-0000.0", scale),
+               right = legend + 40.0 * scale;
   const double top = 4.5 * lineHeight, bottom = 4.0 * lineHeight;
   const double gap = 2.5 * lineHeight;
   const auto n = static_cast<double>(spec.panels.size());
@@ -141,9 +155,10 @@ RgbImage renderPlot(const PlotSpec& spec) {
   PELAGE_CHECK(plotW > 50 && panelH > 30, "plot too small for its panels and legend");
   // The title, shrunk to fit the width.
   const double titleScale =
-      std::min(scale * 1.4, (spec.width - 2.0 * 8.0 * scale) / std::max(1.0, Canvas::textWidth(spec.title, 1.0)));
-  canvas.text(std::max(8.0 * scale, (spec.width - Canvas::textWidth(spec.title, titleScale)) / 2), 0.8 * lineHeight,
-              spec.title, titleScale, kBlack);
+      std::min(scale * 1.4, (spec.width - 2.0 * 8.0 * scale) /
+                                std::max(1.0, Canvas::textWidth(spec.title, 1.0)));
+  canvas.text(std::max(8.0 * scale, (spec.width - Canvas::textWidth(spec.title, titleScale)) / 2),
+              0.8 * lineHeight, spec.title, titleScale, kBlack);
   // Shared x range.
   double xlo = INFINITY, xhi = -INFINITY;
   for (const PlotPanel& p : spec.panels)
@@ -171,7 +186,8 @@ RgbImage renderPlot(const PlotSpec& spec) {
     for (double t : yt) {
       canvas.line(left, Y(t), left + plotW, Y(t), 1.0, kGrid);
       const std::string s = tickLabel(t, step);
-      canvas.text(left - 6.0 * scale - Canvas::textWidth(s, scale), Y(t) - 3.5 * scale, s, scale, kAxis);
+      canvas.text(left - 6.0 * scale - Canvas::textWidth(s, scale), Y(t) - 3.5 * scale, s, scale,
+                  kAxis);
     }
     const double xstep = xt.size() > 1 ? xt[1] - xt[0] : 1.0;
     for (double t : xt) {
@@ -183,15 +199,21 @@ RgbImage renderPlot(const PlotSpec& spec) {
     }
     canvas.text(left, y0 - 1.2 * lineHeight, p.yLabel, scale, kBlack);
     if (std::isfinite(spec.markerX) && spec.markerX >= xlo && spec.markerX <= xhi) {
-      for (double y = y0; y < y1; y += 8.0 * scale) canvas.line(X(spec.markerX), y, X(spec.markerX), std::min(y + 4.0 * scale, y1), 1.5, kMarker);
-      if (pi == 0 && !spec.markerLabel.empty()) canvas.text(X(spec.markerX) + 3.0 * scale, y0 + 2.0 * scale, spec.markerLabel, scale, kMarker);
+      for (double y = y0; y < y1; y += 8.0 * scale)
+        canvas.line(X(spec.markerX), y, X(spec.markerX), std::min(y + 4.0 * scale, y1), 1.5,
+                    kMarker);
+      if (pi == 0 && !spec.markerLabel.empty())
+        canvas.text(X(spec.markerX) + 3.0 * scale, y0 + 2.0 * scale, spec.markerLabel, scale,
+                    kMarker);
     }
     // Series, clipped to the panel by construction of the ranges.
     for (std::size_t si = 0; si < p.series.size(); ++si) {
       const PlotSeries& s = p.series[si];
       double dash = 0.0;
       for (std::size_t i = 1; i < std::min(s.x.size(), s.y.size()); ++i) {
-        if (!(std::isfinite(s.y[i - 1]) && std::isfinite(s.y[i]) && std::isfinite(s.x[i - 1]) && std::isfinite(s.x[i]))) continue;
+        if (!(std::isfinite(s.y[i - 1]) && std::isfinite(s.y[i]) && std::isfinite(s.x[i - 1]) &&
+              std::isfinite(s.x[i])))
+          continue;
         const double ax = X(s.x[i - 1]), ay = Y(s.y[i - 1]), bx = X(s.x[i]), by = Y(s.y[i]);
         const double seg = std::hypot(bx - ax, by - ay);
         if (s.dashed) {  // 10 on, 6 off (pixels per scale unit)
@@ -199,10 +221,12 @@ RgbImage renderPlot(const PlotSpec& spec) {
           for (double t = 0.0; t < seg;) {
             const double phase = std::fmod(dash + t, period);
             const double on = 10.0 * scale;
-            const double run = phase < on ? std::min(on - phase, seg - t) : std::min(period - phase, seg - t);
+            const double run =
+                phase < on ? std::min(on - phase, seg - t) : std::min(period - phase, seg - t);
             if (phase < on && seg > 0) {
               const double ta = t / seg, tb = (t + run) / seg;
-              canvas.line(ax + (bx - ax) * ta, ay + (by - ay) * ta, ax + (bx - ax) * tb, ay + (by - ay) * tb, 2.0 * scale * 0.6, s.color);
+              canvas.line(ax + (bx - ax) * ta, ay + (by - ay) * ta, ax + (bx - ax) * tb,
+                          ay + (by - ay) * tb, 2.0 * scale * 0.6, s.color);
             }
             t += std::max(run, 1e-3);
           }
@@ -214,7 +238,8 @@ RgbImage renderPlot(const PlotSpec& spec) {
       // Legend entry.
       const double ly = y0 + 4.0 * scale + static_cast<double>(si) * lineHeight * 1.3;
       const double lx = left + plotW + 10.0 * scale;
-      canvas.line(lx, ly + 3.5 * scale, lx + 20.0 * scale, ly + 3.5 * scale, 2.0 * scale * 0.6, s.color);
+      canvas.line(lx, ly + 3.5 * scale, lx + 20.0 * scale, ly + 3.5 * scale, 2.0 * scale * 0.6,
+                  s.color);
       canvas.text(lx + 25.0 * scale, ly, s.label, scale, kBlack);
     }
     // Axes box.
@@ -223,8 +248,8 @@ RgbImage renderPlot(const PlotSpec& spec) {
     canvas.line(left, y0, left + plotW, y0, 1.0, kAxis);
     canvas.line(left + plotW, y0, left + plotW, y1, 1.0, kAxis);
   }
-  canvas.text(left + plotW / 2 - Canvas::textWidth(spec.xLabel, scale) / 2, spec.height - bottom + 2.2 * lineHeight, spec.xLabel,
-              scale, kBlack);
+  canvas.text(left + plotW / 2 - Canvas::textWidth(spec.xLabel, scale) / 2,
+              spec.height - bottom + 2.2 * lineHeight, spec.xLabel, scale, kBlack);
   return canvas.take();
 }
 

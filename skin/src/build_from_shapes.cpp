@@ -87,7 +87,10 @@ SurfaceNet surfaceNets(const Creature& c, const Eigen::AlignedBox3f& bounds, flo
     const int bx = static_cast<int>(b % nb.x());
     const int by = static_cast<int>((b / nb.x()) % nb.y());
     const int bz = static_cast<int>(b / (static_cast<std::int64_t>(nb.x()) * nb.y()));
-    const Vec3 ctr = origin + h * static_cast<float>(kBlock) * (Vec3(static_cast<float>(bx), static_cast<float>(by), static_cast<float>(bz)) + Vec3::Constant(0.5f));
+    const Vec3 ctr =
+        origin + h * static_cast<float>(kBlock) *
+                     (Vec3(static_cast<float>(bx), static_cast<float>(by), static_cast<float>(bz)) +
+                      Vec3::Constant(0.5f));
     near[static_cast<std::size_t>(b)] = std::abs(creatureDistance(c, ctr)) <= 2.0f * halfDiag + h;
   });
   std::vector<std::int32_t> slot(static_cast<std::size_t>(nBlocks), -1);
@@ -104,7 +107,8 @@ SurfaceNet surfaceNets(const Creature& c, const Eigen::AlignedBox3f& bounds, flo
               on = near[static_cast<std::size_t>(blockId(x, y, z))] != 0;
             }
         if (on) {
-          slot[static_cast<std::size_t>(blockId(bx, by, bz))] = static_cast<std::int32_t>(active.size());
+          slot[static_cast<std::size_t>(blockId(bx, by, bz))] =
+              static_cast<std::int32_t>(active.size());
           active.emplace_back(bx, by, bz);
         }
       }
@@ -117,19 +121,22 @@ SurfaceNet surfaceNets(const Creature& c, const Eigen::AlignedBox3f& bounds, flo
   constexpr int kCells = kBlock * kBlock * kBlock;
   const std::size_t nActive = active.size();
   std::vector<std::vector<float>> values(nActive);
-  std::vector<std::vector<std::int32_t>> cellFirst(nActive);                 // B^3: first local vertex or -1
-  std::vector<std::vector<std::array<std::int8_t, 12>>> cellEdgeComp(nActive);  // B^3 x 12: component of each crossing edge
+  std::vector<std::vector<std::int32_t>> cellFirst(nActive);  // B^3: first local vertex or -1
+  std::vector<std::vector<std::array<std::int8_t, 12>>> cellEdgeComp(
+      nActive);  // B^3 x 12: component of each crossing edge
   std::vector<std::vector<Vec3>> blockVerts(nActive);
   // Cell edges: start corner and axis. x: 0-3, y: 4-7, z: 8-11.
-  static constexpr int kEdgeStart[12][3] = {{0, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0, 1, 1}, {0, 0, 0}, {1, 0, 0},
-                                            {0, 0, 1}, {1, 0, 1}, {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}};
+  static constexpr int kEdgeStart[12][3] = {{0, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0, 1, 1},
+                                            {0, 0, 0}, {1, 0, 0}, {0, 0, 1}, {1, 0, 1},
+                                            {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}};
   static constexpr int kEdgeAxis[12] = {0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2};
-  // Cube faces: corners in cyclic order and the edges between consecutive corners (c0c1, c1c2, c2c3, c3c0).
+  // Cube faces: corners in cyclic order and the edges between consecutive corners (c0c1, c1c2,
+  // c2c3, c3c0).
   static constexpr int kFaceCorner[6][4][3] = {
       {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}, {{0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}},
       {{0, 0, 0}, {1, 0, 0}, {1, 0, 1}, {0, 0, 1}}, {{0, 1, 0}, {1, 1, 0}, {1, 1, 1}, {0, 1, 1}},
       {{0, 0, 0}, {0, 1, 0}, {0, 1, 1}, {0, 0, 1}}, {{1, 0, 0}, {1, 1, 0}, {1, 1, 1}, {1, 0, 1}}};
-  static constexpr int kFaceEdge[6][4] = {{0, 5, 1, 4}, {2, 7, 3, 6}, {0, 9, 2, 8},
+  static constexpr int kFaceEdge[6][4] = {{0, 5, 1, 4},   {2, 7, 3, 6},  {0, 9, 2, 8},
                                           {1, 11, 3, 10}, {4, 10, 6, 8}, {5, 11, 7, 9}};
   parallelFor(static_cast<std::int64_t>(nActive), 1, [&](std::int64_t s) {
     const std::size_t si = static_cast<std::size_t>(s);
@@ -140,10 +147,14 @@ SurfaceNet surfaceNets(const Creature& c, const Eigen::AlignedBox3f& bounds, flo
     for (int z = 0; z < kC; ++z)
       for (int y = 0; y < kC; ++y)
         for (int x = 0; x < kC; ++x) {
-          const Vec3 p = origin + h * Vec3(static_cast<float>(base.x() + x), static_cast<float>(base.y() + y), static_cast<float>(base.z() + z));
+          const Vec3 p =
+              origin + h * Vec3(static_cast<float>(base.x() + x), static_cast<float>(base.y() + y),
+                                static_cast<float>(base.z() + z));
           v[static_cast<std::size_t>((z * kC + y) * kC + x)] = creatureDistance(c, p);
         }
-    auto val = [&](int x, int y, int z) { return v[static_cast<std::size_t>((z * kC + y) * kC + x)]; };
+    auto val = [&](int x, int y, int z) {
+      return v[static_cast<std::size_t>((z * kC + y) * kC + x)];
+    };
     cellFirst[si].assign(kCells, -1);
     cellEdgeComp[si].resize(kCells);
     for (int z = 0; z < kBlock; ++z)
@@ -183,8 +194,10 @@ SurfaceNet surfaceNets(const Creature& c, const Eigen::AlignedBox3f& bounds, flo
               int first = -1;
               for (int k = 0; k < 4; ++k)
                 if (crossing[fe[k]]) {
-                  if (first < 0) first = fe[k];
-                  else join(first, fe[k]);
+                  if (first < 0)
+                    first = fe[k];
+                  else
+                    join(first, fe[k]);
                 }
             } else if (cnt == 4) {
               float fv[4];
@@ -230,10 +243,13 @@ SurfaceNet surfaceNets(const Creature& c, const Eigen::AlignedBox3f& bounds, flo
             sum[k] += pa;
             ++count[k];
           }
-          cellFirst[si][static_cast<std::size_t>(cell)] = static_cast<std::int32_t>(blockVerts[si].size());
-          const Vec3 cellOrigin(static_cast<float>(base.x() + x), static_cast<float>(base.y() + y), static_cast<float>(base.z() + z));
+          cellFirst[si][static_cast<std::size_t>(cell)] =
+              static_cast<std::int32_t>(blockVerts[si].size());
+          const Vec3 cellOrigin(static_cast<float>(base.x() + x), static_cast<float>(base.y() + y),
+                                static_cast<float>(base.z() + z));
           for (int k = 0; k < nComp; ++k)
-            blockVerts[si].push_back(origin + h * (cellOrigin + sum[k] / static_cast<float>(count[k])));
+            blockVerts[si].push_back(origin +
+                                     h * (cellOrigin + sum[k] / static_cast<float>(count[k])));
         }
   });
 
@@ -252,9 +268,11 @@ SurfaceNet surfaceNets(const Creature& c, const Eigen::AlignedBox3f& bounds, flo
     if (bx >= nb.x() || by >= nb.y() || bz >= nb.z()) return -1;
     const std::int32_t sl = slot[static_cast<std::size_t>(blockId(bx, by, bz))];
     if (sl < 0) return -1;
-    const std::size_t cell = static_cast<std::size_t>(((z % kBlock) * kBlock + (y % kBlock)) * kBlock + (x % kBlock));
+    const std::size_t cell =
+        static_cast<std::size_t>(((z % kBlock) * kBlock + (y % kBlock)) * kBlock + (x % kBlock));
     const std::int32_t first = cellFirst[static_cast<std::size_t>(sl)][cell];
-    const std::int8_t k = cellEdgeComp[static_cast<std::size_t>(sl)][cell][static_cast<std::size_t>(edge)];
+    const std::int8_t k =
+        cellEdgeComp[static_cast<std::size_t>(sl)][cell][static_cast<std::size_t>(edge)];
     return first < 0 || k < 0 ? -1 : blockFirst[static_cast<std::size_t>(sl)] + first + k;
   };
 
@@ -265,7 +283,9 @@ SurfaceNet surfaceNets(const Creature& c, const Eigen::AlignedBox3f& bounds, flo
   parallelFor(static_cast<std::int64_t>(nActive), 1, [&](std::int64_t s) {
     const Eigen::Vector3i base = active[static_cast<std::size_t>(s)] * kBlock;
     const std::vector<float>& v = values[static_cast<std::size_t>(s)];
-    auto val = [&](int x, int y, int z) { return v[static_cast<std::size_t>((z * kC + y) * kC + x)]; };
+    auto val = [&](int x, int y, int z) {
+      return v[static_cast<std::size_t>((z * kC + y) * kC + x)];
+    };
     auto& quads = blockQuads[static_cast<std::size_t>(s)];
     for (int z = 0; z < kBlock; ++z)
       for (int y = 0; y < kBlock; ++y)
@@ -273,15 +293,20 @@ SurfaceNet surfaceNets(const Creature& c, const Eigen::AlignedBox3f& bounds, flo
           const float f0 = val(x, y, z);
           const int gx = base.x() + x, gy = base.y() + y, gz = base.z() + z;
           for (int axis = 0; axis < 3; ++axis) {
-            const float f1 = axis == 0 ? val(x + 1, y, z) : axis == 1 ? val(x, y + 1, z) : val(x, y, z + 1);
+            const float f1 = axis == 0   ? val(x + 1, y, z)
+                             : axis == 1 ? val(x, y + 1, z)
+                                         : val(x, y, z + 1);
             if ((f0 < 0.0f) == (f1 < 0.0f)) continue;
             std::array<std::int32_t, 4> q;
             if (axis == 0) {
-              q = {cellVertex(gx, gy - 1, gz - 1, 3), cellVertex(gx, gy, gz - 1, 2), cellVertex(gx, gy, gz, 0), cellVertex(gx, gy - 1, gz, 1)};
+              q = {cellVertex(gx, gy - 1, gz - 1, 3), cellVertex(gx, gy, gz - 1, 2),
+                   cellVertex(gx, gy, gz, 0), cellVertex(gx, gy - 1, gz, 1)};
             } else if (axis == 1) {
-              q = {cellVertex(gx - 1, gy, gz - 1, 7), cellVertex(gx - 1, gy, gz, 5), cellVertex(gx, gy, gz, 4), cellVertex(gx, gy, gz - 1, 6)};
+              q = {cellVertex(gx - 1, gy, gz - 1, 7), cellVertex(gx - 1, gy, gz, 5),
+                   cellVertex(gx, gy, gz, 4), cellVertex(gx, gy, gz - 1, 6)};
             } else {
-              q = {cellVertex(gx - 1, gy - 1, gz, 11), cellVertex(gx, gy - 1, gz, 10), cellVertex(gx, gy, gz, 8), cellVertex(gx - 1, gy, gz, 9)};
+              q = {cellVertex(gx - 1, gy - 1, gz, 11), cellVertex(gx, gy - 1, gz, 10),
+                   cellVertex(gx, gy, gz, 8), cellVertex(gx - 1, gy, gz, 9)};
             }
             if (q[0] < 0 || q[1] < 0 || q[2] < 0 || q[3] < 0) {
               blockHoles[static_cast<std::size_t>(s)] = 1;
@@ -310,11 +335,14 @@ bool buildMesh(const Creature& c, SurfaceNet& net, float h, TriMesh& mesh) {
   mesh.clear();
   std::vector<TriMesh::VertexHandle> vh;
   vh.reserve(net.vertices.size());
-  for (const Vec3& p : net.vertices) vh.push_back(mesh.add_vertex(TriMesh::Point(p.x(), p.y(), p.z())));
+  for (const Vec3& p : net.vertices)
+    vh.push_back(mesh.add_vertex(TriMesh::Point(p.x(), p.y(), p.z())));
   bool ok = !net.holes;
   for (const auto& q : net.quads) {
-    const Vec3 &a = net.vertices[static_cast<std::size_t>(q[0])], &b = net.vertices[static_cast<std::size_t>(q[1])];
-    const Vec3 &cc = net.vertices[static_cast<std::size_t>(q[2])], &d = net.vertices[static_cast<std::size_t>(q[3])];
+    const Vec3 &a = net.vertices[static_cast<std::size_t>(q[0])],
+               &b = net.vertices[static_cast<std::size_t>(q[1])];
+    const Vec3 &cc = net.vertices[static_cast<std::size_t>(q[2])],
+               &d = net.vertices[static_cast<std::size_t>(q[3])];
     std::array<std::array<std::int32_t, 3>, 2> tris;
     if ((a - cc).squaredNorm() <= (b - d).squaredNorm())
       tris = {{{q[0], q[1], q[2]}, {q[0], q[2], q[3]}}};
@@ -325,7 +353,9 @@ bool buildMesh(const Creature& c, SurfaceNet& net, float h, TriMesh& mesh) {
         ok = false;
         continue;
       }
-      const auto f = mesh.add_face(vh[static_cast<std::size_t>(t[0])], vh[static_cast<std::size_t>(t[1])], vh[static_cast<std::size_t>(t[2])]);
+      const auto f =
+          mesh.add_face(vh[static_cast<std::size_t>(t[0])], vh[static_cast<std::size_t>(t[1])],
+                        vh[static_cast<std::size_t>(t[2])]);
       if (!f.is_valid()) ok = false;
     }
   }
@@ -364,7 +394,8 @@ TriMesh polygonise(const Creature& c, const Eigen::AlignedBox3f& bounds, float h
     }
     h *= 0.985f;
   }
-  throw InternalError("skin: the body shapes could not be polygonised into a closed manifold surface");
+  throw InternalError(
+      "skin: the body shapes could not be polygonised into a closed manifold surface");
 }
 
 }  // namespace
@@ -378,7 +409,8 @@ float creatureDistance(const Creature& c, const Eigen::Vector3f& p) {
 
 SkinMesh buildSkin(const Creature& c, const SkinBuildOptions& options) {
   if (options.triangles < 2000 || options.triangles > 2000000)
-    inputError(c.source, ": skin triangle count ", options.triangles, " is out of range [2000, 2000000]");
+    inputError(c.source, ": skin triangle count ", options.triangles,
+               " is out of range [2000, 2000000]");
   PELAGE_CHECK(!c.shapes.empty(), "creature without shapes");
   // Shape bounds, grown by what a smooth union can add (at most k/4 for blend radius k).
   Eigen::AlignedBox3f bounds;
@@ -397,7 +429,8 @@ SkinMesh buildSkin(const Creature& c, const SkinBuildOptions& options) {
   const float h0 = diag / 60.0f;
   const SurfaceNet coarse = surfaceNets(c, bounds, h0);
   PELAGE_CHECK(!coarse.quads.empty(), "no surface found: shapes too small for the grid");
-  const float h = h0 * std::sqrt(2.0f * static_cast<float>(coarse.quads.size()) / static_cast<float>(generate));
+  const float h =
+      h0 * std::sqrt(2.0f * static_cast<float>(coarse.quads.size()) / static_cast<float>(generate));
 
   SkinMesh skin;
   skin.mesh = polygonise(c, bounds, h);
@@ -423,7 +456,8 @@ SkinMesh buildSkin(const Creature& c, const SkinBuildOptions& options) {
     dec.initialize();
     dec.decimate_to_faces(0, static_cast<std::size_t>(options.triangles));
     mesh.garbage_collection();
-    relax(c, mesh, h * std::sqrt(static_cast<float>(generate) / static_cast<float>(options.triangles)), 2);
+    relax(c, mesh,
+          h * std::sqrt(static_cast<float>(generate) / static_cast<float>(options.triangles)), 2);
   }
 
   addSkinProperties(skin);
@@ -455,7 +489,8 @@ float boneLength(const Creature& c, const std::vector<Eigen::Affine3f>& world, i
   if (!hasChild)
     for (const auto& sh : c.shapes)
       if (sh.segment == s)
-        len = std::max(len, ((sh.kind == anatomy::Shape::Kind::Capsule ? sh.to : sh.center) - joint).norm());
+        len = std::max(
+            len, ((sh.kind == anatomy::Shape::Kind::Capsule ? sh.to : sh.center) - joint).norm());
   return len;
 }
 
@@ -472,19 +507,24 @@ std::vector<float> jointWidths(const Creature& c) {
     const Vec3 joint = world[static_cast<std::size_t>(s)].translation();
     float depth = 0.0f;
     for (const auto& sh : c.shapes)
-      if (sh.segment == s || sh.segment == parent) depth = std::max(depth, -detail::shapeDistance(sh, joint));
+      if (sh.segment == s || sh.segment == parent)
+        depth = std::max(depth, -detail::shapeDistance(sh, joint));
     // ... but at most half the length of the shorter of the two bones, so that a short segment
     // (the monkey's spine) is not blended away entirely.
-    const float limit = std::min(boneLength(c, world, s), parent >= 0 ? boneLength(c, world, parent) : 1e9f);
-    width[static_cast<std::size_t>(s)] = std::max(c.blendRadiusMeters, std::min(2.0f * depth, 0.5f * limit));
+    const float limit =
+        std::min(boneLength(c, world, s), parent >= 0 ? boneLength(c, world, parent) : 1e9f);
+    width[static_cast<std::size_t>(s)] =
+        std::max(c.blendRadiusMeters, std::min(2.0f * depth, 0.5f * limit));
   }
   return width;
 }
 
 // Blend width between two segments: their joint's if one is the other's parent, else the smaller.
 float pairWidth(const Creature& c, const std::vector<float>& width, int a, int b) {
-  if (c.body.segments[static_cast<std::size_t>(a)].parent == b) return width[static_cast<std::size_t>(a)];
-  if (c.body.segments[static_cast<std::size_t>(b)].parent == a) return width[static_cast<std::size_t>(b)];
+  if (c.body.segments[static_cast<std::size_t>(a)].parent == b)
+    return width[static_cast<std::size_t>(a)];
+  if (c.body.segments[static_cast<std::size_t>(b)].parent == a)
+    return width[static_cast<std::size_t>(b)];
   return std::min(width[static_cast<std::size_t>(a)], width[static_cast<std::size_t>(b)]);
 }
 
@@ -506,10 +546,12 @@ void bindToSegments(const Creature& c, SkinMesh& skin) {
       const Vec3 p(pts[v][0], pts[v][1], pts[v][2]);
       std::fill(dist.begin(), dist.end(), std::numeric_limits<float>::infinity());
       for (const auto& sh : c.shapes)
-        dist[static_cast<std::size_t>(sh.segment)] = std::min(dist[static_cast<std::size_t>(sh.segment)], detail::shapeDistance(sh, p));
+        dist[static_cast<std::size_t>(sh.segment)] =
+            std::min(dist[static_cast<std::size_t>(sh.segment)], detail::shapeDistance(sh, p));
       int closest = 0;
       for (int s = 1; s < nSeg; ++s)
-        if (dist[static_cast<std::size_t>(s)] < dist[static_cast<std::size_t>(closest)]) closest = s;
+        if (dist[static_cast<std::size_t>(s)] < dist[static_cast<std::size_t>(closest)])
+          closest = s;
       label[static_cast<std::size_t>(v)] = closest;
     }
   });
@@ -529,7 +571,8 @@ void bindToSegments(const Creature& c, SkinMesh& skin) {
     float dist;
     std::int32_t vertex, segment;
     bool operator>(const Item& o) const {
-      return dist > o.dist || (dist == o.dist && (vertex > o.vertex || (vertex == o.vertex && segment > o.segment)));
+      return dist > o.dist ||
+             (dist == o.dist && (vertex > o.vertex || (vertex == o.vertex && segment > o.segment)));
     }
   };
   std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
@@ -556,7 +599,8 @@ void bindToSegments(const Creature& c, SkinMesh& skin) {
     n.segment[slot] = it.segment;
     n.dist[slot] = it.dist;
     for (auto w : mesh.vv_range(TriMesh::VertexHandle(it.vertex))) {
-      if (label[static_cast<std::size_t>(w.idx())] != label[static_cast<std::size_t>(it.vertex)]) continue;
+      if (label[static_cast<std::size_t>(w.idx())] != label[static_cast<std::size_t>(it.vertex)])
+        continue;
       const float d = it.dist + edgeLength(it.vertex, w.idx());
       if (d < maxWidth) queue.push({d, w.idx(), it.segment});
     }
@@ -572,7 +616,8 @@ void bindToSegments(const Creature& c, SkinMesh& skin) {
     float others = 0.0f;
     for (int k = 0; k < kSlots; ++k) {
       if (n.segment[k] < 0) continue;
-      const float w = 0.5f * (1.0f - smoothstep01(n.dist[k] / pairWidth(c, width, own, n.segment[k])));
+      const float w =
+          0.5f * (1.0f - smoothstep01(n.dist[k] / pairWidth(c, width, own, n.segment[k])));
       if (w <= 1e-4f) continue;
       cand[static_cast<std::size_t>(nc++)] = {w, n.segment[k]};
       others += w;
@@ -584,9 +629,14 @@ void bindToSegments(const Creature& c, SkinMesh& skin) {
     Vec3 dir = Vec3::Zero();
     for (int k = 0; k < 4; ++k) {
       const bool used = k < nc;
-      bd.segment[static_cast<std::size_t>(k)] = used ? cand[static_cast<std::size_t>(k)].second : own;
-      bd.weight[static_cast<std::size_t>(k)] = used ? cand[static_cast<std::size_t>(k)].first / sum : 0.0f;
-      if (used) dir += bd.weight[static_cast<std::size_t>(k)] * c.body.segments[static_cast<std::size_t>(bd.segment[static_cast<std::size_t>(k)])].direction;
+      bd.segment[static_cast<std::size_t>(k)] =
+          used ? cand[static_cast<std::size_t>(k)].second : own;
+      bd.weight[static_cast<std::size_t>(k)] =
+          used ? cand[static_cast<std::size_t>(k)].first / sum : 0.0f;
+      if (used)
+        dir += bd.weight[static_cast<std::size_t>(k)] *
+               c.body.segments[static_cast<std::size_t>(bd.segment[static_cast<std::size_t>(k)])]
+                   .direction;
     }
     bind[v] = bd;
     // The segment direction of the vertex's segment, blended like the weights near joints so
@@ -623,7 +673,8 @@ void assignFurRegions(const Creature& c, SkinMesh& skin) {
       };
       for (const Eigen::Vector4f& sphere : reg.spheres)
         m = std::max(m, fade((p - Vec3(sphere.head<3>())).norm() - sphere[3]));
-      for (const Eigen::AlignedBox3f& box : reg.boxes) m = std::max(m, fade(box.exteriorDistance(p)));
+      for (const Eigen::AlignedBox3f& box : reg.boxes)
+        m = std::max(m, fade(box.exteriorDistance(p)));
       // Later regions override earlier ones where they apply.
       length = length + m * (c.furLengthMeters * reg.lengthScale - length);
       if (m >= 0.5f) region = static_cast<std::int32_t>(r + 1);

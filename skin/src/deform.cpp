@@ -30,9 +30,11 @@ void computeVertexNormals(const SkinMesh& skin, const std::vector<Eigen::Vector3
   const std::int32_t* faces = skin.vertexFaces.data();
   parallelFor(nV, 8192, [&](std::int64_t v) {
     Eigen::Vector3f n = Eigen::Vector3f::Zero();
-    for (std::int32_t k = start[v]; k < start[v + 1]; ++k) n += faceScratch[static_cast<std::size_t>(faces[k])];
+    for (std::int32_t k = start[v]; k < start[v + 1]; ++k)
+      n += faceScratch[static_cast<std::size_t>(faces[k])];
     const float len = n.norm();
-    normals[static_cast<std::size_t>(v)] = len > 0.0f ? Eigen::Vector3f(n / len) : Eigen::Vector3f(0.0f, 0.0f, 1.0f);
+    normals[static_cast<std::size_t>(v)] =
+        len > 0.0f ? Eigen::Vector3f(n / len) : Eigen::Vector3f(0.0f, 0.0f, 1.0f);
   });
 }
 
@@ -63,7 +65,8 @@ void deformSkin(const SkinMesh& skin, const anatomy::BodyState& state, DeformedS
       }
       out.positions[static_cast<std::size_t>(v)] = P;
       const float len = D.norm();
-      out.directions[static_cast<std::size_t>(v)] = len > 1e-12f ? Eigen::Vector3f(D / len) : Eigen::Vector3f::Zero();
+      out.directions[static_cast<std::size_t>(v)] =
+          len > 1e-12f ? Eigen::Vector3f(D / len) : Eigen::Vector3f::Zero();
     }
   });
   computeVertexNormals(skin, out.positions, out.faceNormals, out.normals);

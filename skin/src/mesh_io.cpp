@@ -24,7 +24,8 @@ namespace {
 
 std::string lowerExtension(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return ext;
 }
 
@@ -68,11 +69,13 @@ void addPolygon(TriMesh& mesh, const std::vector<TriMesh::VertexHandle>& face, l
 }
 
 void warnSkipped(const std::string& path, long long skipped) {
-  if (skipped) warn(str(path, ": skipped ", skipped, " triangles (repeated vertices or non-manifold edges)"));
+  if (skipped)
+    warn(str(path, ": skipped ", skipped, " triangles (repeated vertices or non-manifold edges)"));
 }
 
 // Reads the next three words of line `lineNo` as the coordinates of a vertex (OBJ, OFF, ASCII STL).
-void readCoordinates(const std::string& path, long long lineNo, std::istringstream& words, float* xyz) {
+void readCoordinates(const std::string& path, long long lineNo, std::istringstream& words,
+                     float* xyz) {
   for (int k = 0; k < 3; ++k) {
     std::string t;
     words >> t;
@@ -89,13 +92,16 @@ void readCoordinates(const std::string& path, long long lineNo, std::istringstre
 // The header grammar is checked line by line (known keywords and PLY types, counts the file size
 // can hold); the body is read value by value, every list count must fit the rest of the file, and
 // only then is anything added to the mesh. Reads x, y, z of element "vertex" and the list
-// "vertex_indices" (or "vertex_index") of element "face"; other elements and properties are skipped.
+// "vertex_indices" (or "vertex_index") of element "face"; other elements and properties are
+// skipped.
 enum class PlyType { Int8, UInt8, Int16, UInt16, Int32, UInt32, Float32, Float64 };
 int plySize(PlyType t) {
   static constexpr int kSizes[] = {1, 1, 2, 2, 4, 4, 4, 8};
   return kSizes[static_cast<int>(t)];
 }
-bool plyIsInteger(PlyType t) { return t != PlyType::Float32 && t != PlyType::Float64; }
+bool plyIsInteger(PlyType t) {
+  return t != PlyType::Float32 && t != PlyType::Float64;
+}
 
 struct PlyProperty {
   std::string name;
@@ -111,11 +117,14 @@ struct PlyElement {
 
 class PlyBody {
  public:
-  PlyBody(const std::string& path, const std::string& bytes, std::size_t pos, bool ascii, bool bigEndian)
+  PlyBody(const std::string& path, const std::string& bytes, std::size_t pos, bool ascii,
+          bool bigEndian)
       : path_(path), bytes_(bytes), pos_(pos), ascii_(ascii), bigEndian_(bigEndian) {}
 
   // Reads one value of type `t` of element `e`, instance `i` (for messages).
-  double value(PlyType t, std::size_t e, long long i) { return ascii_ ? asciiValue(t, e, i) : binaryValue(t, e, i); }
+  double value(PlyType t, std::size_t e, long long i) {
+    return ascii_ ? asciiValue(t, e, i) : binaryValue(t, e, i);
+  }
 
   // Reads a list count that must be an integer the rest of the file can hold.
   std::size_t listCount(const PlyProperty& p, std::size_t e, long long i) {
@@ -125,20 +134,22 @@ class PlyBody {
       const auto r = std::from_chars(t.data(), t.data() + t.size(), k);
       if (r.ec != std::errc() || r.ptr != t.data() + t.size() || k < 0 ||
           static_cast<std::size_t>(k) > (bytes_.size() - pos_) / 2 + 1)
-        inputError(path_, ": PLY element ", e, " instance ", i, ": list count '", std::string(t.substr(0, 40)),
-                   "' does not fit the rest of the file");
+        inputError(path_, ": PLY element ", e, " instance ", i, ": list count '",
+                   std::string(t.substr(0, 40)), "' does not fit the rest of the file");
       return static_cast<std::size_t>(k);
     }
     const double k = binaryValue(p.countType, e, i);
     if (!(k >= 0.0) || k != std::floor(k) ||
         k > static_cast<double>((bytes_.size() - pos_) / static_cast<std::size_t>(plySize(p.type))))
-      inputError(path_, ": PLY element ", e, " instance ", i, ": list count ", k, " does not fit the rest of the file");
+      inputError(path_, ": PLY element ", e, " instance ", i, ": list count ", k,
+                 " does not fit the rest of the file");
     return static_cast<std::size_t>(k);
   }
 
  private:
   [[noreturn]] void truncated(std::size_t e, long long i) const {
-    inputError(path_, ": PLY element ", e, " instance ", i, " is cut off: the file ends (truncated or malformed)");
+    inputError(path_, ": PLY element ", e, " instance ", i,
+               " is cut off: the file ends (truncated or malformed)");
   }
   std::string_view token(std::size_t e, long long i) {
     while (pos_ < bytes_.size() && std::isspace(static_cast<unsigned char>(bytes_[pos_]))) ++pos_;
@@ -159,8 +170,8 @@ class PlyBody {
       r = std::from_chars(s.data(), s.data() + s.size(), v);
     }
     if (r.ec != std::errc() || r.ptr != s.data() + s.size())
-      inputError(path_, ": PLY element ", e, " instance ", i, ": '", std::string(s.substr(0, 40)), "' is not ",
-                 plyIsInteger(t) ? "an integer" : "a number");
+      inputError(path_, ": PLY element ", e, " instance ", i, ": '", std::string(s.substr(0, 40)),
+                 "' is not ", plyIsInteger(t) ? "an integer" : "a number");
     return v;
   }
   double binaryValue(PlyType t, std::size_t e, long long i) {
@@ -171,14 +182,40 @@ class PlyBody {
     pos_ += n;
     if (bigEndian_) std::reverse(b, b + n);
     switch (t) {
-      case PlyType::Int8: return static_cast<double>(static_cast<std::int8_t>(b[0]));
-      case PlyType::UInt8: return static_cast<double>(b[0]);
-      case PlyType::Int16: { std::int16_t x; std::memcpy(&x, b, 2); return x; }
-      case PlyType::UInt16: { std::uint16_t x; std::memcpy(&x, b, 2); return x; }
-      case PlyType::Int32: { std::int32_t x; std::memcpy(&x, b, 4); return x; }
-      case PlyType::UInt32: { std::uint32_t x; std::memcpy(&x, b, 4); return x; }
-      case PlyType::Float32: { float x; std::memcpy(&x, b, 4); return x; }
-      case PlyType::Float64: { double x; std::memcpy(&x, b, 8); return x; }
+      case PlyType::Int8:
+        return static_cast<double>(static_cast<std::int8_t>(b[0]));
+      case PlyType::UInt8:
+        return static_cast<double>(b[0]);
+      case PlyType::Int16: {
+        std::int16_t x;
+        std::memcpy(&x, b, 2);
+        return x;
+      }
+      case PlyType::UInt16: {
+        std::uint16_t x;
+        std::memcpy(&x, b, 2);
+        return x;
+      }
+      case PlyType::Int32: {
+        std::int32_t x;
+        std::memcpy(&x, b, 4);
+        return x;
+      }
+      case PlyType::UInt32: {
+        std::uint32_t x;
+        std::memcpy(&x, b, 4);
+        return x;
+      }
+      case PlyType::Float32: {
+        float x;
+        std::memcpy(&x, b, 4);
+        return x;
+      }
+      case PlyType::Float64: {
+        double x;
+        std::memcpy(&x, b, 8);
+        return x;
+      }
     }
     return 0.0;
   }
@@ -196,11 +233,11 @@ void readPly(const std::string& path, TriMesh& mesh) {
   if (bytes.rfind("ply", 0) != 0 || (bytes.size() > 3 && bytes[3] != '\n' && bytes[3] != '\r'))
     inputError(path, ": not a PLY file (it must start with the line 'ply')");
   static const std::map<std::string, PlyType> kTypes = {
-      {"char", PlyType::Int8},     {"int8", PlyType::Int8},       {"uchar", PlyType::UInt8},
-      {"uint8", PlyType::UInt8},   {"short", PlyType::Int16},     {"int16", PlyType::Int16},
-      {"ushort", PlyType::UInt16}, {"uint16", PlyType::UInt16},   {"int", PlyType::Int32},
-      {"int32", PlyType::Int32},   {"uint", PlyType::UInt32},     {"uint32", PlyType::UInt32},
-      {"float", PlyType::Float32}, {"float32", PlyType::Float32}, {"double", PlyType::Float64},
+      {"char", PlyType::Int8},      {"int8", PlyType::Int8},       {"uchar", PlyType::UInt8},
+      {"uint8", PlyType::UInt8},    {"short", PlyType::Int16},     {"int16", PlyType::Int16},
+      {"ushort", PlyType::UInt16},  {"uint16", PlyType::UInt16},   {"int", PlyType::Int32},
+      {"int32", PlyType::Int32},    {"uint", PlyType::UInt32},     {"uint32", PlyType::UInt32},
+      {"float", PlyType::Float32},  {"float32", PlyType::Float32}, {"double", PlyType::Float64},
       {"float64", PlyType::Float64}};
   auto type = [&](const std::string& name) {
     const auto it = kTypes.find(name);
@@ -223,15 +260,18 @@ void readPly(const std::string& path, TriMesh& mesh) {
     if (key.empty() || key == "comment" || key == "obj_info") continue;
     if (key == "end_header") {
       std::string rest;
-      if (words >> rest) inputError(path, ": PLY end_header line has extra text '", rest.substr(0, 40), "'");
+      if (words >> rest)
+        inputError(path, ": PLY end_header line has extra text '", rest.substr(0, 40), "'");
       ended = true;
       bodyStart = lines.tellg();
     } else if (key == "format") {
       std::string kind, version, extra;
       words >> kind >> version;
       if (kind != "ascii" && kind != "binary_little_endian" && kind != "binary_big_endian")
-        inputError(path, ": PLY format '", kind.substr(0, 40), "' is not ascii, binary_little_endian or binary_big_endian");
-      if (version != "1.0" || (words >> extra)) inputError(path, ": PLY format line must be 'format ", kind, " 1.0'");
+        inputError(path, ": PLY format '", kind.substr(0, 40),
+                   "' is not ascii, binary_little_endian or binary_big_endian");
+      if (version != "1.0" || (words >> extra))
+        inputError(path, ": PLY format line must be 'format ", kind, " 1.0'");
       format = true;
       ascii = kind == "ascii";
       bigEndian = kind == "binary_big_endian";
@@ -240,8 +280,12 @@ void readPly(const std::string& path, TriMesh& mesh) {
       words >> name >> count;
       if (words >> extra) inputError(path, ": PLY element line must be 'element NAME COUNT'");
       for (const PlyElement& e : elements)
-        if (e.name == name) inputError(path, ": PLY element '", name.substr(0, 40), "' is declared twice");
-      elements.push_back({name, headerCount(path, "PLY element " + name.substr(0, 40) + " count", count, fileSize, 1.0), {}});
+        if (e.name == name)
+          inputError(path, ": PLY element '", name.substr(0, 40), "' is declared twice");
+      elements.push_back(
+          {name,
+           headerCount(path, "PLY element " + name.substr(0, 40) + " count", count, fileSize, 1.0),
+           {}});
     } else if (key == "property") {
       if (elements.empty()) inputError(path, ": PLY property before any element");
       PlyProperty p;
@@ -259,42 +303,51 @@ void readPly(const std::string& path, TriMesh& mesh) {
         p.type = type(first);
       }
       if (!(words >> p.name) || (words >> extra))
-        inputError(path, ": PLY property line must be 'property TYPE NAME' or 'property list TYPE TYPE NAME'");
+        inputError(
+            path,
+            ": PLY property line must be 'property TYPE NAME' or 'property list TYPE TYPE NAME'");
       elements.back().props.push_back(p);
     } else {
       inputError(path, ": unknown PLY header keyword '", key.substr(0, 40), "'");
     }
   }
-  if (!ended) inputError(path, ": PLY header has no end_header line in its first ", kHeaderLimit, " bytes");
+  if (!ended)
+    inputError(path, ": PLY header has no end_header line in its first ", kHeaderLimit, " bytes");
   if (!format) inputError(path, ": PLY header has no format line");
   // Every property of every instance takes at least one byte (binary) or a digit and a separator.
   double needed = 0.0;
   for (const PlyElement& e : elements)
-    needed += static_cast<double>(e.count) * std::max(1.0, static_cast<double>(e.props.size()) * (ascii ? 2.0 : 1.0));
+    needed += static_cast<double>(e.count) *
+              std::max(1.0, static_cast<double>(e.props.size()) * (ascii ? 2.0 : 1.0));
   if (needed > static_cast<double>(fileSize))
-    inputError(path, ": PLY header declares elements needing at least ", needed, " bytes but the file has ",
-               fileSize, " (truncated or malformed)");
-  const auto vertexIt = std::find_if(elements.begin(), elements.end(), [](const PlyElement& e) { return e.name == "vertex"; });
+    inputError(path, ": PLY header declares elements needing at least ", needed,
+               " bytes but the file has ", fileSize, " (truncated or malformed)");
+  const auto vertexIt = std::find_if(elements.begin(), elements.end(),
+                                     [](const PlyElement& e) { return e.name == "vertex"; });
   if (vertexIt == elements.end()) inputError(path, ": PLY header declares no vertex element");
   int xyz[3] = {-1, -1, -1};
   for (std::size_t k = 0; k < vertexIt->props.size(); ++k)
     for (int c = 0; c < 3; ++c)
-      if (!vertexIt->props[k].list && vertexIt->props[k].name == std::string(1, static_cast<char>('x' + c)))
+      if (!vertexIt->props[k].list &&
+          vertexIt->props[k].name == std::string(1, static_cast<char>('x' + c)))
         xyz[c] = static_cast<int>(k);
   if (xyz[0] < 0 || xyz[1] < 0 || xyz[2] < 0)
     inputError(path, ": PLY vertex element needs scalar properties x, y and z");
   int faceList = -1;
-  const auto faceIt = std::find_if(elements.begin(), elements.end(), [](const PlyElement& e) { return e.name == "face"; });
+  const auto faceIt = std::find_if(elements.begin(), elements.end(),
+                                   [](const PlyElement& e) { return e.name == "face"; });
   if (faceIt != elements.end()) {
     for (std::size_t k = 0; k < faceIt->props.size(); ++k)
-      if (faceIt->props[k].list && (faceIt->props[k].name == "vertex_indices" || faceIt->props[k].name == "vertex_index"))
+      if (faceIt->props[k].list &&
+          (faceIt->props[k].name == "vertex_indices" || faceIt->props[k].name == "vertex_index"))
         faceList = static_cast<int>(k);
     if (faceList < 0 || !plyIsInteger(faceIt->props[static_cast<std::size_t>(faceList)].type))
       inputError(path, ": PLY face element needs an integer list property vertex_indices");
   }
 
   // The body, read completely before anything is added to the mesh.
-  if (bodyStart < 0 || static_cast<std::size_t>(bodyStart) > bytes.size()) inputError(path, ": PLY body missing after end_header");
+  if (bodyStart < 0 || static_cast<std::size_t>(bodyStart) > bytes.size())
+    inputError(path, ": PLY body missing after end_header");
   PlyBody body(path, bytes, static_cast<std::size_t>(bodyStart), ascii, bigEndian);
   std::vector<float> points;
   std::vector<long long> faceStarts, faceIndices;
@@ -337,10 +390,13 @@ void readPly(const std::string& path, TriMesh& mesh) {
     for (long long c = faceStarts[f]; c < faceStarts[f + 1]; ++c) {
       const long long idx = faceIndices[static_cast<std::size_t>(c)];
       if (idx < 0 || idx >= nV)
-        inputError(path, ": PLY face ", f, ": vertex index ", idx, " is out of range [0, ", nV - 1, "]");
+        inputError(path, ": PLY face ", f, ": vertex index ", idx, " is out of range [0, ", nV - 1,
+                   "]");
       face.push_back(vertices[static_cast<std::size_t>(idx)]);
     }
-    if (face.size() < 3) inputError(path, ": PLY face ", f, " has ", face.size(), " vertices (a face needs at least 3)");
+    if (face.size() < 3)
+      inputError(path, ": PLY face ", f, " has ", face.size(),
+                 " vertices (a face needs at least 3)");
     addPolygon(mesh, face, skipped);
   }
   warnSkipped(path, skipped);
@@ -370,7 +426,10 @@ void readStl(const std::string& path, TriMesh& mesh) {
       face.clear();
       for (int c = 0; c < 3; ++c) {
         std::array<float, 3> p;
-        std::memcpy(p.data(), bytes.data() + 84 + 50 * static_cast<std::size_t>(t) + 12 + 12 * static_cast<std::size_t>(c), 12);
+        std::memcpy(p.data(),
+                    bytes.data() + 84 + 50 * static_cast<std::size_t>(t) + 12 +
+                        12 * static_cast<std::size_t>(c),
+                    12);
         corner(p, str(" triangle ", t));
       }
       addPolygon(mesh, face, skipped);
@@ -380,7 +439,8 @@ void readStl(const std::string& path, TriMesh& mesh) {
   }
   if (bytes.rfind("solid", 0) != 0) {
     if (bytes.size() < 84) inputError(path, ": binary STL shorter than its 84-byte header");
-    inputError(path, ": binary STL declares ", n, " triangles (", expected, " bytes) but the file has ", bytes.size(), " bytes");
+    inputError(path, ": binary STL declares ", n, " triangles (", expected,
+               " bytes) but the file has ", bytes.size(), " bytes");
   }
   std::istringstream in(bytes);
   std::string line;
@@ -395,7 +455,8 @@ void readStl(const std::string& path, TriMesh& mesh) {
       readCoordinates(path, lineNo, words, p.data());
       corner(p, str(":", lineNo));
     } else if (key == "endloop") {
-      if (face.size() < 3) inputError(path, ":", lineNo, ": a facet needs at least 3 vertices, it has ", face.size());
+      if (face.size() < 3)
+        inputError(path, ":", lineNo, ": a facet needs at least 3 vertices, it has ", face.size());
       addPolygon(mesh, face, skipped);
       face.clear();
     } else if (key == "outer" || key == "facet") {
@@ -435,12 +496,15 @@ void readObj(const std::string& path, TriMesh& mesh) {
         const std::string first = corner.substr(0, corner.find('/'));
         long long idx = 0;
         const auto r = std::from_chars(first.data(), first.data() + first.size(), idx);
-        if (first.empty() || r.ec != std::errc() || r.ptr != first.data() + first.size() || idx == 0)
-          inputError(path, ":", lineNo, ": face corner '", corner.substr(0, 40), "' has no valid vertex index");
+        if (first.empty() || r.ec != std::errc() || r.ptr != first.data() + first.size() ||
+            idx == 0)
+          inputError(path, ":", lineNo, ": face corner '", corner.substr(0, 40),
+                     "' has no valid vertex index");
         const long long n = static_cast<long long>(vertices.size());
         const long long i = idx > 0 ? idx - 1 : n + idx;
         if (i < 0 || i >= n)
-          inputError(path, ":", lineNo, ": face vertex ", idx, " is out of range [1, ", n, "] (or [-", n, ", -1])");
+          inputError(path, ":", lineNo, ": face vertex ", idx, " is out of range [1, ", n,
+                     "] (or [-", n, ", -1])");
         face.push_back(vertices[static_cast<std::size_t>(i)]);
       }
       if (face.size() < 3) inputError(path, ":", lineNo, ": a face needs at least 3 vertices");
@@ -450,12 +514,12 @@ void readObj(const std::string& path, TriMesh& mesh) {
   warnSkipped(path, skipped);
 }
 
-// OFF (and NOFF/COFF/CNOFF/STOFF), read here rather than by OpenMesh, which reserves whatever vertex
-// count a face claims (found by fuzz_mesh: 685,308,834 in an 82-byte file; 2^30 after a split vertex
-// line). Line based: after the counts, one vertex per line ("x y z" then optional normal/colour/
-// texture values), one face per line ("k i0 .. ik-1" then an optional colour); '#' comments and
-// blank lines are skipped. Polygons become triangle fans; non-manifold faces are skipped with a
-// warning.
+// OFF (and NOFF/COFF/CNOFF/STOFF), read here rather than by OpenMesh, which reserves whatever
+// vertex count a face claims (found by fuzz_mesh: 685,308,834 in an 82-byte file; 2^30 after a
+// split vertex line). Line based: after the counts, one vertex per line ("x y z" then optional
+// normal/colour/ texture values), one face per line ("k i0 .. ik-1" then an optional colour); '#'
+// comments and blank lines are skipped. Polygons become triangle fans; non-manifold faces are
+// skipped with a warning.
 void readOff(const std::string& path, TriMesh& mesh, std::uintmax_t fileSize) {
   std::ifstream in(path, std::ios::binary);
   if (!in) inputError(path, ": cannot open the mesh file for reading");
@@ -489,7 +553,8 @@ void readOff(const std::string& path, TriMesh& mesh, std::uintmax_t fileSize) {
   std::vector<TriMesh::VertexHandle> vertices;
   vertices.reserve(static_cast<std::size_t>(nVertices));
   for (long long v = 0; v < nVertices; ++v) {
-    if (!nextLine(words)) inputError(path, ": OFF file ends after ", v, " of its ", nVertices, " vertices");
+    if (!nextLine(words))
+      inputError(path, ": OFF file ends after ", v, " of its ", nVertices, " vertices");
     TriMesh::Point p;
     readCoordinates(path, lineNo, words, p.data());
     vertices.push_back(mesh.add_vertex(p));
@@ -497,7 +562,8 @@ void readOff(const std::string& path, TriMesh& mesh, std::uintmax_t fileSize) {
   long long skipped = 0;
   std::vector<TriMesh::VertexHandle> face;
   for (long long f = 0; f < nFaces; ++f) {
-    if (!nextLine(words)) inputError(path, ": OFF file ends after ", f, " of its ", nFaces, " faces");
+    if (!nextLine(words))
+      inputError(path, ": OFF file ends after ", f, " of its ", nFaces, " faces");
     long long k = -1;
     if (!(words >> k) || k < 3 || k > nVertices)
       inputError(path, ":", lineNo, ": face vertex count must be in [3, ", nVertices, "]");
@@ -531,10 +597,14 @@ SkinMesh readStaticMesh(const std::string& path, float furLengthMeters) {
   // Our warnings name the file and count the skipped faces; OpenMesh's add_face would print
   // "complex edge" to stderr for each one.
   omerr().disable();
-  if (ext == ".obj") readObj(path, skin.mesh);
-  else if (ext == ".off") readOff(path, skin.mesh, fileSize);
-  else if (ext == ".ply") readPly(path, skin.mesh);
-  else readStl(path, skin.mesh);
+  if (ext == ".obj")
+    readObj(path, skin.mesh);
+  else if (ext == ".off")
+    readOff(path, skin.mesh, fileSize);
+  else if (ext == ".ply")
+    readPly(path, skin.mesh);
+  else
+    readStl(path, skin.mesh);
   TriMesh& m = skin.mesh;
   if (m.n_faces() == 0) inputError(path, ": the mesh has no faces");
   for (auto v : m.vertices()) {
@@ -554,8 +624,8 @@ SkinMesh readStaticMesh(const std::string& path, float furLengthMeters) {
     warn(str(path, ": removed ", isolated, " isolated vertices"));
   }
   addSkinProperties(skin);
-  Eigen::Map<const Eigen::Matrix<float, 3, Eigen::Dynamic>> P(skin.restPositions(), 3,
-                                                              static_cast<Eigen::Index>(m.n_vertices()));
+  Eigen::Map<const Eigen::Matrix<float, 3, Eigen::Dynamic>> P(
+      skin.restPositions(), 3, static_cast<Eigen::Index>(m.n_vertices()));
   const float diag = (P.rowwise().maxCoeff() - P.rowwise().minCoeff()).norm();
   const float len = furLengthMeters > 0.0f ? furLengthMeters : 0.03f * diag;
   for (auto v : m.vertices()) m.property(skin.furLength, v) = len;
@@ -574,7 +644,8 @@ void writeSkin(const std::string& path, const SkinMesh& skin,
     AtomicFileWriter w(path);
     std::string buf;
     buf.reserve(1 << 20);
-    buf += "# pelage skin: " + std::to_string(nV) + " vertices, " + std::to_string(nT) + " triangles\n";
+    buf += "# pelage skin: " + std::to_string(nV) + " vertices, " + std::to_string(nT) +
+           " triangles\n";
     auto flush = [&] {
       if (buf.size() > (1u << 20) - 256) {
         w.write(buf);
@@ -600,7 +671,8 @@ void writeSkin(const std::string& path, const SkinMesh& skin,
     for (std::size_t f = 0; f < nT; ++f) {
       buf += 'f';
       for (int k = 0; k < 3; ++k) {
-        const std::string idx = std::to_string(skin.triangles[3 * f + static_cast<std::size_t>(k)] + 1);
+        const std::string idx =
+            std::to_string(skin.triangles[3 * f + static_cast<std::size_t>(k)] + 1);
         buf += ' ' + idx + "//" + idx;
       }
       buf += '\n';

@@ -47,7 +47,8 @@ inline float capsuleDistance(const anatomy::Shape& s, const Eigen::Vector3f& p) 
 }
 
 inline float shapeDistance(const anatomy::Shape& s, const Eigen::Vector3f& p) {
-  return s.kind == anatomy::Shape::Kind::Ellipsoid ? ellipsoidDistance(s, p) : capsuleDistance(s, p);
+  return s.kind == anatomy::Shape::Kind::Ellipsoid ? ellipsoidDistance(s, p)
+                                                   : capsuleDistance(s, p);
 }
 
 // Polynomial smooth minimum with blend radius k (Quilez): equals min(a, b) exactly when

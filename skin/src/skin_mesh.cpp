@@ -51,13 +51,15 @@ void finalizeSkin(SkinMesh& skin) {
     area += 0.5 * static_cast<double>(OpenMesh::cross(b - a, c - a).norm());
   }
   skin.restArea = area;
-  for (int v = 0; v < nV; ++v) degree[static_cast<std::size_t>(v) + 1] += degree[static_cast<std::size_t>(v)];
+  for (int v = 0; v < nV; ++v)
+    degree[static_cast<std::size_t>(v) + 1] += degree[static_cast<std::size_t>(v)];
   skin.vertexFaceStart = degree;
   skin.vertexFaces.assign(static_cast<std::size_t>(degree.back()), 0);
   std::vector<std::int32_t> fill(degree.begin(), degree.end() - 1);
   for (int f = 0; f < nF; ++f)
     for (int j = 0; j < 3; ++j) {
-      const auto v = static_cast<std::size_t>(skin.triangles[static_cast<std::size_t>(f) * 3 + static_cast<std::size_t>(j)]);
+      const auto v = static_cast<std::size_t>(
+          skin.triangles[static_cast<std::size_t>(f) * 3 + static_cast<std::size_t>(j)]);
       skin.vertexFaces[static_cast<std::size_t>(fill[v]++)] = f;
     }
 }
@@ -69,7 +71,8 @@ SkinStats skinStats(const SkinMesh& skin) {
   s.triangles = skin.numTriangles();
   s.area = skin.restArea;
   if (s.vertices > 0) {
-    Eigen::Map<const Eigen::Matrix<float, 3, Eigen::Dynamic>> P(skin.restPositions(), 3, s.vertices);
+    Eigen::Map<const Eigen::Matrix<float, 3, Eigen::Dynamic>> P(skin.restPositions(), 3,
+                                                                s.vertices);
     s.boundsMin = P.rowwise().minCoeff();
     s.boundsMax = P.rowwise().maxCoeff();
   }

@@ -13,7 +13,8 @@ namespace {
 
 using ::testing::HasSubstr;
 
-SegmentSpec spec(const std::string& name, const std::string& parent, Eigen::Vector3f t = Eigen::Vector3f::Zero()) {
+SegmentSpec spec(const std::string& name, const std::string& parent,
+                 Eigen::Vector3f t = Eigen::Vector3f::Zero()) {
   SegmentSpec s;
   s.name = name;
   s.parent = parent;
@@ -31,7 +32,8 @@ std::string errorOf(const std::vector<SegmentSpec>& specs) {
 }
 
 TEST(Body, SortsParentsBeforeChildren) {
-  const Body b = makeBody({spec("hand", "arm"), spec("arm", "torso"), spec("torso", ""), spec("head", "torso")}, "x");
+  const Body b = makeBody(
+      {spec("hand", "arm"), spec("arm", "torso"), spec("torso", ""), spec("head", "torso")}, "x");
   ASSERT_EQ(b.size(), 4);
   checkBody(b);
   for (int i = 0; i < b.size(); ++i) EXPECT_LT(b.segments[static_cast<std::size_t>(i)].parent, i);
@@ -41,18 +43,22 @@ TEST(Body, SortsParentsBeforeChildren) {
 }
 
 TEST(Body, InverseBindUndoesRestWorld) {
-  const Body b = makeBody({spec("a", "", {1, 0, 0}), spec("b", "a", {0, 2, 0}), spec("c", "b", {0, 0, 3})}, "x");
+  const Body b = makeBody(
+      {spec("a", "", {1, 0, 0}), spec("b", "a", {0, 2, 0}), spec("c", "b", {0, 0, 3})}, "x");
   const auto world = restWorldTransforms(b);
   EXPECT_TRUE(world[2].translation().isApprox(Eigen::Vector3f(1, 2, 3)));
   for (int i = 0; i < 3; ++i)
-    EXPECT_TRUE((world[static_cast<std::size_t>(i)] * b.inverseBind[static_cast<std::size_t>(i)]).matrix().isIdentity(1e-6f));
+    EXPECT_TRUE((world[static_cast<std::size_t>(i)] * b.inverseBind[static_cast<std::size_t>(i)])
+                    .matrix()
+                    .isIdentity(1e-6f));
 }
 
 TEST(Body, RejectsBadHierarchies) {
   EXPECT_THAT(errorOf({}), HasSubstr("no segments"));
   EXPECT_THAT(errorOf({spec("a", ""), spec("a", "")}), HasSubstr("duplicate segment name 'a'"));
   EXPECT_THAT(errorOf({spec("a", ""), spec("b", "ghost")}), HasSubstr("unknown parent 'ghost'"));
-  EXPECT_THAT(errorOf({spec("r", ""), spec("a", "b"), spec("b", "c"), spec("c", "a")}), HasSubstr("cycle"));
+  EXPECT_THAT(errorOf({spec("r", ""), spec("a", "b"), spec("b", "c"), spec("c", "a")}),
+              HasSubstr("cycle"));
   EXPECT_THAT(errorOf({spec("a", "a")}), HasSubstr("own parent"));
   auto nan = spec("n", "");
   nan.rest.translation.x() = std::numeric_limits<float>::quiet_NaN();

@@ -51,11 +51,14 @@ TEST(Creature, TheBuiltInMonkeyIsComplete) {
   std::vector<std::string> regions;
   for (const auto& r : c.regions) regions.push_back(r.name);
   EXPECT_THAT(regions, ::testing::IsSupersetOf({"face", "hands", "feet"}));
-  for (const auto& r : c.regions) EXPECT_LT(r.lengthScale, 1.0f) << r.name << " should have shorter fur";
+  for (const auto& r : c.regions)
+    EXPECT_LT(r.lengthScale, 1.0f) << r.name << " should have shorter fur";
   // Every segment owns at least one body shape (otherwise it could never hold skin).
   std::vector<int> owned(static_cast<std::size_t>(c.body.size()), 0);
   for (const auto& s : c.shapes) ++owned[static_cast<std::size_t>(s.segment)];
-  for (int i = 0; i < c.body.size(); ++i) EXPECT_GT(owned[static_cast<std::size_t>(i)], 0) << c.body.segments[static_cast<std::size_t>(i)].name;
+  for (int i = 0; i < c.body.size(); ++i)
+    EXPECT_GT(owned[static_cast<std::size_t>(i)], 0)
+        << c.body.segments[static_cast<std::size_t>(i)].name;
 }
 
 TEST(Creature, MalformedFilesGiveFieldPaths) {
@@ -73,8 +76,9 @@ TEST(Creature, MalformedFilesGiveFieldPaths) {
                                        {"name": "b", "parent": "a", "joint": [0,0,0]}],
                         "shapes": [{"segment": "a", "type": "capsule", "from": [0,0,0], "to": [1,0,0], "radius": 1}]})"),
               HasSubstr("cycle"));
-  EXPECT_THAT(errorOf(R"({"segments": [{"name": "a", "parent": "zz", "joint": [0,0,0]}], "shapes": []})"),
-              HasSubstr("unknown parent 'zz'"));
+  EXPECT_THAT(
+      errorOf(R"({"segments": [{"name": "a", "parent": "zz", "joint": [0,0,0]}], "shapes": []})"),
+      HasSubstr("unknown parent 'zz'"));
   EXPECT_THAT(errorOf(R"({"segments": [{"name": "a", "joint": [0,0,0]}],
                         "shapes": [{"segment": "a", "type": "ellipsoid", "center": [0,0,0], "radii": [1, 0, 1]}]})"),
               HasSubstr("zero-size shape"));
@@ -84,10 +88,12 @@ TEST(Creature, MalformedFilesGiveFieldPaths) {
   EXPECT_THAT(errorOf(R"({"segments": [{"name": "a", "joint": [0,0,0]}],
                         "shapes": [{"segment": "a", "type": "cube", "center": [0,0,0]}]})"),
               HasSubstr("unknown shape type 'cube'"));
-  EXPECT_THAT(errorOf(R"({"segments": [{"name": "a", "joint": [0,0,0], "stifness": 1}], "shapes": []})"),
-              HasSubstr("unknown field 'segments[0].stifness'"));
-  EXPECT_THAT(errorOf(R"({"furLength": -1, "segments": [{"name": "a", "joint": [0,0,0]}], "shapes": []})"),
-              HasSubstr("out of range [0, 10]"));
+  EXPECT_THAT(
+      errorOf(R"({"segments": [{"name": "a", "joint": [0,0,0], "stifness": 1}], "shapes": []})"),
+      HasSubstr("unknown field 'segments[0].stifness'"));
+  EXPECT_THAT(
+      errorOf(R"({"furLength": -1, "segments": [{"name": "a", "joint": [0,0,0]}], "shapes": []})"),
+      HasSubstr("out of range [0, 10]"));
 }
 
 }  // namespace

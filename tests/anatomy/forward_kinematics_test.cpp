@@ -23,7 +23,8 @@ Body chain() {
 }
 
 Eigen::Quaternionf rotZ(float deg) {
-  return Eigen::Quaternionf(Eigen::AngleAxisf(deg * static_cast<float>(M_PI) / 180.0f, Eigen::Vector3f::UnitZ()));
+  return Eigen::Quaternionf(
+      Eigen::AngleAxisf(deg * static_cast<float>(M_PI) / 180.0f, Eigen::Vector3f::UnitZ()));
 }
 
 TEST(ForwardKinematics, RestPoseGivesRestWorldAndIdentitySkinning) {
@@ -45,10 +46,12 @@ TEST(ForwardKinematics, ExactAnswersOnAChain) {
   EXPECT_TRUE(st.world[1].translation().isApprox(Eigen::Vector3f(1, 0, 0), 1e-6f));
   EXPECT_TRUE(st.world[2].translation().isApprox(Eigen::Vector3f(1, 1, 0), 1e-6f));
   // A bind-space point at the tip of "lower" (3, 0, 0) bound to "lower" moves to (1, 2, 0).
-  EXPECT_TRUE((st.skinning[2] * Eigen::Vector3f(3, 0, 0)).isApprox(Eigen::Vector3f(1, 2, 0), 1e-6f));
+  EXPECT_TRUE(
+      (st.skinning[2] * Eigen::Vector3f(3, 0, 0)).isApprox(Eigen::Vector3f(1, 2, 0), 1e-6f));
   p.local[2].rotation = rotZ(90);
   forwardKinematics(b, p, st);
-  EXPECT_TRUE((st.skinning[2] * Eigen::Vector3f(3, 0, 0)).isApprox(Eigen::Vector3f(0, 1, 0), 1e-5f));
+  EXPECT_TRUE(
+      (st.skinning[2] * Eigen::Vector3f(3, 0, 0)).isApprox(Eigen::Vector3f(0, 1, 0), 1e-5f));
   EXPECT_TRUE(st.world[2].linear().isApprox(rotZ(180).toRotationMatrix(), 1e-6f));
   // Root translation and scale carry through the chain.
   p.local[0].translation = {0, 0, 5};
@@ -71,7 +74,8 @@ TEST(ForwardKinematics, ComposesForRandomPoses) {
     }
     forwardKinematics(b, p, st);
     for (int i = 1; i < 3; ++i) {
-      const Eigen::Affine3f expect = st.world[static_cast<std::size_t>(i - 1)] * p.local[static_cast<std::size_t>(i)].matrix();
+      const Eigen::Affine3f expect =
+          st.world[static_cast<std::size_t>(i - 1)] * p.local[static_cast<std::size_t>(i)].matrix();
       EXPECT_TRUE(st.world[static_cast<std::size_t>(i)].matrix().isApprox(expect.matrix(), 1e-5f));
     }
     // Rigid poses keep lengths: the distance between joints 1 and 2 stays |rest translation| = 1.

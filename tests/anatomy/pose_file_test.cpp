@@ -22,9 +22,11 @@ Body twoSegments() {
 TEST(PoseFile, RotatesAndTranslatesNamedSegments) {
   const Body b = twoSegments();
   const Pose p = parsePose(b, R"({"pose": {"b": {"rotate": {"axis": [0, 0, 2], "degrees": 90}},
-                                          "a": {"translate": [0, 0, 1]}}})", "p.json");
+                                          "a": {"translate": [0, 0, 1]}}})",
+                           "p.json");
   EXPECT_TRUE(p.local[0].translation.isApprox(Eigen::Vector3f(0, 0, 1)));
-  EXPECT_TRUE((p.local[1].rotation * Eigen::Vector3f::UnitX()).isApprox(Eigen::Vector3f::UnitY(), 1e-6f));
+  EXPECT_TRUE(
+      (p.local[1].rotation * Eigen::Vector3f::UnitX()).isApprox(Eigen::Vector3f::UnitY(), 1e-6f));
   EXPECT_TRUE(p.local[1].translation.isApprox(Eigen::Vector3f(1, 0, 0)));
 }
 
@@ -41,7 +43,8 @@ TEST(PoseFile, Errors) {
   EXPECT_THAT(err(R"({"pose": {"zz": {}}})"), ::testing::HasSubstr("unknown segment 'zz'"));
   EXPECT_THAT(err(R"({"pose": {"a": {"rotate": {"axis": [0, 0, 0], "degrees": 9}}}})"),
               ::testing::HasSubstr("axis must be non-zero"));
-  EXPECT_THAT(err(R"({"pose": {"a": {"spin": 1}}})"), ::testing::HasSubstr("unknown field 'pose.a.spin'"));
+  EXPECT_THAT(err(R"({"pose": {"a": {"spin": 1}}})"),
+              ::testing::HasSubstr("unknown field 'pose.a.spin'"));
   EXPECT_THROW(loadPose(b, "/nonexistent/pose.json"), InputError);
 }
 

@@ -30,7 +30,8 @@ anatomy::Body body() {
 }
 
 Eigen::Quaternionf aa(double deg, const Eigen::Vector3f& axis) {
-  return Eigen::Quaternionf(Eigen::AngleAxisf(static_cast<float>(deg * kPi / 180.0), axis.normalized()));
+  return Eigen::Quaternionf(
+      Eigen::AngleAxisf(static_cast<float>(deg * kPi / 180.0), axis.normalized()));
 }
 
 const char* kWave = R"({
@@ -54,7 +55,9 @@ TEST(ClipFile, KeysAreRelativeToTheRestPose) {
   anatomy::Pose p;
   sampleClip(clip, b, 0.5, p);
   // rotate: rest * R(axis, degrees), linear in the angle.
-  EXPECT_NEAR(p.local[1].rotation.angularDistance(b.segments[1].rest.rotation * aa(30, Eigen::Vector3f::UnitY())), 0, 1e-5);
+  EXPECT_NEAR(p.local[1].rotation.angularDistance(b.segments[1].rest.rotation *
+                                                  aa(30, Eigen::Vector3f::UnitY())),
+              0, 1e-5);
   // scale: multiplies the rest scale; 0.5 s of 2 s -> factor 1.5 in x.
   EXPECT_TRUE(p.local[1].scale.isApprox(Eigen::Vector3f(1.5f, 2.0f, 1.0f)));
   // step translation: still the first key.
@@ -69,17 +72,20 @@ TEST(ClipFile, KeysAreRelativeToTheRestPose) {
 // A periodic cubic curve passes through its keys and has the same slope on both sides of the loop.
 TEST(ClipFile, CubicCurvesPassThroughKeysAndLoopSmoothly) {
   const anatomy::Body b = body();
-  const Clip clip = parseClip(b, R"({ "channels": [ { "segment": "arm", "path": "rotate", "interpolation": "cubic",
+  const Clip clip = parseClip(
+      b, R"({ "channels": [ { "segment": "arm", "path": "rotate", "interpolation": "cubic",
       "keys": [ { "time": 0, "axis": [0, 0, 1], "degrees": 0 }, { "time": 0.5, "axis": [0, 0, 1], "degrees": 40 },
                 { "time": 1.0, "axis": [0, 0, 1], "degrees": 10 }, { "time": 2.0, "axis": [0, 0, 1], "degrees": 0 } ] } ] })",
-                              "cubic.json");
+      "cubic.json");
   EXPECT_EQ(clip.name, "cubic");
   const Eigen::Quaternionf rest = b.segments[1].rest.rotation;
   anatomy::Pose p;
   const double keys[][2] = {{0, 0}, {0.5, 40}, {1.0, 10}};
   for (const auto& k : keys) {
     sampleClip(clip, b, k[0], p);
-    EXPECT_NEAR(p.local[1].rotation.angularDistance(rest * aa(k[1], Eigen::Vector3f::UnitZ())), 0, 1e-5) << k[0];
+    EXPECT_NEAR(p.local[1].rotation.angularDistance(rest * aa(k[1], Eigen::Vector3f::UnitZ())), 0,
+                1e-5)
+        << k[0];
   }
   // Signed angle about z relative to rest.
   auto angle = [&](double t) {
@@ -96,7 +102,8 @@ TEST(ClipFile, CubicCurvesPassThroughKeysAndLoopSmoothly) {
 
 TEST(ClipFile, LoadsFromAFileNamedAfterIt) {
   test::TempDir dir;
-  test::writeText(dir.file("swing.json"), R"({ "loop": false, "channels": [ { "segment": "arm", "path": "translate",
+  test::writeText(dir.file("swing.json"),
+                  R"({ "loop": false, "channels": [ { "segment": "arm", "path": "translate",
       "keys": [ { "time": 0, "value": [0, 0, 0] }, { "time": 1, "value": [0, 0, 1] } ] } ] })");
   const Clip clip = loadClip(body(), dir.file("swing.json"));
   EXPECT_EQ(clip.name, "swing");
@@ -129,16 +136,21 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(
         Bad{"syntax", R"({ "channels": [ )", "malformed JSON"},
         Bad{"no channels", R"({ "channels": [] })", "at least one channel"},
-        Bad{"unknown segment", R"({ "channels": [ { "segment": "tail", "path": "rotate", "keys": [)" KEY0 R"(] } ] })",
+        Bad{"unknown segment",
+            R"({ "channels": [ { "segment": "tail", "path": "rotate", "keys": [)" KEY0 R"(] } ] })",
             "unknown segment 'tail'"},
-        Bad{"unknown path", R"({ "channels": [ { "segment": "arm", "path": "twist", "keys": [)" KEY0 R"(] } ] })",
+        Bad{"unknown path",
+            R"({ "channels": [ { "segment": "arm", "path": "twist", "keys": [)" KEY0 R"(] } ] })",
             "unknown path 'twist'"},
         Bad{"unknown interpolation",
-            R"({ "channels": [ { "segment": "arm", "path": "rotate", "interpolation": "bezier", "keys": [)" KEY0 R"(] } ] })",
+            R"({ "channels": [ { "segment": "arm", "path": "rotate", "interpolation": "bezier", "keys": [)" KEY0
+            R"(] } ] })",
             "unknown interpolation 'bezier'"},
-        Bad{"no keys", R"({ "channels": [ { "segment": "arm", "path": "rotate", "keys": [] } ] })", "at least one key"},
+        Bad{"no keys", R"({ "channels": [ { "segment": "arm", "path": "rotate", "keys": [] } ] })",
+            "at least one key"},
         Bad{"times not increasing",
-            R"({ "channels": [ { "segment": "arm", "path": "rotate", "keys": [)" KEY0 "," KEY0 R"(] } ] })",
+            R"({ "channels": [ { "segment": "arm", "path": "rotate", "keys": [)" KEY0 "," KEY0
+            R"(] } ] })",
             "channels[0].keys[1].time"},
         Bad{"negative time",
             R"({ "channels": [ { "segment": "arm", "path": "rotate", "keys": [ { "time": -1, "axis": [0, 1, 0], "degrees": 0 } ] } ] })",
@@ -159,7 +171,8 @@ INSTANTIATE_TEST_SUITE_P(
             "shorter than the last key time"},
         Bad{"typo", R"({ "chanels": [] })", "unknown field 'chanels'"},
         Bad{"root motion segment",
-            R"({ "rootMotion": { "segment": "nope", "translate": [1, 0, 0] }, "channels": [ { "segment": "arm", "path": "rotate", "keys": [)" KEY0 R"(] } ] })",
+            R"({ "rootMotion": { "segment": "nope", "translate": [1, 0, 0] }, "channels": [ { "segment": "arm", "path": "rotate", "keys": [)" KEY0
+            R"(] } ] })",
             "unknown segment 'nope'"}),
     [](const ::testing::TestParamInfo<Bad>& param) {
       std::string n = param.param.name;

@@ -25,12 +25,16 @@ anatomy::Body twoSegments() {
 }
 
 Eigen::Quaternionf aa(double deg, const Eigen::Vector3f& axis) {
-  return Eigen::Quaternionf(Eigen::AngleAxisf(static_cast<float>(deg * kPi / 180.0), axis.normalized()));
+  return Eigen::Quaternionf(
+      Eigen::AngleAxisf(static_cast<float>(deg * kPi / 180.0), axis.normalized()));
 }
 
-void pushQuat(std::vector<float>& v, const Eigen::Quaternionf& q) { v.insert(v.end(), {q.x(), q.y(), q.z(), q.w()}); }
+void pushQuat(std::vector<float>& v, const Eigen::Quaternionf& q) {
+  v.insert(v.end(), {q.x(), q.y(), q.z(), q.w()});
+}
 
-Channel translation(int seg, Interpolation interp, std::vector<float> times, std::vector<float> values) {
+Channel translation(int seg, Interpolation interp, std::vector<float> times,
+                    std::vector<float> values) {
   Channel c;
   c.segment = seg;
   c.path = ChannelPath::Translation;
@@ -108,8 +112,9 @@ TEST(Clip, RotationTakesTheShortArcAcrossHemispheres) {
 // p(s) = h00 v0 + td h10 b0 + h01 v1 + td h11 a1; s = 0.5 -> 1.5, s = 0.25 -> 1.09375.
 TEST(Clip, CubicSplineMatchesTheHermiteFormula) {
   // Per key: in-tangent, value, out-tangent (x only varies).
-  const Channel c = translation(0, Interpolation::CubicSpline, {0, 2},
-                                {9, 9, 9, 0, 0, 0, 3, 0, 0, /* key 1 */ -1, 0, 0, 1, 0, 0, 7, 7, 7});
+  const Channel c =
+      translation(0, Interpolation::CubicSpline, {0, 2},
+                  {9, 9, 9, 0, 0, 0, 3, 0, 0, /* key 1 */ -1, 0, 0, 1, 0, 0, 7, 7, 7});
   EXPECT_NEAR(sample3(c, 1.0).x(), 1.5, 1e-6);
   EXPECT_NEAR(sample3(c, 0.5).x(), 1.09375, 1e-6);
   EXPECT_EQ(sample3(c, 0.0), Eigen::Vector3f(0, 0, 0));  // a key's value, not its tangents
@@ -268,12 +273,14 @@ TEST(Clip, RandomClipsKeepInvariants) {
       hi = hi.cwiseMax(v);
       t.values.insert(t.values.end(), {v.x(), v.y(), v.z()});
       const int copies = r.interpolation == Interpolation::CubicSpline ? 3 : 1;
-      for (int c = 0; c < copies; ++c) pushQuat(r.values, Eigen::Quaternionf(u(rng), u(rng), u(rng), u(rng)).normalized());
+      for (int c = 0; c < copies; ++c)
+        pushQuat(r.values, Eigen::Quaternionf(u(rng), u(rng), u(rng), u(rng)).normalized());
     }
     for (int i = 0; i <= 40; ++i) {
       const double s = -0.5 + (time + 1.0) * i / 40.0;
       const Eigen::Vector3f v = sample3(t, s);
-      EXPECT_TRUE((v.array() >= lo.array() - 1e-6f).all() && (v.array() <= hi.array() + 1e-6f).all());
+      EXPECT_TRUE((v.array() >= lo.array() - 1e-6f).all() &&
+                  (v.array() <= hi.array() + 1e-6f).all());
       EXPECT_NEAR(sampleQ(r, s).norm(), 1.0, 1e-5);
     }
   }
@@ -287,10 +294,13 @@ TEST(Clip, CubicChannelAlignsQuaternionSigns) {
   pushQuat(q, Eigen::Quaternionf(-b.w(), -b.x(), -b.y(), -b.z()));
   pushQuat(q, aa(80, z));
   const Channel c = cubicChannel(0, ChannelPath::Rotation, {0, 1, 2}, q, dq);
-  // Stored values (the middle of each key's in/value/out triple) agree in sign with their neighbour.
+  // Stored values (the middle of each key's in/value/out triple) agree in sign with their
+  // neighbour.
   for (int k = 1; k < 3; ++k) {
     float dot = 0.0f;
-    for (int i = 0; i < 4; ++i) dot += c.values[static_cast<std::size_t>(k * 12 + 4 + i)] * c.values[static_cast<std::size_t>((k - 1) * 12 + 4 + i)];
+    for (int i = 0; i < 4; ++i)
+      dot += c.values[static_cast<std::size_t>(k * 12 + 4 + i)] *
+             c.values[static_cast<std::size_t>((k - 1) * 12 + 4 + i)];
     EXPECT_GT(dot, 0.0f);
   }
   EXPECT_NEAR(sampleQ(c, 0.5).angularDistance(aa(20, z)), 0.0, 1e-5);

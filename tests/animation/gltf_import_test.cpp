@@ -34,26 +34,84 @@ const std::vector<ModelFacts>& facts() {
       {"RiggedFigure/RiggedFigure.glb", 256, 1.0f, {{"clip0", 1.25f}}},
       {"RiggedSimple/RiggedSimple.glb", 188, 1.0f, {{"clip0", 2.0833f}}},
       {"SimpleSkin/SimpleSkin.gltf", 8, 1.0f, {{"clip0", 5.5f}}},
-      {"Wolf/Wolf.gltf", 1962, 1.0f,
-       {{"Attack", 1.3333f}, {"Death", 1.0667f}, {"Eating", 2.5333f}, {"Gallop", 0.5667f}, {"Gallop_Jump", 0.9333f},
-        {"Idle", 3.3333f}, {"Idle_2", 3.3333f}, {"Idle_2_HeadLow", 4.0f}, {"Idle_HitReact_Left", 0.6667f},
-        {"Idle_HitReact_Right", 0.6667f}, {"Jump_ToIdle", 1.3333f}, {"Walk", 1.0667f}}},
-      {"Husky/Husky.gltf", 1920, 1.0f,
-       {{"Attack", 1.2f}, {"Death", 1.0667f}, {"Eating", 2.6667f}, {"Gallop", 0.5667f}, {"Gallop_Jump", 0.9333f},
-        {"Idle", 3.3333f}, {"Idle_2", 3.3333f}, {"Idle_2_HeadLow", 4.0f}, {"Idle_HitReact_Left", 0.6667f},
-        {"Idle_HitReact_Right", 0.6667f}, {"Jump_ToIdle", 1.3333f}, {"Walk", 1.0667f}}},
-      {"Horse/Horse.gltf", 2182, 1.0f,
-       {{"Attack_Headbutt", 1.0333f}, {"Attack_Kick", 1.0f}, {"Death", 1.0f}, {"Eating", 6.0f}, {"Gallop", 0.6f},
-        {"Gallop_Jump", 1.4667f}, {"Idle", 3.3333f}, {"Idle_2", 3.3333f}, {"Idle_Headlow", 3.3333f},
-        {"Idle_HitReact_Left", 0.6667f}, {"Idle_HitReact_Right", 0.6667f}, {"Jump_toIdle", 1.7333f}, {"Walk", 1.1667f}}},
-      {"Stag/Stag.gltf", 3670, 1.0f,
-       {{"Attack_Headbutt", 0.8f}, {"Attack_Kick", 0.8f}, {"Death", 1.1f}, {"Eating", 12.1f}, {"Gallop", 0.5333f},
-        {"Gallop_Jump", 1.4f}, {"Idle", 3.3333f}, {"Idle_2", 3.3333f}, {"Idle_Headlow", 3.3333f},
-        {"Idle_HitReact_Left", 0.4667f}, {"Idle_HitReact_Right", 0.5333f}, {"Jump_toIdle", 1.5333f}, {"Walk", 1.1667f}}},
-      {"Alpaca/Alpaca.gltf", 2056, 1.0f,
-       {{"Attack_Headbutt", 1.0f}, {"Attack_Kick", 1.0f}, {"Death", 1.0417f}, {"Eating", 7.5f}, {"Gallop", 0.6667f},
-        {"Gallop_Jump", 1.75f}, {"Idle", 4.1667f}, {"Idle_2", 4.1667f}, {"Idle_Headlow", 4.1667f},
-        {"Idle_HitReact_Left", 0.5833f}, {"Idle_HitReact_Right", 0.6667f}, {"Jump_toIdle", 1.9167f}, {"Walk", 1.4583f}}},
+      {"Wolf/Wolf.gltf",
+       1962,
+       1.0f,
+       {{"Attack", 1.3333f},
+        {"Death", 1.0667f},
+        {"Eating", 2.5333f},
+        {"Gallop", 0.5667f},
+        {"Gallop_Jump", 0.9333f},
+        {"Idle", 3.3333f},
+        {"Idle_2", 3.3333f},
+        {"Idle_2_HeadLow", 4.0f},
+        {"Idle_HitReact_Left", 0.6667f},
+        {"Idle_HitReact_Right", 0.6667f},
+        {"Jump_ToIdle", 1.3333f},
+        {"Walk", 1.0667f}}},
+      {"Husky/Husky.gltf",
+       1920,
+       1.0f,
+       {{"Attack", 1.2f},
+        {"Death", 1.0667f},
+        {"Eating", 2.6667f},
+        {"Gallop", 0.5667f},
+        {"Gallop_Jump", 0.9333f},
+        {"Idle", 3.3333f},
+        {"Idle_2", 3.3333f},
+        {"Idle_2_HeadLow", 4.0f},
+        {"Idle_HitReact_Left", 0.6667f},
+        {"Idle_HitReact_Right", 0.6667f},
+        {"Jump_ToIdle", 1.3333f},
+        {"Walk", 1.0667f}}},
+      {"Horse/Horse.gltf",
+       2182,
+       1.0f,
+       {{"Attack_Headbutt", 1.0333f},
+        {"Attack_Kick", 1.0f},
+        {"Death", 1.0f},
+        {"Eating", 6.0f},
+        {"Gallop", 0.6f},
+        {"Gallop_Jump", 1.4667f},
+        {"Idle", 3.3333f},
+        {"Idle_2", 3.3333f},
+        {"Idle_Headlow", 3.3333f},
+        {"Idle_HitReact_Left", 0.6667f},
+        {"Idle_HitReact_Right", 0.6667f},
+        {"Jump_toIdle", 1.7333f},
+        {"Walk", 1.1667f}}},
+      {"Stag/Stag.gltf",
+       3670,
+       1.0f,
+       {{"Attack_Headbutt", 0.8f},
+        {"Attack_Kick", 0.8f},
+        {"Death", 1.1f},
+        {"Eating", 12.1f},
+        {"Gallop", 0.5333f},
+        {"Gallop_Jump", 1.4f},
+        {"Idle", 3.3333f},
+        {"Idle_2", 3.3333f},
+        {"Idle_Headlow", 3.3333f},
+        {"Idle_HitReact_Left", 0.4667f},
+        {"Idle_HitReact_Right", 0.5333f},
+        {"Jump_toIdle", 1.5333f},
+        {"Walk", 1.1667f}}},
+      {"Alpaca/Alpaca.gltf",
+       2056,
+       1.0f,
+       {{"Attack_Headbutt", 1.0f},
+        {"Attack_Kick", 1.0f},
+        {"Death", 1.0417f},
+        {"Eating", 7.5f},
+        {"Gallop", 0.6667f},
+        {"Gallop_Jump", 1.75f},
+        {"Idle", 4.1667f},
+        {"Idle_2", 4.1667f},
+        {"Idle_Headlow", 4.1667f},
+        {"Idle_HitReact_Left", 0.5833f},
+        {"Idle_HitReact_Right", 0.6667f},
+        {"Jump_toIdle", 1.9167f},
+        {"Walk", 1.4583f}}},
   };
   return f;
 }
@@ -76,7 +134,8 @@ std::vector<Eigen::Vector3f> deform(const scene::Model& m, const anatomy::Pose& 
 
 std::vector<Eigen::Vector3f> restPositions(const scene::Model& m) {
   std::vector<Eigen::Vector3f> p(static_cast<std::size_t>(m.skin.numVertices()));
-  for (std::size_t v = 0; v < p.size(); ++v) p[v] = Eigen::Map<const Eigen::Vector3f>(m.skin.restPositions() + 3 * v);
+  for (std::size_t v = 0; v < p.size(); ++v)
+    p[v] = Eigen::Map<const Eigen::Vector3f>(m.skin.restPositions() + 3 * v);
   return p;
 }
 
@@ -109,8 +168,8 @@ TEST(GltfImport, EveryModelLoadsWithItsClips) {
 // units long, becomes 1.55 m; the head is in front (+X) of the tail.
 TEST(GltfImport, CreaturesStandOnTheGroundFacingPlusX) {
   PELAGE_REQUIRE_SHARED_MODELS();
-  for (const char* file : {"Fox/Fox.glb", "Wolf/Wolf.gltf", "Horse/Horse.gltf", "Stag/Stag.gltf", "Alpaca/Alpaca.gltf",
-                           "Husky/Husky.gltf", "CesiumMan/CesiumMan.glb"}) {
+  for (const char* file : {"Fox/Fox.glb", "Wolf/Wolf.gltf", "Horse/Horse.gltf", "Stag/Stag.gltf",
+                           "Alpaca/Alpaca.gltf", "Husky/Husky.gltf", "CesiumMan/CesiumMan.glb"}) {
     SCOPED_TRACE(file);
     const scene::Model& m = model(file);
     const Eigen::AlignedBox3f b = bounds(restPositions(m));
@@ -127,8 +186,10 @@ TEST(GltfImport, CreaturesStandOnTheGroundFacingPlusX) {
     EXPECT_GE(s, 0) << name;
     return m.body.inverseBind[static_cast<std::size_t>(std::max(s, 0))].inverse().translation().x();
   };
-  EXPECT_GT(jointX(model("Fox/Fox.glb"), "b_Head_05"), jointX(model("Fox/Fox.glb"), "b_Tail03_014") + 1.0f);
-  EXPECT_GT(jointX(model("Horse/Horse.gltf"), "Head"), jointX(model("Horse/Horse.gltf"), "Tail7") + 2.0f);
+  EXPECT_GT(jointX(model("Fox/Fox.glb"), "b_Head_05"),
+            jointX(model("Fox/Fox.glb"), "b_Tail03_014") + 1.0f);
+  EXPECT_GT(jointX(model("Horse/Horse.gltf"), "Head"),
+            jointX(model("Horse/Horse.gltf"), "Tail7") + 2.0f);
 }
 
 // The bind-pose skin is the stored mesh, converted: every stored POSITION p of the skinned meshes,
@@ -147,36 +208,47 @@ TEST(GltfImport, BindPoseReproducesTheStoredMesh) {
     const auto& nodes = parts.json["nodes"];
     std::vector<int> parent(nodes.size(), -1);
     for (std::size_t i = 0; i < nodes.size(); ++i)
-      for (const auto& c : nodes[i].value("children", nlohmann::json::array())) parent[c.get<std::size_t>()] = static_cast<int>(i);
+      for (const auto& c : nodes[i].value("children", nlohmann::json::array()))
+        parent[c.get<std::size_t>()] = static_cast<int>(i);
     auto local = [&](std::size_t i) {
       Eigen::Affine3d t = Eigen::Affine3d::Identity();
       const auto& n = nodes[i];
       if (n.contains("matrix"))
-        for (int k = 0; k < 16; ++k) t.matrix()(k % 4, k / 4) = n["matrix"][static_cast<std::size_t>(k)].get<double>();
-      if (n.contains("translation")) t.translate(Eigen::Vector3d(n["translation"][0], n["translation"][1], n["translation"][2]));
-      if (n.contains("rotation")) t.rotate(Eigen::Quaterniond(n["rotation"][3], n["rotation"][0], n["rotation"][1], n["rotation"][2]));
-      if (n.contains("scale")) t.scale(Eigen::Vector3d(n["scale"][0], n["scale"][1], n["scale"][2]));
+        for (int k = 0; k < 16; ++k)
+          t.matrix()(k % 4, k / 4) = n["matrix"][static_cast<std::size_t>(k)].get<double>();
+      if (n.contains("translation"))
+        t.translate(Eigen::Vector3d(n["translation"][0], n["translation"][1], n["translation"][2]));
+      if (n.contains("rotation"))
+        t.rotate(Eigen::Quaterniond(n["rotation"][3], n["rotation"][0], n["rotation"][1],
+                                    n["rotation"][2]));
+      if (n.contains("scale"))
+        t.scale(Eigen::Vector3d(n["scale"][0], n["scale"][1], n["scale"][2]));
       return t;
     };
     std::size_t checked = 0;
     for (std::size_t i = 0; i < nodes.size(); ++i) {
       if (!nodes[i].contains("mesh") || !nodes[i].contains("skin")) continue;
       Eigen::Affine3d g = Eigen::Affine3d::Identity();
-      for (int n = static_cast<int>(i); n >= 0; n = parent[static_cast<std::size_t>(n)]) g = local(static_cast<std::size_t>(n)) * g;
-      for (const auto& prim : parts.json["meshes"][nodes[i]["mesh"].get<std::size_t>()]["primitives"])
+      for (int n = static_cast<int>(i); n >= 0; n = parent[static_cast<std::size_t>(n)])
+        g = local(static_cast<std::size_t>(n)) * g;
+      for (const auto& prim :
+           parts.json["meshes"][nodes[i]["mesh"].get<std::size_t>()]["primitives"])
         for (const Eigen::Vector3f& p : parts.vec3(prim["attributes"]["POSITION"].get<int>())) {
           const Eigen::Vector3d w = g * p.cast<double>();
-          const Eigen::Vector3f expect = (f.unitScale * Eigen::Vector3d(w.z(), w.x(), w.y())).cast<float>();
+          const Eigen::Vector3f expect =
+              (f.unitScale * Eigen::Vector3d(w.z(), w.x(), w.y())).cast<float>();
           float best = 1e30f;
           for (const auto& r : rest) best = std::min(best, (r - expect).squaredNorm());
-          ASSERT_LT(std::sqrt(best), 1e-5f * diag) << "stored vertex " << expect.transpose() << " not in the skin";
+          ASSERT_LT(std::sqrt(best), 1e-5f * diag)
+              << "stored vertex " << expect.transpose() << " not in the skin";
           ++checked;
         }
     }
     EXPECT_GT(checked, 0u);
     const std::vector<Eigen::Vector3f> posed = deform(m, bindPose(m.body));
     float worst = 0.0f;
-    for (std::size_t v = 0; v < rest.size(); ++v) worst = std::max(worst, (posed[v] - rest[v]).norm());
+    for (std::size_t v = 0; v < rest.size(); ++v)
+      worst = std::max(worst, (posed[v] - rest[v]).norm());
     EXPECT_LT(worst, 1e-4f * diag);
   }
 }
@@ -198,8 +270,8 @@ TEST(GltfImport, EveryClipKeepsTheSkinFiniteAndNear) {
         sampleClip(c, m.body, c.duration * i / 8.0, pose);
         for (const auto& p : deform(m, pose)) {
           ASSERT_TRUE(p.allFinite()) << f.file << " " << c.name;
-          ASSERT_TRUE(allowed.contains(p)) << f.file << " " << c.name << " at " << c.duration * i / 8.0 << ": "
-                                           << p.transpose();
+          ASSERT_TRUE(allowed.contains(p))
+              << f.file << " " << c.name << " at " << c.duration * i / 8.0 << ": " << p.transpose();
         }
       }
   }
@@ -219,7 +291,8 @@ TEST(GltfImport, AJointTurnedNinetyDegreesTurnsItsVertices) {
   const Eigen::Vector3f axisLocal = Eigen::Vector3f(0.3f, 1.0f, -0.2f).normalized();
   anatomy::Pose turned = rest;
   turned.local[static_cast<std::size_t>(head)].rotation =
-      rest.local[static_cast<std::size_t>(head)].rotation * Eigen::Quaternionf(Eigen::AngleAxisf(static_cast<float>(M_PI / 2), axisLocal));
+      rest.local[static_cast<std::size_t>(head)].rotation *
+      Eigen::Quaternionf(Eigen::AngleAxisf(static_cast<float>(M_PI / 2), axisLocal));
   const Eigen::Vector3f axisWorld = (W.linear() * axisLocal).normalized();
   const Eigen::Vector3f pivot = W.translation();
   const Eigen::AngleAxisf R(static_cast<float>(M_PI / 2), axisWorld);
@@ -229,7 +302,8 @@ TEST(GltfImport, AJointTurnedNinetyDegreesTurnsItsVertices) {
   for (std::size_t v = 0; v < before.size(); ++v) {
     float w = 0.0f;
     for (int k = 0; k < 4; ++k)
-      if (bind[v].segment[static_cast<std::size_t>(k)] == head) w += bind[v].weight[static_cast<std::size_t>(k)];
+      if (bind[v].segment[static_cast<std::size_t>(k)] == head)
+        w += bind[v].weight[static_cast<std::size_t>(k)];
     if (w > 0.9999f) {
       EXPECT_LT((after[v] - (pivot + R * (before[v] - pivot))).norm(), 1e-5f);
       ++moved;
@@ -291,8 +365,9 @@ TEST(GltfImport, StagAntlersFollowTheHead) {
 TEST(GltfImport, RegionsAndFurLengths) {
   PELAGE_REQUIRE_SHARED_MODELS();
   const scene::Model& m = model("Horse/Horse.gltf");
-  EXPECT_THAT(m.skin.regionNames, ::testing::IsSupersetOf({"Main", "Main_Dark", "Main_Light", "Hooves", "Hair",
-                                                          "Muzzle", "Eye_White", "Eye_Black"}));
+  EXPECT_THAT(m.skin.regionNames,
+              ::testing::IsSupersetOf({"Main", "Main_Dark", "Main_Light", "Hooves", "Hair",
+                                       "Muzzle", "Eye_White", "Eye_Black"}));
   const float diag = bounds(restPositions(m)).diagonal().norm();
   std::map<std::string, std::pair<int, int>> counts;  // region -> (furred, bare) vertices
   for (int v = 0; v < m.skin.numVertices(); ++v) {
@@ -325,7 +400,8 @@ TEST(GltfImport, RegionsAndFurLengths) {
   }
   int mainBare = 0;
   for (int v = 0; v < bare.skin.numVertices(); ++v)
-    mainBare += bare.skin.regionNames[static_cast<std::size_t>(bare.skin.regions()[v])] == "Main" && bare.skin.furLengths()[v] == 0.0f;
+    mainBare += bare.skin.regionNames[static_cast<std::size_t>(bare.skin.regions()[v])] == "Main" &&
+                bare.skin.furLengths()[v] == 0.0f;
   EXPECT_GT(mainBare, 100);
 }
 
@@ -334,7 +410,9 @@ TEST(GltfImport, RegionsAndFurLengths) {
 // default skin colour rather than turning white.
 TEST(GltfImport, SkinColourFromUntexturedMaterialsOnly) {
   PELAGE_REQUIRE_SHARED_MODELS();
-  EXPECT_TRUE(model("Wolf/Wolf.gltf").skin.color.isApprox(Eigen::Vector3f(0.18424858f, 0.19017477f, 0.16846527f), 1e-5f));
+  EXPECT_TRUE(
+      model("Wolf/Wolf.gltf")
+          .skin.color.isApprox(Eigen::Vector3f(0.18424858f, 0.19017477f, 0.16846527f), 1e-5f));
   const skin::SkinMesh untouched;
   EXPECT_TRUE(model("Fox/Fox.glb").skin.color.isApprox(untouched.color));
 }
@@ -369,31 +447,39 @@ TEST(GltfImport, SegmentDirectionsRunHeadToTail) {
     EXPECT_GE(s, 0) << name;
     return m.body.segments[static_cast<std::size_t>(std::max(s, 0))].direction;
   };
-  for (const char* back : {"Torso", "Torso2", "Neck2"}) EXPECT_LT(dir(back).x(), -0.5f) << back << dir(back).transpose();
-  for (const char* leg : {"FrontLowerLeg.L", "BackLowerLeg.R", "FrontUpperLeg.R"}) EXPECT_LT(dir(leg).z(), -0.5f) << leg << dir(leg).transpose();
+  for (const char* back : {"Torso", "Torso2", "Neck2"})
+    EXPECT_LT(dir(back).x(), -0.5f) << back << dir(back).transpose();
+  for (const char* leg : {"FrontLowerLeg.L", "BackLowerLeg.R", "FrontUpperLeg.R"})
+    EXPECT_LT(dir(leg).z(), -0.5f) << leg << dir(leg).transpose();
   EXPECT_LT(dir("Tail3").x(), 0.0f);
-  for (const char* s : {"Torso", "FrontLowerLeg.L", "Tail3", "Head"}) EXPECT_NEAR(dir(s).norm(), 1.0f, 1e-5f) << s;
+  for (const char* s : {"Torso", "FrontLowerLeg.L", "Tail3", "Head"})
+    EXPECT_NEAR(dir(s).norm(), 1.0f, 1e-5f) << s;
   // Each vertex carries its closest (largest-weight) segment's direction.
   for (int v = 0; v < m.skin.numVertices(); v += 13) {
     const Eigen::Vector3f d = Eigen::Map<const Eigen::Vector3f>(m.skin.segmentDirections() + 3 * v);
-    EXPECT_TRUE(d.isApprox(m.body.segments[static_cast<std::size_t>(m.skin.bindings()[v].segment[0])].direction));
+    EXPECT_TRUE(d.isApprox(
+        m.body.segments[static_cast<std::size_t>(m.skin.bindings()[v].segment[0])].direction));
   }
 }
 
 TEST(GltfImport, DirectionSideFileOverridesPerJoint) {
   PELAGE_REQUIRE_SHARED_MODELS();
   test::TempDir dir;
-  test::writeText(dir.file("wolf.directions.json"), R"({ "directions": { "Torso": [0, 0, 2], "Head": [0, 0, 0] } })");
+  test::writeText(dir.file("wolf.directions.json"),
+                  R"({ "directions": { "Torso": [0, 0, 2], "Head": [0, 0, 0] } })");
   scene::LoadOptions opt;
   opt.segmentDirections = dir.file("wolf.directions.json");
   const scene::Model m = scene::loadModel(sharedModel("Wolf/Wolf.gltf"), opt);
-  EXPECT_EQ(m.body.segments[static_cast<std::size_t>(m.body.find("Torso"))].direction, Eigen::Vector3f(0, 0, 1));
-  EXPECT_EQ(m.body.segments[static_cast<std::size_t>(m.body.find("Head"))].direction, Eigen::Vector3f::Zero());
+  EXPECT_EQ(m.body.segments[static_cast<std::size_t>(m.body.find("Torso"))].direction,
+            Eigen::Vector3f(0, 0, 1));
+  EXPECT_EQ(m.body.segments[static_cast<std::size_t>(m.body.find("Head"))].direction,
+            Eigen::Vector3f::Zero());
   const int torso = m.body.find("Torso");
   int n = 0;
   for (int v = 0; v < m.skin.numVertices(); ++v)
     if (m.skin.bindings()[v].segment[0] == torso) {
-      EXPECT_EQ(Eigen::Map<const Eigen::Vector3f>(m.skin.segmentDirections() + 3 * v), Eigen::Vector3f(0, 0, 1));
+      EXPECT_EQ(Eigen::Map<const Eigen::Vector3f>(m.skin.segmentDirections() + 3 * v),
+                Eigen::Vector3f(0, 0, 1));
       ++n;
     }
   EXPECT_GT(n, 10);
@@ -414,7 +500,8 @@ TEST(GltfImport, UnitScaleCanBeGiven) {
   opt.unitScale = 0.02f;
   const scene::Model big = scene::loadModel(sharedModel("Fox/Fox.glb"), opt);
   EXPECT_FLOAT_EQ(big.unitScale, 0.02f);
-  const Eigen::Vector3f a = bounds(restPositions(big)).sizes(), b = bounds(restPositions(model("Fox/Fox.glb"))).sizes();
+  const Eigen::Vector3f a = bounds(restPositions(big)).sizes(),
+                        b = bounds(restPositions(model("Fox/Fox.glb"))).sizes();
   EXPECT_TRUE(a.isApprox(2.0f * b, 1e-4f));
   // Clips scale with it (root translations are converted too).
   anatomy::Pose p;
@@ -437,7 +524,8 @@ TEST(GltfImport, ExternalBufferFilesLoad) {
   test::GltfParts g = test::GltfParts::read(sharedModel("SimpleSkin/SimpleSkin.gltf"));
   ASSERT_GE(g.buffers.size(), 2u);
   for (std::size_t i = 0; i < g.buffers.size(); ++i) {
-    const std::string name = "part " + std::to_string(i) + ".bin";  // a space: URIs are percent-decoded
+    const std::string name =
+        "part " + std::to_string(i) + ".bin";  // a space: URIs are percent-decoded
     test::writeBytes(dir.file(name), g.buffers[i]);
     g.json["buffers"][i]["uri"] = "part%20" + std::to_string(i) + ".bin";
   }
@@ -445,7 +533,8 @@ TEST(GltfImport, ExternalBufferFilesLoad) {
   const GltfCreature ext = importGltf(dir.file("external.gltf"));
   const GltfCreature emb = importGltf(sharedModel("SimpleSkin/SimpleSkin.gltf"));
   ASSERT_EQ(ext.skin.numVertices(), emb.skin.numVertices());
-  for (int v = 0; v < 3 * ext.skin.numVertices(); ++v) EXPECT_EQ(ext.skin.restPositions()[v], emb.skin.restPositions()[v]);
+  for (int v = 0; v < 3 * ext.skin.numVertices(); ++v)
+    EXPECT_EQ(ext.skin.restPositions()[v], emb.skin.restPositions()[v]);
   ASSERT_EQ(ext.clips.size(), 1u);
   EXPECT_EQ(ext.clips[0].channels.size(), emb.clips[0].channels.size());
 }
@@ -506,13 +595,15 @@ TEST(GltfImport, HeadToTailDirectionsOnAHandMadeSkeleton) {
   EXPECT_TRUE(at("leg").isApprox(Eigen::Vector3f(0, 0, -1)));
   // A longer leg makes the leg the spine's end: the root then averages the neck bone and the leg.
   pos[static_cast<std::size_t>(body.find("leg"))] = {0, 0, -2.0f};
-  EXPECT_TRUE(headToTailDirections(body, pos, all)[static_cast<std::size_t>(body.find("root"))].isApprox(
-      Eigen::Vector3f(-1, 0, -1).normalized()));
+  EXPECT_TRUE(
+      headToTailDirections(body, pos, all)[static_cast<std::size_t>(body.find("root"))].isApprox(
+          Eigen::Vector3f(-1, 0, -1).normalized()));
   pos[static_cast<std::size_t>(body.find("leg"))] = {0, 0, 0.5f};
   // Unbound segments get no direction.
   std::vector<bool> some = all;
   some[static_cast<std::size_t>(body.find("leg"))] = false;
-  EXPECT_EQ(headToTailDirections(body, pos, some)[static_cast<std::size_t>(body.find("leg"))], Eigen::Vector3f::Zero());
+  EXPECT_EQ(headToTailDirections(body, pos, some)[static_cast<std::size_t>(body.find("leg"))],
+            Eigen::Vector3f::Zero());
   // Without a segment named *head*, the front-most joint of a long, low skeleton is the head: here
   // the tail end (moved to +X) becomes the head, and the flow reverses.
   std::vector<anatomy::SegmentSpec> renamed = specs;

@@ -21,9 +21,9 @@
 namespace pelage::animation {
 namespace {
 
-using ::testing::HasSubstr;
 using test::GltfParts;
 using test::sharedModel;
+using ::testing::HasSubstr;
 
 // Silences import warnings for the corpus (many files are odd on purpose).
 struct QuietWarnings {
@@ -43,7 +43,8 @@ void expectRejected(const std::string& path, const std::string& expect) {
 
 struct Corpus : ::testing::Test {
   void SetUp() override {
-    if (!test::haveSharedModels()) GTEST_SKIP() << "shared glTF models not found at " << PELAGE_SHARED_MODELS_DIR;
+    if (!test::haveSharedModels())
+      GTEST_SKIP() << "shared glTF models not found at " << PELAGE_SHARED_MODELS_DIR;
     fox = test::readBytes(sharedModel("Fox/Fox.glb"));
   }
   std::string put(const std::string& name, const std::vector<unsigned char>& bytes) {
@@ -82,10 +83,13 @@ TEST_F(Corpus, RewrittenCopiesStillLoad) {
 
 TEST_F(Corpus, TruncatedAndEmptyFiles) {
   expectRejected(put("empty.glb", {}), "empty");
-  expectRejected(put("ten.glb", std::vector<unsigned char>(fox.begin(), fox.begin() + 10)), "truncated");
+  expectRejected(put("ten.glb", std::vector<unsigned char>(fox.begin(), fox.begin() + 10)),
+                 "truncated");
   for (std::size_t keep : {std::size_t{20}, std::size_t{1000}, fox.size() / 2, fox.size() - 4})
-    expectRejected(put("cut" + std::to_string(keep) + ".glb", std::vector<unsigned char>(fox.begin(), fox.begin() + static_cast<long>(keep))),
-                   "truncated");
+    expectRejected(
+        put("cut" + std::to_string(keep) + ".glb",
+            std::vector<unsigned char>(fox.begin(), fox.begin() + static_cast<long>(keep))),
+        "truncated");
   const std::string text = test::readText(sharedModel("SimpleSkin/SimpleSkin.gltf"));
   test::writeText(dir.file("cut.gltf"), text.substr(0, text.size() / 2));
   expectRejected(dir.file("cut.gltf"), "malformed glTF");
@@ -116,81 +120,107 @@ TEST_F(Corpus, BrokenJson) {
   const std::string arr = "[1, 2]";
   std::copy(arr.begin(), arr.end(), b.begin() + 20);
   expectRejected(put("badjson.glb", b), "malformed glTF");
-  test::writeText(dir.file("garbage.gltf"), "{ \"asset\": { \"version\": \"2.0\" }, \"nodes\": [ { \"children\": [7] ");
+  test::writeText(dir.file("garbage.gltf"),
+                  "{ \"asset\": { \"version\": \"2.0\" }, \"nodes\": [ { \"children\": [7] ");
   expectRejected(dir.file("garbage.gltf"), "malformed glTF");
 }
 
 TEST_F(Corpus, AccessorsAndViewsOutOfRange) {
-  expectRejected(foxEdit("count.glb", [](GltfParts& g) {
-                   const int pos = g.json["meshes"][0]["primitives"][0]["attributes"]["POSITION"];
-                   g.json["accessors"][static_cast<std::size_t>(pos)]["count"] = 100000;
-                 }),
+  expectRejected(foxEdit("count.glb",
+                         [](GltfParts& g) {
+                           const int pos =
+                               g.json["meshes"][0]["primitives"][0]["attributes"]["POSITION"];
+                           g.json["accessors"][static_cast<std::size_t>(pos)]["count"] = 100000;
+                         }),
                  "out of range");
-  expectRejected(foxEdit("offset.glb", [](GltfParts& g) {
-                   const int pos = g.json["meshes"][0]["primitives"][0]["attributes"]["POSITION"];
-                   g.json["accessors"][static_cast<std::size_t>(pos)]["byteOffset"] = 4000000000u;
-                 }),
-                 "POSITION");
-  expectRejected(foxEdit("view.glb", [](GltfParts& g) { g.json["bufferViews"][0]["byteLength"] = 99999999; }), "bufferView");
-  expectRejected(foxEdit("noaccessor.glb", [](GltfParts& g) { g.json["meshes"][0]["primitives"][0]["attributes"]["POSITION"] = 999; }),
+  expectRejected(
+      foxEdit("offset.glb",
+              [](GltfParts& g) {
+                const int pos = g.json["meshes"][0]["primitives"][0]["attributes"]["POSITION"];
+                g.json["accessors"][static_cast<std::size_t>(pos)]["byteOffset"] = 4000000000u;
+              }),
+      "POSITION");
+  expectRejected(
+      foxEdit("view.glb", [](GltfParts& g) { g.json["bufferViews"][0]["byteLength"] = 99999999; }),
+      "bufferView");
+  expectRejected(foxEdit("noaccessor.glb",
+                         [](GltfParts& g) {
+                           g.json["meshes"][0]["primitives"][0]["attributes"]["POSITION"] = 999;
+                         }),
                  "no such accessor");
-  expectRejected(simple("type.gltf", [](GltfParts& g) {
-                   const int pos = g.json["meshes"][0]["primitives"][0]["attributes"]["POSITION"];
-                   g.json["accessors"][static_cast<std::size_t>(pos)]["type"] = "VEC2";
-                 }),
+  expectRejected(simple("type.gltf",
+                        [](GltfParts& g) {
+                          const int pos =
+                              g.json["meshes"][0]["primitives"][0]["attributes"]["POSITION"];
+                          g.json["accessors"][static_cast<std::size_t>(pos)]["type"] = "VEC2";
+                        }),
                  "must be VEC3");
-  expectRejected(simple("sparse.gltf", [](GltfParts& g) {
-                   const int pos = g.json["meshes"][0]["primitives"][0]["attributes"]["POSITION"];
-                   g.json["accessors"][static_cast<std::size_t>(pos)]["sparse"] = {
-                       {"count", 1}, {"indices", {{"bufferView", 0}, {"componentType", 5123}}}, {"values", {{"bufferView", 0}}}};
-                 }),
+  expectRejected(simple("sparse.gltf",
+                        [](GltfParts& g) {
+                          const int pos =
+                              g.json["meshes"][0]["primitives"][0]["attributes"]["POSITION"];
+                          g.json["accessors"][static_cast<std::size_t>(pos)]["sparse"] = {
+                              {"count", 1},
+                              {"indices", {{"bufferView", 0}, {"componentType", 5123}}},
+                              {"values", {{"bufferView", 0}}}};
+                        }),
                  "sparse");
 }
 
 // Fewer vertices than the indices use: indices beyond the vertex count.
 TEST_F(Corpus, IndicesBeyondTheVertexCount) {
-  expectRejected(simple("indices.gltf", [](GltfParts& g) {
-                   for (const char* a : {"POSITION", "JOINTS_0", "WEIGHTS_0"}) {
-                     const int i = g.json["meshes"][0]["primitives"][0]["attributes"][a];
-                     g.json["accessors"][static_cast<std::size_t>(i)]["count"] = 5;
-                   }
-                 }),
+  expectRejected(simple("indices.gltf",
+                        [](GltfParts& g) {
+                          for (const char* a : {"POSITION", "JOINTS_0", "WEIGHTS_0"}) {
+                            const int i = g.json["meshes"][0]["primitives"][0]["attributes"][a];
+                            g.json["accessors"][static_cast<std::size_t>(i)]["count"] = 5;
+                          }
+                        }),
                  "beyond the primitive's 5 vertices");
 }
 
 TEST_F(Corpus, NaNsInTheData) {
   const float nan = std::numeric_limits<float>::quiet_NaN();
-  expectRejected(simple("nan.gltf", [&](GltfParts& g) {
-                   const int pos = g.json["meshes"][0]["primitives"][0]["attributes"]["POSITION"];
-                   const auto [off, buf] = g.accessorBytes(pos);
-                   std::memcpy(g.buffers[buf].data() + off + 16, &nan, 4);  // element 1, y
-                 }),
+  expectRejected(simple("nan.gltf",
+                        [&](GltfParts& g) {
+                          const int pos =
+                              g.json["meshes"][0]["primitives"][0]["attributes"]["POSITION"];
+                          const auto [off, buf] = g.accessorBytes(pos);
+                          std::memcpy(g.buffers[buf].data() + off + 16, &nan, 4);  // element 1, y
+                        }),
                  "element 1 has a NaN");
-  expectRejected(foxEdit("nan_ibm.glb", [&](GltfParts& g) {
-                   const int ibm = g.json["skins"][0]["inverseBindMatrices"];
-                   const auto [off, buf] = g.accessorBytes(ibm);
-                   std::memcpy(g.buffers[buf].data() + off, &nan, 4);
-                 }),
+  expectRejected(foxEdit("nan_ibm.glb",
+                         [&](GltfParts& g) {
+                           const int ibm = g.json["skins"][0]["inverseBindMatrices"];
+                           const auto [off, buf] = g.accessorBytes(ibm);
+                           std::memcpy(g.buffers[buf].data() + off, &nan, 4);
+                         }),
                  "inverseBindMatrices");
-  expectRejected(foxEdit("nan_anim.glb", [&](GltfParts& g) {
-                   const int out = g.json["animations"][0]["samplers"][0]["output"];
-                   const auto [off, buf] = g.accessorBytes(out);
-                   std::memcpy(g.buffers[buf].data() + off + 4, &nan, 4);
-                 }),
+  expectRejected(foxEdit("nan_anim.glb",
+                         [&](GltfParts& g) {
+                           const int out = g.json["animations"][0]["samplers"][0]["output"];
+                           const auto [off, buf] = g.accessorBytes(out);
+                           std::memcpy(g.buffers[buf].data() + off + 4, &nan, 4);
+                         }),
                  "NaN");
 }
 
 TEST_F(Corpus, MissingBuffers) {
-  expectRejected(simple("missing.gltf", [](GltfParts& g) { g.json["buffers"][0]["uri"] = "missing.bin"; }), "missing.bin");
+  expectRejected(
+      simple("missing.gltf", [](GltfParts& g) { g.json["buffers"][0]["uri"] = "missing.bin"; }),
+      "missing.bin");
   expectRejected(foxEdit("nobin.glb", [](GltfParts& g) { g.buffers.clear(); }), "malformed glTF");
-  expectRejected(simple("badview.gltf", [](GltfParts& g) { g.json["bufferViews"][0]["buffer"] = 9; }), "buffer");
+  expectRejected(
+      simple("badview.gltf", [](GltfParts& g) { g.json["bufferViews"][0]["buffer"] = 9; }),
+      "buffer");
 }
 
 TEST_F(Corpus, UnsupportedRequiredExtensions) {
-  expectRejected(simple("draco.gltf", [](GltfParts& g) {
-                   g.json["extensionsUsed"] = {"KHR_draco_mesh_compression"};
-                   g.json["extensionsRequired"] = {"KHR_draco_mesh_compression"};
-                 }),
+  expectRejected(simple("draco.gltf",
+                        [](GltfParts& g) {
+                          g.json["extensionsUsed"] = {"KHR_draco_mesh_compression"};
+                          g.json["extensionsRequired"] = {"KHR_draco_mesh_compression"};
+                        }),
                  "KHR_draco_mesh_compression");
   // Appearance-only extensions are fine.
   EXPECT_NO_THROW(importGltf(simple("unlit.gltf", [](GltfParts& g) {
@@ -200,30 +230,55 @@ TEST_F(Corpus, UnsupportedRequiredExtensions) {
 }
 
 TEST_F(Corpus, SkinsNodesAndAnimationsThatDoNotAddUp) {
-  expectRejected(simple("joints.gltf", [](GltfParts& g) { g.json["skins"][0]["joints"] = {1}; }), "but the skin has 1 joints");
-  expectRejected(simple("jointnode.gltf", [](GltfParts& g) { g.json["skins"][0]["joints"] = {1, 99}; }), "joint node 99");
-  expectRejected(simple("cycle.gltf", [](GltfParts& g) { g.json["nodes"][2]["children"] = {1}; }), "cycle");
-  expectRejected(simple("twoparents.gltf", [](GltfParts& g) { g.json["nodes"][0]["children"] = {2}; }), "two parents");
-  expectRejected(simple("child.gltf", [](GltfParts& g) { g.json["nodes"][1]["children"] = {2, 40}; }), "child 40");
-  expectRejected(simple("shear.gltf", [](GltfParts& g) {
-                   g.json["nodes"][1]["matrix"] = {1, 0, 0, 0, 0.5, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
-                 }),
+  expectRejected(simple("joints.gltf", [](GltfParts& g) { g.json["skins"][0]["joints"] = {1}; }),
+                 "but the skin has 1 joints");
+  expectRejected(simple("jointnode.gltf",
+                        [](GltfParts& g) {
+                          g.json["skins"][0]["joints"] = {1, 99};
+                        }),
+                 "joint node 99");
+  expectRejected(simple("cycle.gltf", [](GltfParts& g) { g.json["nodes"][2]["children"] = {1}; }),
+                 "cycle");
+  expectRejected(
+      simple("twoparents.gltf", [](GltfParts& g) { g.json["nodes"][0]["children"] = {2}; }),
+      "two parents");
+  expectRejected(simple("child.gltf",
+                        [](GltfParts& g) {
+                          g.json["nodes"][1]["children"] = {2, 40};
+                        }),
+                 "child 40");
+  expectRejected(simple("shear.gltf",
+                        [](GltfParts& g) {
+                          g.json["nodes"][1]["matrix"] = {1, 0, 0, 0, 0.5, 1, 0, 0,
+                                                          0, 0, 1, 0, 0,   0, 0, 1};
+                        }),
                  "shear");
-  expectRejected(simple("sampler.gltf", [](GltfParts& g) { g.json["animations"][0]["channels"][0]["sampler"] = 5; }),
-                 "sampler 5");
-  expectRejected(simple("keys.gltf", [](GltfParts& g) {
-                   const int in = g.json["animations"][0]["samplers"][0]["input"];
-                   g.json["accessors"][static_cast<std::size_t>(in)]["count"] = 3;
-                 }),
+  expectRejected(
+      simple("sampler.gltf",
+             [](GltfParts& g) { g.json["animations"][0]["channels"][0]["sampler"] = 5; }),
+      "sampler 5");
+  expectRejected(simple("keys.gltf",
+                        [](GltfParts& g) {
+                          const int in = g.json["animations"][0]["samplers"][0]["input"];
+                          g.json["accessors"][static_cast<std::size_t>(in)]["count"] = 3;
+                        }),
                  "output values");
-  expectRejected(simple("interp.gltf", [](GltfParts& g) { g.json["animations"][0]["samplers"][0]["interpolation"] = "BEZIER"; }),
+  expectRejected(simple("interp.gltf",
+                        [](GltfParts& g) {
+                          g.json["animations"][0]["samplers"][0]["interpolation"] = "BEZIER";
+                        }),
                  "BEZIER");
-  expectRejected(simple("path.gltf", [](GltfParts& g) { g.json["animations"][0]["channels"][0]["target"]["path"] = "shear"; }),
+  expectRejected(simple("path.gltf",
+                        [](GltfParts& g) {
+                          g.json["animations"][0]["channels"][0]["target"]["path"] = "shear";
+                        }),
                  "shear");
-  expectRejected(simple("nomesh.gltf", [](GltfParts& g) { g.json["nodes"][0].erase("mesh"); }), "no mesh");
-  expectRejected(simple("weights.gltf", [](GltfParts& g) {
-                   g.json["meshes"][0]["primitives"][0]["attributes"].erase("WEIGHTS_0");
-                 }),
+  expectRejected(simple("nomesh.gltf", [](GltfParts& g) { g.json["nodes"][0].erase("mesh"); }),
+                 "no mesh");
+  expectRejected(simple("weights.gltf",
+                        [](GltfParts& g) {
+                          g.json["meshes"][0]["primitives"][0]["attributes"].erase("WEIGHTS_0");
+                        }),
                  "lacks WEIGHTS_0");
 }
 
@@ -278,9 +333,15 @@ TEST_F(Corpus, RandomCorruptionNeverCrashes) {
 // data URI, which keeps the JSON valid) loads into a finite skin or is rejected naming the file;
 // an accessor count past its buffer view and an index past the vertex count are named.
 TEST_F(Corpus, EveryModelTruncatedOrCorruptedIsHandled) {
-  const char* files[] = {"Fox/Fox.glb",       "CesiumMan/CesiumMan.glb", "RiggedFigure/RiggedFigure.glb",
-                         "RiggedSimple/RiggedSimple.glb", "SimpleSkin/SimpleSkin.gltf", "Wolf/Wolf.gltf",
-                         "Husky/Husky.gltf",  "Horse/Horse.gltf",        "Stag/Stag.gltf",
+  const char* files[] = {"Fox/Fox.glb",
+                         "CesiumMan/CesiumMan.glb",
+                         "RiggedFigure/RiggedFigure.glb",
+                         "RiggedSimple/RiggedSimple.glb",
+                         "SimpleSkin/SimpleSkin.gltf",
+                         "Wolf/Wolf.gltf",
+                         "Husky/Husky.gltf",
+                         "Horse/Horse.gltf",
+                         "Stag/Stag.gltf",
                          "Alpaca/Alpaca.gltf"};
   std::mt19937 rng(77);
   int loaded = 0, rejected = 0;
@@ -293,8 +354,9 @@ TEST_F(Corpus, EveryModelTruncatedOrCorruptedIsHandled) {
     const std::string stem = std::filesystem::path(file).stem().string();
     for (double frac : {0.01, 0.3, 0.7, 0.999}) {
       const std::size_t keep = static_cast<std::size_t>(frac * static_cast<double>(bytes.size()));
-      const std::string p = put(stem + "_cut" + std::to_string(keep) + ext,
-                                std::vector<unsigned char>(bytes.begin(), bytes.begin() + static_cast<long>(keep)));
+      const std::string p =
+          put(stem + "_cut" + std::to_string(keep) + ext,
+              std::vector<unsigned char>(bytes.begin(), bytes.begin() + static_cast<long>(keep)));
       expectRejected(p, glb ? "truncated" : "malformed glTF");
     }
     // Where the binary data lies: the BIN chunk, or the first data URI's base64 text.
@@ -314,14 +376,16 @@ TEST_F(Corpus, EveryModelTruncatedOrCorruptedIsHandled) {
       const int flips = 1 + 20 * k;
       for (int f = 0; f < flips; ++f) {
         const std::size_t at = std::uniform_int_distribution<std::size_t>(from, to - 1)(rng);
-        b[at] = glb ? static_cast<unsigned char>(std::uniform_int_distribution<int>(0, 255)(rng))
-                    : static_cast<unsigned char>(b64[std::uniform_int_distribution<int>(0, 63)(rng)]);
+        b[at] =
+            glb ? static_cast<unsigned char>(std::uniform_int_distribution<int>(0, 255)(rng))
+                : static_cast<unsigned char>(b64[std::uniform_int_distribution<int>(0, 63)(rng)]);
       }
       const std::string p = put(stem + "_flip" + std::to_string(k) + ext, b);
       try {
         const GltfCreature c = importGltf(p);
         ++loaded;
-        for (int v = 0; v < 3 * c.skin.numVertices(); ++v) ASSERT_TRUE(std::isfinite(c.skin.restPositions()[v])) << p;
+        for (int v = 0; v < 3 * c.skin.numVertices(); ++v)
+          ASSERT_TRUE(std::isfinite(c.skin.restPositions()[v])) << p;
       } catch (const InputError& e) {
         ++rejected;
         ASSERT_THAT(e.what(), HasSubstr(p));
@@ -341,7 +405,8 @@ TEST_F(Corpus, EveryModelTruncatedOrCorruptedIsHandled) {
       const auto [off, buf] = g.accessorBytes(prim["indices"].get<int>());
       const int type = g.json["accessors"][prim["indices"].get<std::size_t>()]["componentType"];
       const int size = type == 5121 ? 1 : type == 5123 ? 2 : 4;
-      std::memset(g.buffers[buf].data() + off + static_cast<std::size_t>(size), 0xFF, static_cast<std::size_t>(size));
+      std::memset(g.buffers[buf].data() + off + static_cast<std::size_t>(size), 0xFF,
+                  static_cast<std::size_t>(size));
       g.write(dir.file(stem + "_index" + ext));
       expectRejected(dir.file(stem + "_index" + ext), "beyond the primitive's");
     }
@@ -350,7 +415,8 @@ TEST_F(Corpus, EveryModelTruncatedOrCorruptedIsHandled) {
 }
 
 TEST_F(Corpus, CommandLineReportsAndExits) {
-  const std::string bad = put("cut.glb", std::vector<unsigned char>(fox.begin(), fox.begin() + 5000));
+  const std::string bad =
+      put("cut.glb", std::vector<unsigned char>(fox.begin(), fox.begin() + 5000));
   const auto r = test::runPelage("info " + bad);
   EXPECT_EQ(r.exitCode, 2) << r.output;
   EXPECT_THAT(r.output, HasSubstr("pelage: error: " + bad));

@@ -16,19 +16,25 @@
 
 namespace pelage::test {
 
-inline std::string sharedModel(const std::string& rel) { return std::string(PELAGE_SHARED_MODELS_DIR) + "/" + rel; }
+inline std::string sharedModel(const std::string& rel) {
+  return std::string(PELAGE_SHARED_MODELS_DIR) + "/" + rel;
+}
 
-inline bool haveSharedModels() { return std::filesystem::is_directory(PELAGE_SHARED_MODELS_DIR); }
+inline bool haveSharedModels() {
+  return std::filesystem::is_directory(PELAGE_SHARED_MODELS_DIR);
+}
 
-#define PELAGE_REQUIRE_SHARED_MODELS()                                                                  \
-  do {                                                                                                   \
-    if (!::pelage::test::haveSharedModels())                                                             \
-      GTEST_SKIP() << "shared glTF models not found at " << PELAGE_SHARED_MODELS_DIR << " (tests skipped)"; \
+#define PELAGE_REQUIRE_SHARED_MODELS()                                               \
+  do {                                                                               \
+    if (!::pelage::test::haveSharedModels())                                         \
+      GTEST_SKIP() << "shared glTF models not found at " << PELAGE_SHARED_MODELS_DIR \
+                   << " (tests skipped)";                                            \
   } while (0)
 
 inline std::vector<unsigned char> readBytes(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
-  return std::vector<unsigned char>((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  return std::vector<unsigned char>((std::istreambuf_iterator<char>(in)),
+                                    std::istreambuf_iterator<char>());
 }
 
 inline void writeBytes(const std::string& path, const std::vector<unsigned char>& b) {
@@ -47,12 +53,18 @@ inline std::vector<unsigned char> base64Decode(const std::string& s) {
   int val = 0, bits = -8;
   for (unsigned char c : s) {
     int d;
-    if (c >= 'A' && c <= 'Z') d = c - 'A';
-    else if (c >= 'a' && c <= 'z') d = c - 'a' + 26;
-    else if (c >= '0' && c <= '9') d = c - '0' + 52;
-    else if (c == '+') d = 62;
-    else if (c == '/') d = 63;
-    else break;
+    if (c >= 'A' && c <= 'Z')
+      d = c - 'A';
+    else if (c >= 'a' && c <= 'z')
+      d = c - 'a' + 26;
+    else if (c >= '0' && c <= '9')
+      d = c - '0' + 52;
+    else if (c == '+')
+      d = 62;
+    else if (c == '/')
+      d = 63;
+    else
+      break;
     val = (val << 6) + d;
     bits += 6;
     if (bits >= 0) {
@@ -95,7 +107,9 @@ struct GltfParts {
       const std::uint32_t jsonLen = le32(b, 12);
       p.json = nlohmann::json::parse(b.begin() + 20, b.begin() + 20 + jsonLen);
       const std::size_t binAt = 20 + jsonLen;
-      if (binAt + 8 <= b.size()) bin.assign(b.begin() + static_cast<long>(binAt + 8), b.begin() + static_cast<long>(binAt + 8 + le32(b, binAt)));
+      if (binAt + 8 <= b.size())
+        bin.assign(b.begin() + static_cast<long>(binAt + 8),
+                   b.begin() + static_cast<long>(binAt + 8 + le32(b, binAt)));
     } else {
       p.json = nlohmann::json::parse(b.begin(), b.end());
     }
@@ -115,7 +129,8 @@ struct GltfParts {
   void write(const std::string& path) const {
     nlohmann::json j = json;
     for (std::size_t i = 0; i < buffers.size(); ++i)
-      if (j["buffers"][i].contains("uri") && j["buffers"][i]["uri"].get<std::string>().rfind("data:", 0) == 0)
+      if (j["buffers"][i].contains("uri") &&
+          j["buffers"][i]["uri"].get<std::string>().rfind("data:", 0) == 0)
         j["buffers"][i]["uri"] = "data:application/octet-stream;base64," + base64Encode(buffers[i]);
     std::string text = j.dump();
     if (!glb) {
@@ -147,7 +162,8 @@ struct GltfParts {
   std::pair<std::size_t, std::size_t> accessorBytes(int a) const {
     const auto& acc = json["accessors"][static_cast<std::size_t>(a)];
     const auto& bv = json["bufferViews"][acc["bufferView"].get<std::size_t>()];
-    return {bv.value("byteOffset", std::size_t{0}) + acc.value("byteOffset", std::size_t{0}), bv["buffer"].get<std::size_t>()};
+    return {bv.value("byteOffset", std::size_t{0}) + acc.value("byteOffset", std::size_t{0}),
+            bv["buffer"].get<std::size_t>()};
   }
 
   // FLOAT VEC3 accessor values.
@@ -157,7 +173,8 @@ struct GltfParts {
     const std::size_t stride = bv.value("byteStride", std::size_t{12});
     const auto [off, buf] = accessorBytes(a);
     std::vector<Eigen::Vector3f> out(acc["count"].get<std::size_t>());
-    for (std::size_t i = 0; i < out.size(); ++i) std::memcpy(out[i].data(), buffers[buf].data() + off + i * stride, 12);
+    for (std::size_t i = 0; i < out.size(); ++i)
+      std::memcpy(out[i].data(), buffers[buf].data() + off + i * stride, 12);
     return out;
   }
 };

@@ -17,16 +17,17 @@
 namespace pelage {
 namespace {
 
-using ::testing::HasSubstr;
 using test::objVertices;
 using test::runPelage;
+using ::testing::HasSubstr;
 
 TEST(MonkeyCli, InfoListsTheMonkeysProceduralClips) {
   const auto r = runPelage("info --json --triangles 2000");
   ASSERT_EQ(r.exitCode, 0) << r.output;
   const auto j = nlohmann::json::parse(r.output);
   ASSERT_EQ(j["clips"].size(), 5u);
-  const std::pair<const char*, double> expect[] = {{"walk", 1.0}, {"tumble", 3.0}, {"hang", 1.4}, {"shake", 1.5}, {"idle", 4.0}};
+  const std::pair<const char*, double> expect[] = {
+      {"walk", 1.0}, {"tumble", 3.0}, {"hang", 1.4}, {"shake", 1.5}, {"idle", 4.0}};
   for (std::size_t i = 0; i < 5; ++i) {
     EXPECT_EQ(j["clips"][i]["name"], expect[i].first);
     EXPECT_NEAR(j["clips"][i]["durationSeconds"].get<double>(), expect[i].second, 1e-6);
@@ -38,7 +39,9 @@ TEST(MonkeyCli, InfoListsTheMonkeysProceduralClips) {
 
 TEST(MonkeyCli, MonkeyTumbleAndClipFiles) {
   test::TempDir dir;
-  ASSERT_EQ(runPelage("skin --triangles 2000 --clip tumble --time 1.5 --out " + dir.file("t.obj")).exitCode, 0);
+  ASSERT_EQ(runPelage("skin --triangles 2000 --clip tumble --time 1.5 --out " + dir.file("t.obj"))
+                .exitCode,
+            0);
   ASSERT_EQ(runPelage("skin --triangles 2000 --out " + dir.file("r.obj")).exitCode, 0);
   // Upside down: a foot sole (the lowest vertex at rest) is in the upper half mid-tumble.
   const auto t = objVertices(dir.file("t.obj")), r = objVertices(dir.file("r.obj"));
@@ -51,7 +54,8 @@ TEST(MonkeyCli, MonkeyTumbleAndClipFiles) {
   EXPECT_GT(t[sole].z(), minZ + 0.5f * (maxZ - minZ));
   test::writeText(dir.file("nod.json"), R"({ "channels": [ { "segment": "head", "path": "rotate",
       "keys": [ { "time": 0, "axis": [0, 1, 0], "degrees": 0 }, { "time": 1, "axis": [0, 1, 0], "degrees": 40 } ] } ] })");
-  const auto c = runPelage("skin --triangles 2000 --clip " + dir.file("nod.json") + " --time 0.5 --out " + dir.file("n.obj"));
+  const auto c = runPelage("skin --triangles 2000 --clip " + dir.file("nod.json") +
+                           " --time 0.5 --out " + dir.file("n.obj"));
   EXPECT_EQ(c.exitCode, 0) << c.output;
 }
 

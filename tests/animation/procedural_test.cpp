@@ -19,7 +19,9 @@ const anatomy::Creature& monkey() {
   static const anatomy::Creature c = scene::builtinCreature("monkey");
   return c;
 }
-const anatomy::Body& monkeyBody() { return monkey().body; }
+const anatomy::Body& monkeyBody() {
+  return monkey().body;
+}
 
 const std::vector<Clip>& baked() {
   static const std::vector<Clip> clips = monkeyClips(monkey());
@@ -59,7 +61,9 @@ float maxDistance(const std::vector<Eigen::Vector3f>& a, const std::vector<Eigen
   return d;
 }
 
-int seg(const char* name) { return monkeyBody().find(name); }
+int seg(const char* name) {
+  return monkeyBody().find(name);
+}
 
 TEST(Procedural, FiveLoopingClips) {
   const std::vector<std::string> expect = {"walk", "tumble", "hang", "shake", "idle"};
@@ -96,7 +100,8 @@ TEST(Procedural, LoopsAreSeamlessInValueAndVelocity) {
     const auto a1 = bakedJoints(c, D + h), a2 = bakedJoints(c, D + 2 * h);
     float speed = 0.0f, dv = 0.0f;
     for (std::size_t j = 0; j < b1.size(); ++j) {
-      const Eigen::Vector3f vb = (b1[j] - b2[j]) / static_cast<float>(h), va = (a2[j] - a1[j]) / static_cast<float>(h);
+      const Eigen::Vector3f vb = (b1[j] - b2[j]) / static_cast<float>(h),
+                            va = (a2[j] - a1[j]) / static_cast<float>(h);
       speed = std::max(speed, vb.norm());
       dv = std::max(dv, (va - vb).norm());
     }
@@ -125,7 +130,7 @@ TEST(Procedural, TumbleIsUpsideDownMidClipAndRollsForwardOnTheGround) {
   float lowest = 1e9f;
   for (int i = 0; i < 60; ++i)
     for (const auto& j : bakedJoints(c, c.duration * i / 60.0)) lowest = std::min(lowest, j.z());
-  EXPECT_GT(lowest, 0.0f);  // it rolls on the ground, never through it
+  EXPECT_GT(lowest, 0.0f);   // it rolls on the ground, never through it
   EXPECT_LT(lowest, 0.12f);  // ...and stays close to it
 }
 
@@ -140,7 +145,8 @@ TEST(Procedural, TumbleRootUpVectorFlipsAndTurnsOnce) {
     sampleClip(c, monkeyBody(), t, p);
     anatomy::BodyState st;
     anatomy::forwardKinematics(monkeyBody(), p, st);
-    return Eigen::Vector3f(st.world[static_cast<std::size_t>(seg(segment))].linear() * Eigen::Vector3f::UnitZ());
+    return Eigen::Vector3f(st.world[static_cast<std::size_t>(seg(segment))].linear() *
+                           Eigen::Vector3f::UnitZ());
   };
   const double D = c.duration;
   EXPECT_GT(upOf(0.0, "pelvis").z(), 0.999f);
@@ -174,7 +180,8 @@ TEST(Procedural, HangKeepsTheGripStillAndSwings) {
   auto grip = [&](const anatomy::Pose& p) {
     anatomy::BodyState st;
     anatomy::forwardKinematics(monkeyBody(), p, st);
-    return Eigen::Vector3f(st.world[static_cast<std::size_t>(hand)] * Eigen::Vector3f(0.012f, 0.0f, -0.03f));
+    return Eigen::Vector3f(st.world[static_cast<std::size_t>(hand)] *
+                           Eigen::Vector3f(0.012f, 0.0f, -0.03f));
   };
   const Clip& c = clipNamed("hang");
   anatomy::Pose p;
@@ -186,18 +193,21 @@ TEST(Procedural, HangKeepsTheGripStillAndSwings) {
     const double t = c.duration * i / 50.0;
     evaluateMonkeyClip(monkey(), "hang", t, p);
     exact = std::max(exact, (grip(p) - g0).norm());
-    pelvisTravel = std::max(pelvisTravel, (joints(p)[static_cast<std::size_t>(seg("pelvis"))] - pelvis0).norm());
+    pelvisTravel = std::max(pelvisTravel,
+                            (joints(p)[static_cast<std::size_t>(seg("pelvis"))] - pelvis0).norm());
     sampleClip(c, monkeyBody(), t, p);
     bakedDrift = std::max(bakedDrift, (grip(p) - g0).norm());
   }
   EXPECT_LT(exact, 1e-5f);
   EXPECT_LT(bakedDrift, 0.002f);
   EXPECT_GT(pelvisTravel, 0.05f);  // the body swings
-  EXPECT_GT(g0.z(), 0.6f);          // the hand holds on above the monkey
+  EXPECT_GT(g0.z(), 0.6f);         // the hand holds on above the monkey
   // Hanging: the head is above the pelvis, the feet below it.
   const auto j = exactJoints("hang", 0.0);
-  EXPECT_GT(j[static_cast<std::size_t>(seg("head"))].z(), j[static_cast<std::size_t>(seg("pelvis"))].z() + 0.15f);
-  EXPECT_LT(j[static_cast<std::size_t>(seg("l_foot"))].z(), j[static_cast<std::size_t>(seg("pelvis"))].z());
+  EXPECT_GT(j[static_cast<std::size_t>(seg("head"))].z(),
+            j[static_cast<std::size_t>(seg("pelvis"))].z() + 0.15f);
+  EXPECT_LT(j[static_cast<std::size_t>(seg("l_foot"))].z(),
+            j[static_cast<std::size_t>(seg("pelvis"))].z());
 }
 
 // A planted foot does not slide: whenever an ankle or wrist is at its lowest (on the ground), its
@@ -210,14 +220,21 @@ TEST(Procedural, WalkPlantsItsFeet) {
   for (const char* end : {"l_foot", "r_foot", "l_hand", "r_hand"}) {
     const int e = seg(end);
     std::vector<Eigen::Vector3f> path;
-    for (int i = 0; i <= n; ++i) path.push_back(exactJoints("walk", i * dt)[static_cast<std::size_t>(e)]);
+    for (int i = 0; i <= n; ++i)
+      path.push_back(exactJoints("walk", i * dt)[static_cast<std::size_t>(e)]);
     float low = 1e9f;
     for (const auto& p : path) low = std::min(low, p.z());
     int planted = 0;
     for (int i = 0; i < n; ++i) {
-      if (path[static_cast<std::size_t>(i)].z() > low + 1e-4f || path[static_cast<std::size_t>(i) + 1].z() > low + 1e-4f) continue;
+      if (path[static_cast<std::size_t>(i)].z() > low + 1e-4f ||
+          path[static_cast<std::size_t>(i) + 1].z() > low + 1e-4f)
+        continue;
       ++planted;
-      const float speed = (path[static_cast<std::size_t>(i) + 1] - path[static_cast<std::size_t>(i)]).head<2>().norm() / static_cast<float>(dt);
+      const float speed =
+          (path[static_cast<std::size_t>(i) + 1] - path[static_cast<std::size_t>(i)])
+              .head<2>()
+              .norm() /
+          static_cast<float>(dt);
       EXPECT_LT(speed, 0.03f) << end << " at t = " << i * dt;
     }
     EXPECT_GT(planted, n / 3) << end;  // planted for most of the cycle (duty factor 0.62)
@@ -229,7 +246,8 @@ TEST(Procedural, WalkPlantsItsFeet) {
 }
 
 TEST(Procedural, ShakeAndIdleStayInPlace) {
-  for (const char* name : {"shake", "idle", "hang"}) EXPECT_EQ(clipNamed(name).rootMotion, Eigen::Vector3f::Zero()) << name;
+  for (const char* name : {"shake", "idle", "hang"})
+    EXPECT_EQ(clipNamed(name).rootMotion, Eigen::Vector3f::Zero()) << name;
   // shake starts and ends at rest.
   anatomy::Pose p;
   evaluateMonkeyClip(monkey(), "shake", 0.0, p);
@@ -240,7 +258,9 @@ TEST(Procedural, ShakeAndIdleStayInPlace) {
   }
   // ...and shakes hard in the middle: the head rolls by more than 10 degrees.
   evaluateMonkeyClip(monkey(), "shake", monkeyClipDuration("shake") / 2 + 0.05, p);
-  EXPECT_GT(p.local[static_cast<std::size_t>(seg("head"))].rotation.angularDistance(Eigen::Quaternionf::Identity()), 0.17f);
+  EXPECT_GT(p.local[static_cast<std::size_t>(seg("head"))].rotation.angularDistance(
+                Eigen::Quaternionf::Identity()),
+            0.17f);
 }
 
 // The deformed skin stays finite and near the creature for every clip (bounded by the rest bounds
@@ -273,7 +293,8 @@ TEST(Procedural, SkinStaysFiniteAndBounded) {
         ASSERT_TRUE(box.contains(p)) << c.name << " t " << t << ": " << p.transpose();
         low = std::min(low, p.z());
       }
-      if (c.name == "tumble") tumbleLow = std::min(tumbleLow, low), tumbleHigh = std::max(tumbleHigh, low);
+      if (c.name == "tumble")
+        tumbleLow = std::min(tumbleLow, low), tumbleHigh = std::max(tumbleHigh, low);
     }
   // The rolling ball's skin touches the ground all the way round: its lowest point stays within
   // [-1.5 cm, +2.5 cm] of z = 0 (the body shapes' smooth union bulges a little between shapes).

@@ -10,13 +10,15 @@
 namespace pelage {
 namespace {
 
-using ::testing::HasSubstr;
 using test::runPelage;
+using ::testing::HasSubstr;
 
 TEST(AnalyzeCommand, WritesTheCsvAndPlotOfAQuasiStaticAndADynamicRun) {
   test::TempDir dir;
-  const std::string base = "analyze monkey --triangles 4000 --hairs 3000 --clip tumble --frames 40:46 ";
-  auto r = runPelage(base + "--dynamics on --hold 0.2 --out " + dir.file("a.csv") + " --plot " + dir.file("a.png"));
+  const std::string base =
+      "analyze monkey --triangles 4000 --hairs 3000 --clip tumble --frames 40:46 ";
+  auto r = runPelage(base + "--dynamics on --hold 0.2 --out " + dir.file("a.csv") + " --plot " +
+                     dir.file("a.png"));
   ASSERT_EQ(r.exitCode, 0) << r.output;
   EXPECT_THAT(r.output, HasSubstr("13 frames of clip tumble"));
   EXPECT_THAT(r.output, HasSubstr("after the body stops at 1.533 s"));
@@ -36,11 +38,13 @@ TEST(AnalyzeCommand, BadOptionsAreClearErrors) {
   const struct {
     std::string args, message;
   } cases[] = {
-      {"--clip tumble --sweep stiffness=0:2:3", "--sweep 'stiffness=0:2:3': stiffness 2 is out of range [0, 1]"},
+      {"--clip tumble --sweep stiffness=0:2:3",
+       "--sweep 'stiffness=0:2:3': stiffness 2 is out of range [0, 1]"},
       {"--clip tumble --sweep mass=1:2:3", "unknown parameter 'mass'"},
       {"--clip tumble --frames 9:3", "--frames '9:3' is not a frame range"},
       {"--clip tumble --hold -1", "--hold -1 is out of range [0, 1000]"},
-      {"--clip tumble --dynamics on --frequency 0", "dynamics frequency 0 Hz is out of range (0, 100]"},
+      {"--clip tumble --dynamics on --frequency 0",
+       "dynamics frequency 0 Hz is out of range (0, 100]"},
       {"--clip tumble --damping 11", "damping ratio 11 is out of range [0, 10]"},
       {"--clip tumble --fps 0", "--fps 0 is out of range [1, 1000]"},
       {"--clip tumble --plot p.jpg", "must name a .png file"},

@@ -1,7 +1,7 @@
-// Degenerate geometry through the whole pipeline (issue 8): a mesh file with a zero-area triangle, a
-// sliver, duplicate vertices, a triangle repeating a vertex, a non-manifold edge, an isolated vertex
-// and open boundaries. It loads with warnings saying what was skipped, fur grows where there is
-// area, and no NaN or infinity reaches a hair buffer in any style.
+// Degenerate geometry through the whole pipeline (issue 8): a mesh file with a zero-area triangle,
+// a sliver, duplicate vertices, a triangle repeating a vertex, a non-manifold edge, an isolated
+// vertex and open boundaries. It loads with warnings saying what was skipped, fur grows where there
+// is area, and no NaN or infinity reaches a hair buffer in any style.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -70,14 +70,17 @@ TEST(DegenerateSkin, LoadsWithWarningsAndGrowsFiniteFurInEveryStyle) {
   EXPECT_EQ(s.numTriangles(), 12);
   EXPECT_EQ(s.numVertices(), 17);  // the isolated vertex is gone
   ASSERT_EQ(warnings.size(), 2u);
-  EXPECT_NE(warnings[0].find("skipped 2 triangles (repeated vertices or non-manifold edges)"), std::string::npos) << warnings[0];
+  EXPECT_NE(warnings[0].find("skipped 2 triangles (repeated vertices or non-manifold edges)"),
+            std::string::npos)
+      << warnings[0];
   EXPECT_NE(warnings[1].find("removed 1 isolated vertices"), std::string::npos) << warnings[1];
 
   skin::DeformedSkin d;
   skin::restSkin(s, d);
   for (const auto& p : d.positions) ASSERT_TRUE(p.allFinite());
   for (const auto& n : d.normals) ASSERT_TRUE(n.allFinite());
-  for (HairStyle style : {HairStyle::Line, HairStyle::Polyline, HairStyle::Curve, HairStyle::Tube}) {
+  for (HairStyle style :
+       {HairStyle::Line, HairStyle::Polyline, HairStyle::Curve, HairStyle::Tube}) {
     FurParams p = loadFurPreset("default");
     p.hairs = 20000;
     p.densityPerM2 = 0.0;

@@ -46,10 +46,12 @@ TEST(SpringStep, MatchesTheClosedFormSolutions) {
       const double h = 1e-6;
       EXPECT_NEAR(m.uu, freeResponse(f, zeta, 1, 0, t), 1e-9);
       EXPECT_NEAR(m.uv, freeResponse(f, zeta, 0, 1, t), 1e-9);
-      EXPECT_NEAR(m.vu, (freeResponse(f, zeta, 1, 0, t + h) - freeResponse(f, zeta, 1, 0, t - h)) / (2 * h),
-                  1e-4 * w * w);
-      EXPECT_NEAR(m.vv, (freeResponse(f, zeta, 0, 1, t + h) - freeResponse(f, zeta, 0, 1, t - h)) / (2 * h),
-                  1e-4 * w);
+      EXPECT_NEAR(
+          m.vu, (freeResponse(f, zeta, 1, 0, t + h) - freeResponse(f, zeta, 1, 0, t - h)) / (2 * h),
+          1e-4 * w * w);
+      EXPECT_NEAR(
+          m.vv, (freeResponse(f, zeta, 0, 1, t + h) - freeResponse(f, zeta, 0, 1, t - h)) / (2 * h),
+          1e-4 * w);
     }
 }
 
@@ -116,8 +118,9 @@ TEST(DynamicsParams, OutOfRangeValuesNameTheFieldAndRange) {
     validateDynamicsParams(p, "test");
     FAIL() << "no error";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("undercoat dynamics frequency 0 Hz is out of range (0, 100]"),
-              std::string::npos)
+    EXPECT_NE(
+        std::string(e.what()).find("undercoat dynamics frequency 0 Hz is out of range (0, 100]"),
+        std::string::npos)
         << e.what();
   }
   p = {};
@@ -171,7 +174,8 @@ double largestOffset(const FurDynamicsState& s) {
 }
 
 TEST(FurDynamics, StartsOnAndAStillBodyConvergesToTheQuasiStaticHairs) {
-  for (HairStyle style : {HairStyle::Line, HairStyle::Polyline, HairStyle::Curve, HairStyle::Tube}) {
+  for (HairStyle style :
+       {HairStyle::Line, HairStyle::Polyline, HairStyle::Curve, HairStyle::Tube}) {
     SCOPED_TRACE(styleName(style));
     const Plate plate(style, 1000);
     DynamicsParams dyn;
@@ -181,29 +185,37 @@ TEST(FurDynamics, StartsOnAndAStillBodyConvergesToTheQuasiStaticHairs) {
     FurFrame frame;
     const double dt = 1.0 / 60.0;
     // First steps: exactly on the quasi-static hairs (no offset yet).
-    generateDynamicFur(plate.skin, plate.roots, plate.params, dyn, plate.rest, dt, {}, state, ws, frame);
-    generateDynamicFur(plate.skin, plate.roots, plate.params, dyn, plate.rest, dt, {}, state, ws, frame);
+    generateDynamicFur(plate.skin, plate.roots, plate.params, dyn, plate.rest, dt, {}, state, ws,
+                       frame);
+    generateDynamicFur(plate.skin, plate.roots, plate.params, dyn, plate.rest, dt, {}, state, ws,
+                       frame);
     const FurFrame still = test::furFrame(plate.skin, plate.roots, plate.params, plate.rest);
     ASSERT_EQ(frame.coats[0].drawn, still.coats[0].drawn);
-    const std::size_t floats = static_cast<std::size_t>(frame.coats[0].drawn * frame.coats[0].pointsPerHair * 3);
+    const std::size_t floats =
+        static_cast<std::size_t>(frame.coats[0].drawn * frame.coats[0].pointsPerHair * 3);
     double worst = 0.0;
     for (std::size_t i = 0; i < floats; ++i)
-      worst = std::max(worst, double(std::abs(frame.coats[0].positions.data()[i] - still.coats[0].positions.data()[i])));
+      worst = std::max(worst, double(std::abs(frame.coats[0].positions.data()[i] -
+                                              still.coats[0].positions.data()[i])));
     EXPECT_LT(worst, 2e-8);  // only the end direction's rounding through E_qs - R
     // Then the plate turns 60 degrees in one frame and stays: the hairs swing, then converge to
     // the quasi-static hairs of the turned plate.
     const skin::DeformedSkin turned = plate.moved(turnX(60), Eigen::Vector3f::Zero());
     const FurFrame target = test::furFrame(plate.skin, plate.roots, plate.params, turned);
-    generateDynamicFur(plate.skin, plate.roots, plate.params, dyn, turned, dt, {}, state, ws, frame);
+    generateDynamicFur(plate.skin, plate.roots, plate.params, dyn, turned, dt, {}, state, ws,
+                       frame);
     worst = 0.0;
     for (std::size_t i = 0; i < floats; ++i)
-      worst = std::max(worst, double(std::abs(frame.coats[0].positions.data()[i] - target.coats[0].positions.data()[i])));
+      worst = std::max(worst, double(std::abs(frame.coats[0].positions.data()[i] -
+                                              target.coats[0].positions.data()[i])));
     EXPECT_GT(worst, 1e-3) << "right after the turn the hairs lag";
     for (int i = 0; i < 600; ++i)  // 10 s, about 40 settling times
-      generateDynamicFur(plate.skin, plate.roots, plate.params, dyn, turned, dt, {}, state, ws, frame);
+      generateDynamicFur(plate.skin, plate.roots, plate.params, dyn, turned, dt, {}, state, ws,
+                         frame);
     worst = 0.0;
     for (std::size_t i = 0; i < floats; ++i)
-      worst = std::max(worst, double(std::abs(frame.coats[0].positions.data()[i] - target.coats[0].positions.data()[i])));
+      worst = std::max(worst, double(std::abs(frame.coats[0].positions.data()[i] -
+                                              target.coats[0].positions.data()[i])));
     EXPECT_LT(worst, 1e-6);
   }
 }
@@ -248,11 +260,11 @@ TEST_P(ConstantAcceleration, HoldsTheEndsBackByAOverOmegaSquared) {
   EXPECT_NEAR(w, 2 * kPi * 2.0, 1e-4);
   const double tolerance = length == 0.01f ? 0.02 : 0.1;
   const Eigen::Vector3d a(3.0, 0.0, -2.0);  // m/s^2
-  for (int i = 0; i < 480; ++i) {  // 2 s: 12 settling times of zeta 0.7 at 2 Hz
+  for (int i = 0; i < 480; ++i) {           // 2 s: 12 settling times of zeta 0.7 at 2 Hz
     const double t = i * dt;
     const Eigen::Vector3f shift = (0.5 * a * t * t).cast<float>();
-    stepFurDynamics(plate.skin, plate.roots, plate.params, dyn, plate.moved(Eigen::Matrix3f::Identity(), shift),
-                    dt, state, ws);
+    stepFurDynamics(plate.skin, plate.roots, plate.params, dyn,
+                    plate.moved(Eigen::Matrix3f::Identity(), shift), dt, state, ws);
   }
   // Steady state of u'' + 2 zeta w u' + w^2 u = -a: u = -a / w^2, for every hair.
   const Eigen::Vector3d expected = -a / (w * w);
@@ -277,9 +289,11 @@ TEST(FurDynamics, ASuddenTurnLagsThenSettlesWithinThePredictedTime) {
     FurWorkspace ws;
     FurFrame frame;
     const double dt = 1.0 / 120.0;
-    const skin::DeformedSkin before = plate.rest, after = plate.moved(turnX(25), Eigen::Vector3f::Zero());
+    const skin::DeformedSkin before = plate.rest,
+                             after = plate.moved(turnX(25), Eigen::Vector3f::Zero());
     for (int i = 0; i < 3; ++i)
-      generateDynamicFur(plate.skin, plate.roots, plate.params, dyn, before, dt, {}, state, ws, frame);
+      generateDynamicFur(plate.skin, plate.roots, plate.params, dyn, before, dt, {}, state, ws,
+                         frame);
     const FurFrame oldStatic = test::furFrame(plate.skin, plate.roots, plate.params, before);
     const FurFrame newStatic = test::furFrame(plate.skin, plate.roots, plate.params, after);
     // The turn happens during one frame; the hairs lag: each ending point moves no more than its
@@ -293,7 +307,8 @@ TEST(FurDynamics, ASuddenTurnLagsThenSettlesWithinThePredictedTime) {
     for (std::int64_t h = 0; h < n; ++h) {
       const Eigen::Vector3f old = test::point(oldStatic.coats[0], h, 1);
       const float moved = (test::point(frame.coats[0], h, 1) - old).norm();
-      const float rootMoved = (test::point(newStatic.coats[0], h, 0) - test::point(oldStatic.coats[0], h, 0)).norm();
+      const float rootMoved =
+          (test::point(newStatic.coats[0], h, 0) - test::point(oldStatic.coats[0], h, 0)).norm();
       const float quasiStatic = (test::point(newStatic.coats[0], h, 1) - old).norm();
       lagging += moved <= rootMoved + (followed + 0.01f) * quasiStatic;
     }
@@ -319,7 +334,8 @@ TEST(FurDynamics, ASuddenTurnLagsThenSettlesWithinThePredictedTime) {
     const double predicted = std::log(1.0 / tol) / (zeta * w);  // e^(-zeta w t) = tol
     double settled = 0.0;
     for (int i = 1; i * dt < 3.0 * predicted; ++i) {
-      generateDynamicFur(plate.skin, plate.roots, plate.params, dyn, after, dt, {}, state, ws, frame);
+      generateDynamicFur(plate.skin, plate.roots, plate.params, dyn, after, dt, {}, state, ws,
+                         frame);
       const double m = largestOffset(state);
       EXPECT_LE(m, amplitude * std::exp(-zeta * w * i * dt) * (1 + 1e-4) + 1e-7) << i;
       if (m > tol * amplitude) settled = i * dt;
@@ -331,7 +347,8 @@ TEST(FurDynamics, ASuddenTurnLagsThenSettlesWithinThePredictedTime) {
 
 // A plate that turns and accelerates, for the bit-identity checks.
 skin::DeformedSkin wobble(const Plate& plate, int i) {
-  return plate.moved(turnX(40.0 * std::sin(0.3 * i)), Eigen::Vector3f(0.01f * i * i, 0.0f, 0.02f * std::cos(0.5 * i)));
+  return plate.moved(turnX(40.0 * std::sin(0.3 * i)),
+                     Eigen::Vector3f(0.01f * i * i, 0.0f, 0.02f * std::cos(0.5 * i)));
 }
 
 TEST(FurDynamics, BitIdenticalWhateverTheThreadsAndTheSimdPath) {
@@ -343,8 +360,8 @@ TEST(FurDynamics, BitIdenticalWhateverTheThreadsAndTheSimdPath) {
     resetFurDynamics(plate.roots, state);
     FurWorkspace ws;
     for (int i = 0; i < 12; ++i)
-      generateDynamicFur(plate.skin, plate.roots, plate.params, dyn, wobble(plate, i), 1.0 / 30.0, {}, state, ws,
-                         frame);
+      generateDynamicFur(plate.skin, plate.roots, plate.params, dyn, wobble(plate, i), 1.0 / 30.0,
+                         {}, state, ws, frame);
     return true;
   };
   FurDynamicsState ref;
@@ -377,9 +394,10 @@ TEST(FurDynamics, CullingDrawsASubsetOfTheSameHairsAndAdvancesEveryHair) {
   far.referenceDistance = 1.0f;
   far.viewDistance = 3.0f;
   for (int i = 0; i < 8; ++i) {
-    generateDynamicFur(plate.skin, plate.roots, plate.params, dyn, wobble(plate, i), 1.0 / 30.0, {}, whole, ws1, all);
-    generateDynamicFur(plate.skin, plate.roots, plate.params, dyn, wobble(plate, i), 1.0 / 30.0, far, culled, ws2,
-                       some);
+    generateDynamicFur(plate.skin, plate.roots, plate.params, dyn, wobble(plate, i), 1.0 / 30.0, {},
+                       whole, ws1, all);
+    generateDynamicFur(plate.skin, plate.roots, plate.params, dyn, wobble(plate, i), 1.0 / 30.0,
+                       far, culled, ws2, some);
   }
   EXPECT_EQ(culled.coats[0], whole.coats[0]);
   const HairBuffers& a = all.coats[0];
@@ -390,8 +408,12 @@ TEST(FurDynamics, CullingDrawsASubsetOfTheSameHairsAndAdvancesEveryHair) {
   for (std::int64_t h = 0; h < b.drawn; ++h) {
     const std::int32_t id = b.hairIds[static_cast<std::size_t>(h)];
     ASSERT_EQ(a.hairIds[static_cast<std::size_t>(id)], id);
-    EXPECT_EQ(std::memcmp(b.positions.data() + h * P * 3, a.positions.data() + id * P * 3, sizeof(float) * P * 3), 0);
-    EXPECT_EQ(std::memcmp(b.normals.data() + h * P * 3, a.normals.data() + id * P * 3, sizeof(float) * P * 3), 0);
+    EXPECT_EQ(std::memcmp(b.positions.data() + h * P * 3, a.positions.data() + id * P * 3,
+                          sizeof(float) * P * 3),
+              0);
+    EXPECT_EQ(std::memcmp(b.normals.data() + h * P * 3, a.normals.data() + id * P * 3,
+                          sizeof(float) * P * 3),
+              0);
   }
 }
 
@@ -406,7 +428,8 @@ TEST(FurDynamics, StiffSpringsFollowTheTargetMoreClosely) {
     FurWorkspace ws;
     double worst = 0.0;
     for (int i = 0; i < 60; ++i) {
-      stepFurDynamics(plate.skin, plate.roots, plate.params, dyn, wobble(plate, i), 1.0 / 60.0, state, ws);
+      stepFurDynamics(plate.skin, plate.roots, plate.params, dyn, wobble(plate, i), 1.0 / 60.0,
+                      state, ws);
       worst = std::max(worst, largestOffset(state));
     }
     EXPECT_LT(worst, previous) << f0;

@@ -56,7 +56,8 @@ TEST(Generate, DegenerateHairPlanesMatchTheReferenceOnEveryPath) {
         ASSERT_EQ(0, std::memcmp(nrm.data(), hb.normals.data() + static_cast<std::size_t>(h) * n,
                                  n * sizeof(float)))
             << "hair " << h;
-        const Eigen::Vector3f chord = test::point(hb, h, hb.pointsPerHair - 1) - test::point(hb, h, 0);
+        const Eigen::Vector3f chord =
+            test::point(hb, h, hb.pointsPerHair - 1) - test::point(hb, h, 0);
         if (chord.x() == 0.0f && chord.y() == 0.0f) ++degenerate;
       }
     }

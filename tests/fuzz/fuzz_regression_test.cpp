@@ -70,7 +70,8 @@ TEST(FuzzEntry, BadInputsAreRejectedNotCrashed) {
   EXPECT_FALSE(run("creature", "{\"segments\": 3}"));
   EXPECT_FALSE(run("preset", "[1, 2"));
   EXPECT_FALSE(run("clip", "{\"channels\": [{\"segment\": \"no_such_segment\"}]}"));
-  EXPECT_FALSE(run("pose", "{\"pose\": {\"pelvis\": {\"rotate\": {\"axis\": [0, 0, 0], \"degrees\": 1}}}}"));
+  EXPECT_FALSE(
+      run("pose", "{\"pose\": {\"pelvis\": {\"rotate\": {\"axis\": [0, 0, 0], \"degrees\": 1}}}}"));
   EXPECT_FALSE(run("gltf", std::string("glTF\x02\x00\x00\x00\xff\xff\xff\xff", 12)));
   EXPECT_FALSE(run("mesh", pelage::fuzz::meshInput("obj", "v 0 0 0\nf 1 2 3\n")));
   EXPECT_FALSE(run("mesh", pelage::fuzz::meshInput("stl", std::string(84, '\0'))));

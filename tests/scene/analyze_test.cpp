@@ -23,8 +23,9 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 
 // A clip turning the root about +X: `degrees[k]` at `times[k]`, step or linear interpolation.
-animation::Clip turnClip(const std::string& name, std::vector<float> times, const std::vector<double>& degrees,
-                         animation::Interpolation interpolation, float duration) {
+animation::Clip turnClip(const std::string& name, std::vector<float> times,
+                         const std::vector<double>& degrees, animation::Interpolation interpolation,
+                         float duration) {
   animation::Clip clip;
   clip.name = name;
   clip.loop = false;
@@ -35,7 +36,8 @@ animation::Clip turnClip(const std::string& name, std::vector<float> times, cons
   ch.interpolation = interpolation;
   ch.times = std::move(times);
   for (double d : degrees) {
-    const Eigen::Quaternionf q(Eigen::AngleAxisf(static_cast<float>(d * kPi / 180.0), Eigen::Vector3f::UnitX()));
+    const Eigen::Quaternionf q(
+        Eigen::AngleAxisf(static_cast<float>(d * kPi / 180.0), Eigen::Vector3f::UnitX()));
     ch.values.insert(ch.values.end(), {q.x(), q.y(), q.z(), q.w()});
   }
   clip.channels.push_back(ch);
@@ -56,8 +58,10 @@ const Model& ball() {
     b.skin = test::makeSphere(0.02f, 16, 32);
     for (auto v : b.skin.mesh.vertices()) b.skin.mesh.property(b.skin.furLength, v) = 0.01f;
     b.clips.push_back(turnClip("still", {0.0f}, {0.0}, animation::Interpolation::Linear, 1.0f));
-    b.clips.push_back(turnClip("flip", {0.0f, 1.0f}, {0.0, 179.9}, animation::Interpolation::Linear, 1.0f));
-    b.clips.push_back(turnClip("jolt", {0.0f, 0.5f}, {0.0, 10.0}, animation::Interpolation::Step, 0.5f));
+    b.clips.push_back(
+        turnClip("flip", {0.0f, 1.0f}, {0.0, 179.9}, animation::Interpolation::Linear, 1.0f));
+    b.clips.push_back(
+        turnClip("jolt", {0.0f, 0.5f}, {0.0, 10.0}, animation::Interpolation::Step, 0.5f));
     return b;
   }();
   return m;
@@ -113,9 +117,11 @@ TEST(Analyze, UpsideDownFlipsTheMeanDroopDirectionRelativeToTheBody) {
   // and (a symmetric ball) the same size.
   EXPECT_LT(up.quasiStatic.droopBodyUpMm, -0.5);
   EXPECT_GT(down.quasiStatic.droopBodyUpMm, 0.5);
-  EXPECT_NEAR(down.quasiStatic.droopBodyUpMm, -up.quasiStatic.droopBodyUpMm, 0.05 * std::abs(up.quasiStatic.droopBodyUpMm));
+  EXPECT_NEAR(down.quasiStatic.droopBodyUpMm, -up.quasiStatic.droopBodyUpMm,
+              0.05 * std::abs(up.quasiStatic.droopBodyUpMm));
   // Relative to the world nothing changes: the tips hang below their roots by the same amount.
-  EXPECT_NEAR(down.quasiStatic.tipHeightMm, up.quasiStatic.tipHeightMm, 0.05 * std::abs(up.quasiStatic.tipHeightMm));
+  EXPECT_NEAR(down.quasiStatic.tipHeightMm, up.quasiStatic.tipHeightMm,
+              0.05 * std::abs(up.quasiStatic.tipHeightMm));
 }
 
 TEST(Analyze, StifferCoatsDroopLessMonotonically) {
@@ -124,16 +130,20 @@ TEST(Analyze, StifferCoatsDroopLessMonotonically) {
   ASSERT_EQ(s.runs.size(), 5u);
   for (std::size_t f = 0; f < s.runs[0].frames.size(); ++f)
     for (std::size_t i = 1; i < s.runs.size(); ++i) {
-      EXPECT_LT(s.runs[i].frames[f].quasiStatic.all.droopMeanDeg, s.runs[i - 1].frames[f].quasiStatic.all.droopMeanDeg);
-      EXPECT_GT(s.runs[i].frames[f].quasiStatic.tipHeightMm, s.runs[i - 1].frames[f].quasiStatic.tipHeightMm);
+      EXPECT_LT(s.runs[i].frames[f].quasiStatic.all.droopMeanDeg,
+                s.runs[i - 1].frames[f].quasiStatic.all.droopMeanDeg);
+      EXPECT_GT(s.runs[i].frames[f].quasiStatic.tipHeightMm,
+                s.runs[i - 1].frames[f].quasiStatic.tipHeightMm);
     }
   // Its CSV: a column per value.
   const std::string csv = sweepCsv(s);
-  EXPECT_EQ(csv.substr(0, csv.find('\n')),
-            "frame,time_s,held,pitch_deg,tilt_deg,droop_mean_deg[stiffness=0.1],droop_mean_deg[stiffness=0.3],"
-            "droop_mean_deg[stiffness=0.5],droop_mean_deg[stiffness=0.7],droop_mean_deg[stiffness=0.9],"
-            "tip_height_mm[stiffness=0.1],tip_height_mm[stiffness=0.3],tip_height_mm[stiffness=0.5],"
-            "tip_height_mm[stiffness=0.7],tip_height_mm[stiffness=0.9]");
+  EXPECT_EQ(
+      csv.substr(0, csv.find('\n')),
+      "frame,time_s,held,pitch_deg,tilt_deg,droop_mean_deg[stiffness=0.1],droop_mean_deg[stiffness="
+      "0.3],"
+      "droop_mean_deg[stiffness=0.5],droop_mean_deg[stiffness=0.7],droop_mean_deg[stiffness=0.9],"
+      "tip_height_mm[stiffness=0.1],tip_height_mm[stiffness=0.3],tip_height_mm[stiffness=0.5],"
+      "tip_height_mm[stiffness=0.7],tip_height_mm[stiffness=0.9]");
 }
 
 // The jolt's answer from the spring alone: the target jumps by dT within one frame (moving at
@@ -168,7 +178,8 @@ TEST_P(Jolt, TheEndsLagASuddenTurnThenSwingAndSettleAsTheSpringPredicts) {
   // The spring released from rest: 2 % envelope time ln(1 / (0.02 sqrt(1 - zeta^2))) / (zeta w).
   if (zeta < 1.0f) {
     const double z = zeta;
-    EXPECT_NEAR(s.springSettlingSeconds, std::log(1.0 / (0.02 * std::sqrt(1 - z * z))) / (z * 2 * kPi * 3.0), 1e-5);
+    EXPECT_NEAR(s.springSettlingSeconds,
+                std::log(1.0 / (0.02 * std::sqrt(1 - z * z))) / (z * 2 * kPi * 3.0), 1e-5);
     EXPECT_NEAR(s.springOvershootPercent, 100 * std::exp(-kPi * z / std::sqrt(1 - z * z)), 1e-3);
   }
   // The measured response against the jolt's analytic answer (all hairs 1 cm: one frequency),
@@ -178,7 +189,8 @@ TEST_P(Jolt, TheEndsLagASuddenTurnThenSwingAndSettleAsTheSpringPredicts) {
   for (std::size_t k = 0; k < u.size(); ++k)
     if (std::abs(u[k]) > std::abs(u[peak])) peak = k;
   double beyond = 0.0, settled = 0.0;
-  for (std::size_t k = peak; k < u.size(); ++k) beyond = std::max(beyond, -u[k] * (u[peak] < 0 ? -1.0 : 1.0));
+  for (std::size_t k = peak; k < u.size(); ++k)
+    beyond = std::max(beyond, -u[k] * (u[peak] < 0 ? -1.0 : 1.0));
   for (std::size_t k = 0; k < u.size(); ++k)
     if (std::abs(u[k]) > 0.02 * std::abs(u[peak])) settled = (k + 1) / 30.0;
   EXPECT_NEAR(s.swingSeconds, peak / 30.0, 1.5 / 30.0);
@@ -211,13 +223,34 @@ TEST(AnalysisCsv, HeaderNamesEveryColumnWithItsUnitAndRowsMatchIt) {
   const AnalysisResult r = analyzeClip(ball(), ballFur(), o);
   const auto rows = parseCsv(analysisCsv(r));
   ASSERT_EQ(rows.size(), r.frames.size() + 1);
-  const std::vector<std::string> expected = {
-      "frame", "time_s", "held", "body_up_x", "body_up_y", "body_up_z", "pitch_deg", "roll_deg", "tilt_deg",
-      "qs_droop_mean_deg", "qs_droop_std_deg", "qs_gravity_angle_deg", "qs_tip_height_mm", "qs_droop_body_up_mm",
-      "qs_tip_speed_m_per_s", "qs_droop_mean_deg[body]", "qs_droop_std_deg[body]",
-      "dyn_droop_mean_deg", "dyn_droop_std_deg", "dyn_gravity_angle_deg", "dyn_tip_height_mm",
-      "dyn_droop_body_up_mm", "dyn_tip_speed_m_per_s", "dyn_droop_mean_deg[body]", "dyn_droop_std_deg[body]",
-      "lag_deg", "dyn_offset_mm", "dyn_stop_response_mm"};
+  const std::vector<std::string> expected = {"frame",
+                                             "time_s",
+                                             "held",
+                                             "body_up_x",
+                                             "body_up_y",
+                                             "body_up_z",
+                                             "pitch_deg",
+                                             "roll_deg",
+                                             "tilt_deg",
+                                             "qs_droop_mean_deg",
+                                             "qs_droop_std_deg",
+                                             "qs_gravity_angle_deg",
+                                             "qs_tip_height_mm",
+                                             "qs_droop_body_up_mm",
+                                             "qs_tip_speed_m_per_s",
+                                             "qs_droop_mean_deg[body]",
+                                             "qs_droop_std_deg[body]",
+                                             "dyn_droop_mean_deg",
+                                             "dyn_droop_std_deg",
+                                             "dyn_gravity_angle_deg",
+                                             "dyn_tip_height_mm",
+                                             "dyn_droop_body_up_mm",
+                                             "dyn_tip_speed_m_per_s",
+                                             "dyn_droop_mean_deg[body]",
+                                             "dyn_droop_std_deg[body]",
+                                             "lag_deg",
+                                             "dyn_offset_mm",
+                                             "dyn_stop_response_mm"};
   EXPECT_EQ(rows[0], expected);
   for (std::size_t i = 1; i < rows.size(); ++i) {
     ASSERT_EQ(rows[i].size(), expected.size()) << i;
@@ -282,9 +315,10 @@ TEST(Analyze, BadRangesAndSweepsAreInputErrors) {
   o = options(0, 5, true);
   o.dynamicsParams.coats[0].frequencyHz = 0.0f;
   EXPECT_THROW(analyzeClip(ball(), ballFur(), o), InputError);
-  for (const char* bad : {"stiffness", "stiffness=0.2:1.0", "stiffness=0.2:1.0:0", "stiffness=0.2:1.5:3",
-                          "stiffness=a:1:3", "stiffness=0.2:1:2.5", "length=0.2:1:3", "frequency=0:4:3",
-                          "damping=-1:1:3", "stiffness=0.2:1:3:4"}) {
+  for (const char* bad :
+       {"stiffness", "stiffness=0.2:1.0", "stiffness=0.2:1.0:0", "stiffness=0.2:1.5:3",
+        "stiffness=a:1:3", "stiffness=0.2:1:2.5", "length=0.2:1:3", "frequency=0:4:3",
+        "damping=-1:1:3", "stiffness=0.2:1:3:4"}) {
     try {
       parseSweep(bad);
       ADD_FAILURE() << bad;

@@ -12,15 +12,18 @@
 namespace pelage::scene {
 namespace {
 
-using test::sceneFur;
 using test::sceneCritter;
+using test::sceneFur;
 
 // Clip-space position of a world point.
-Eigen::Vector4f clip(const Camera& cam, const Eigen::Vector3f& p) { return cam.viewProjection() * p.homogeneous(); }
+Eigen::Vector4f clip(const Camera& cam, const Eigen::Vector3f& p) {
+  return cam.viewProjection() * p.homogeneous();
+}
 
 bool insideFrustum(const Camera& cam, const Eigen::Vector3f& p) {
   const Eigen::Vector4f c = clip(cam, p);
-  return c.w() > 0 && std::abs(c.x()) <= c.w() && std::abs(c.y()) <= c.w() && std::abs(c.z()) <= c.w();
+  return c.w() > 0 && std::abs(c.x()) <= c.w() && std::abs(c.y()) <= c.w() &&
+         std::abs(c.z()) <= c.w();
 }
 
 FrameState restFrame() {
@@ -118,7 +121,10 @@ TEST(PresetCamera, EveryPresetFramesTheCreature) {
         // The vertex and the hair-length ball around it are in the frustum.
         const Eigen::Vector3f& p = f.skin.positions[v];
         for (int axis = 0; axis < 7; ++axis) {
-          const Eigen::Vector3f q = axis == 6 ? p : Eigen::Vector3f(p + (axis % 2 ? -hair : hair) * Eigen::Vector3f::Unit(axis / 2));
+          const Eigen::Vector3f q = axis == 6
+                                        ? p
+                                        : Eigen::Vector3f(p + (axis % 2 ? -hair : hair) *
+                                                                  Eigen::Vector3f::Unit(axis / 2));
           ASSERT_TRUE(insideFrustum(cam, q)) << v;
         }
         const Eigen::Vector4f c = clip(cam, p);
@@ -164,8 +170,8 @@ TEST(Orbit, RoundTripsThroughACamera) {
 }
 
 TEST(Names, PresetsAndShadingsParseAndRejectUnknownNames) {
-  for (CameraPreset p : {CameraPreset::Front, CameraPreset::Side, CameraPreset::ThreeQuarter, CameraPreset::Face,
-                         CameraPreset::Follow})
+  for (CameraPreset p : {CameraPreset::Front, CameraPreset::Side, CameraPreset::ThreeQuarter,
+                         CameraPreset::Face, CameraPreset::Follow})
     EXPECT_EQ(parseCameraPreset(cameraPresetName(p)), p);
   EXPECT_EQ(parseHairShading("kajiya-kay"), HairShading::KajiyaKay);
   EXPECT_EQ(parseHairShading("paper"), HairShading::Paper);
@@ -213,14 +219,16 @@ TEST(BuildDrawList, SkinAndOneItemPerCoat) {
     EXPECT_EQ(item.rootCount, fur.roots.coats[static_cast<std::size_t>(c)].size());
     EXPECT_EQ(item.drawnHairs, f.fur.coats[static_cast<std::size_t>(c)].drawn);
     EXPECT_EQ(item.positions, f.fur.coats[static_cast<std::size_t>(c)].positions.data());
-    EXPECT_TRUE(item.material.diffuse.isApprox(fur.params.coats[static_cast<std::size_t>(c)].material.diffuse));
+    EXPECT_TRUE(item.material.diffuse.isApprox(
+        fur.params.coats[static_cast<std::size_t>(c)].material.diffuse));
     EXPECT_EQ(item.source, HairSource::Cpu);
   }
   EXPECT_EQ(list.drawnHairs(), f.drawnHairs[0] + f.drawnHairs[1]);
   // The bounds hold every hair point.
   for (const fur::HairBuffers& hb : f.fur.coats)
     for (std::int64_t i = 0; i < hb.drawn * hb.pointsPerHair; ++i)
-      ASSERT_TRUE(list.bounds.contains(Eigen::Vector3f(hb.positions.data()[3 * i], hb.positions.data()[3 * i + 1],
+      ASSERT_TRUE(list.bounds.contains(Eigen::Vector3f(hb.positions.data()[3 * i],
+                                                       hb.positions.data()[3 * i + 1],
                                                        hb.positions.data()[3 * i + 2])));
   // The GPU source points at the roots instead.
   o.hairSource = HairSource::Gpu;

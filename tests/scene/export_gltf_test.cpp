@@ -33,8 +33,10 @@ std::vector<T> read(const tinygltf::Model& m, int accessor) {
   const std::size_t comps = a.type == TINYGLTF_TYPE_VEC3 ? 3 : 1;
   std::vector<T> out(a.count * comps);
   EXPECT_EQ(v.byteLength, out.size() * sizeof(T));
-  std::memcpy(out.data(), m.buffers[static_cast<std::size_t>(v.buffer)].data.data() + v.byteOffset + a.byteOffset,
-              out.size() * sizeof(T));
+  std::memcpy(
+      out.data(),
+      m.buffers[static_cast<std::size_t>(v.buffer)].data.data() + v.byteOffset + a.byteOffset,
+      out.size() * sizeof(T));
   return out;
 }
 
@@ -50,7 +52,8 @@ void checkFrame(fur::HairStyle style) {
   exportFrame(fur, 2, state);
   TempDir dir;
   const std::string path = dir.file("frame.glb");
-  const scene::GlbCounts n = scene::writeFrameGlb(path, sceneCritter(), fur.params, state, "pelage test");
+  const scene::GlbCounts n =
+      scene::writeFrameGlb(path, sceneCritter(), fur.params, state, "pelage test");
   EXPECT_EQ(n.bytes, std::filesystem::file_size(path));
   const tinygltf::Model g = load(path);
   EXPECT_EQ(g.asset.version, "2.0");
@@ -70,7 +73,8 @@ void checkFrame(fur::HairStyle style) {
   EXPECT_EQ(read<float>(g, sp.attributes.at("NORMAL")).size(), pos.size());
   const std::vector<std::uint32_t> tri = read<std::uint32_t>(g, sp.indices);
   ASSERT_EQ(tri.size(), m.skin.triangles.size());
-  for (std::size_t i = 0; i < tri.size(); ++i) ASSERT_EQ(tri[i], static_cast<std::uint32_t>(m.skin.triangles[i]));
+  for (std::size_t i = 0; i < tri.size(); ++i)
+    ASSERT_EQ(tri[i], static_cast<std::uint32_t>(m.skin.triangles[i]));
 
   for (int c = 0; c < 2; ++c) {
     const tinygltf::Mesh* coat = meshNamed(g, c == 0 ? "overcoat" : "undercoat");
@@ -95,7 +99,8 @@ void checkFrame(fur::HairStyle style) {
           ASSERT_NEAR(hp[static_cast<std::size_t>((h * K + k) * 3 + a)], expect, 1e-7f);
         }
     // Bounds contain every point.
-    const tinygltf::Accessor& acc = g.accessors[static_cast<std::size_t>(p.attributes.at("POSITION"))];
+    const tinygltf::Accessor& acc =
+        g.accessors[static_cast<std::size_t>(p.attributes.at("POSITION"))];
     ASSERT_EQ(acc.minValues.size(), 3u);
     for (std::size_t i = 0; i < hp.size(); ++i) {
       ASSERT_GE(hp[i], acc.minValues[i % 3]);
@@ -109,15 +114,25 @@ void checkFrame(fur::HairStyle style) {
       ASSERT_NE(idx[s + 1] % static_cast<std::uint32_t>(K), 0u);
     }
     const tinygltf::Material& mat = g.materials[static_cast<std::size_t>(p.material)];
-    EXPECT_FLOAT_EQ(static_cast<float>(mat.pbrMetallicRoughness.baseColorFactor[0]), cp.material.diffuse.x());
-    EXPECT_FLOAT_EQ(static_cast<float>(mat.pbrMetallicRoughness.baseColorFactor[2]), cp.material.diffuse.z());
+    EXPECT_FLOAT_EQ(static_cast<float>(mat.pbrMetallicRoughness.baseColorFactor[0]),
+                    cp.material.diffuse.x());
+    EXPECT_FLOAT_EQ(static_cast<float>(mat.pbrMetallicRoughness.baseColorFactor[2]),
+                    cp.material.diffuse.z());
   }
 }
 
-TEST(ExportGltf, PolylineFrameReadsBackWithTinygltf) { checkFrame(fur::HairStyle::Polyline); }
-TEST(ExportGltf, LineFrameReadsBack) { checkFrame(fur::HairStyle::Line); }
-TEST(ExportGltf, CurveFrameReadsBack) { checkFrame(fur::HairStyle::Curve); }
-TEST(ExportGltf, TubeFrameIsRingCentreLines) { checkFrame(fur::HairStyle::Tube); }
+TEST(ExportGltf, PolylineFrameReadsBackWithTinygltf) {
+  checkFrame(fur::HairStyle::Polyline);
+}
+TEST(ExportGltf, LineFrameReadsBack) {
+  checkFrame(fur::HairStyle::Line);
+}
+TEST(ExportGltf, CurveFrameReadsBack) {
+  checkFrame(fur::HairStyle::Curve);
+}
+TEST(ExportGltf, TubeFrameIsRingCentreLines) {
+  checkFrame(fur::HairStyle::Tube);
+}
 
 TEST(ExportGltf, UnwritableDirectoryNamesTheFile) {
   const scene::Fur fur = exportFur(fur::HairStyle::Line, 200.0);

@@ -15,7 +15,8 @@
 
 namespace pelage::test {
 
-// Fur on the critter with `hairs` hairs, both coats in `style`, culling off (export writes every hair).
+// Fur on the critter with `hairs` hairs, both coats in `style`, culling off (export writes every
+// hair).
 inline scene::Fur exportFur(fur::HairStyle style, double hairs = 2000.0, float curlRadius = 0.0f) {
   fur::FurParams p = fur::loadFurPreset("default");
   p.hairs = hairs;
@@ -35,7 +36,8 @@ inline void exportFrame(const scene::Fur& fur, int i, scene::FrameState& state) 
   anatomy::Pose pose = anatomy::restPose(m.body);
   for (std::size_t s = 1; s < pose.local.size(); ++s)
     pose.local[s].rotation =
-        pose.local[s].rotation * Eigen::Quaternionf(Eigen::AngleAxisf(0.21f * static_cast<float>(i), Eigen::Vector3f::UnitY()));
+        pose.local[s].rotation * Eigen::Quaternionf(Eigen::AngleAxisf(0.21f * static_cast<float>(i),
+                                                                      Eigen::Vector3f::UnitY()));
   scene::evaluateFrame(m, pose, state);
   scene::evaluateFur(m, fur, state.skinBounds.center(), true, state);
 }
@@ -83,7 +85,8 @@ inline std::vector<double> usdArray(const std::string& block, const std::string&
 }
 
 // The time samples of `attr` ("point3f[] points") in `block`: (time code, numbers) pairs.
-inline std::vector<std::pair<int, std::vector<double>>> usdTimeSamples(const std::string& block, const std::string& attr) {
+inline std::vector<std::pair<int, std::vector<double>>> usdTimeSamples(const std::string& block,
+                                                                       const std::string& attr) {
   std::vector<std::pair<int, std::vector<double>>> out;
   std::size_t at = block.find(attr + ".timeSamples = {");
   if (at == std::string::npos) return out;

@@ -62,12 +62,15 @@ TEST(ExportUsd, LayerStructureCountsAndTimeSamples) {
   EXPECT_EQ(braces, 0);
   EXPECT_EQ(brackets, 0);
   EXPECT_EQ(parens, 0);
-  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.path()), std::filesystem::directory_iterator()), 1);
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.path()),
+                          std::filesystem::directory_iterator()),
+            1);
 
   const scene::Model& m = sceneCritter();
   const std::string skin = usdBlock(text, "def Mesh \"skin\"");
   ASSERT_FALSE(skin.empty());
-  EXPECT_EQ(usdArray(skin, "int[] faceVertexCounts").size(), static_cast<std::size_t>(m.skin.numTriangles()));
+  EXPECT_EQ(usdArray(skin, "int[] faceVertexCounts").size(),
+            static_cast<std::size_t>(m.skin.numTriangles()));
   const std::vector<double> indices = usdArray(skin, "int[] faceVertexIndices");
   ASSERT_EQ(indices.size(), m.skin.triangles.size());
   for (std::size_t i = 0; i < indices.size(); i += 997) EXPECT_EQ(indices[i], m.skin.triangles[i]);
@@ -75,13 +78,15 @@ TEST(ExportUsd, LayerStructureCountsAndTimeSamples) {
   ASSERT_EQ(skinPoints.size(), 3u);
   for (int i = 0; i < 3; ++i) {
     EXPECT_EQ(skinPoints[static_cast<std::size_t>(i)].first, 10 + i);
-    EXPECT_EQ(skinPoints[static_cast<std::size_t>(i)].second.size(), static_cast<std::size_t>(m.skin.numVertices()) * 3);
+    EXPECT_EQ(skinPoints[static_cast<std::size_t>(i)].second.size(),
+              static_cast<std::size_t>(m.skin.numVertices()) * 3);
   }
   EXPECT_EQ(usdTimeSamples(skin, "normal3f[] normals").size(), 3u);
   EXPECT_EQ(usdTimeSamples(skin, "float3[] extent").size(), 3u);
 
   for (int c = 0; c < 2; ++c) {
-    const std::string curves = usdBlock(text, c == 0 ? "def BasisCurves \"overcoat\"" : "def BasisCurves \"undercoat\"");
+    const std::string curves =
+        usdBlock(text, c == 0 ? "def BasisCurves \"overcoat\"" : "def BasisCurves \"undercoat\"");
     ASSERT_FALSE(curves.empty()) << c;
     EXPECT_NE(curves.find("uniform token type = \"linear\""), std::string::npos);
     EXPECT_EQ(curves.find("basis"), std::string::npos);
@@ -95,10 +100,12 @@ TEST(ExportUsd, LayerStructureCountsAndTimeSamples) {
     EXPECT_EQ(usdTimeSamples(curves, "float3[] extent").size(), 3u);
     const std::vector<double> widths = usdArray(curves, "float[] widths");
     ASSERT_EQ(widths.size(), 1u);
-    EXPECT_FLOAT_EQ(static_cast<float>(widths[0]), 2.0f * fur.params.coats[static_cast<std::size_t>(c)].tubeRadiusMeters);
+    EXPECT_FLOAT_EQ(static_cast<float>(widths[0]),
+                    2.0f * fur.params.coats[static_cast<std::size_t>(c)].tubeRadiusMeters);
     const std::vector<double> color = usdArray(curves, "color3f[] primvars:displayColor");
     ASSERT_EQ(color.size(), 3u);
-    EXPECT_FLOAT_EQ(static_cast<float>(color[0]), fur.params.coats[static_cast<std::size_t>(c)].material.diffuse.x());
+    EXPECT_FLOAT_EQ(static_cast<float>(color[0]),
+                    fur.params.coats[static_cast<std::size_t>(c)].material.diffuse.x());
   }
 }
 
@@ -107,7 +114,8 @@ TEST(ExportUsd, PointsAreTheFramesHairsExactly) {
   TempDir dir;
   std::vector<scene::FrameState> frames;
   const std::string text = exportLayer(fur, 0, 2, dir, &frames);
-  const auto samples = usdTimeSamples(usdBlock(text, "def BasisCurves \"overcoat\""), "point3f[] points");
+  const auto samples =
+      usdTimeSamples(usdBlock(text, "def BasisCurves \"overcoat\""), "point3f[] points");
   ASSERT_EQ(samples.size(), 2u);
   for (int f = 0; f < 2; ++f) {
     const fur::HairBuffers& b = frames[static_cast<std::size_t>(f)].fur.coats[0];
@@ -121,7 +129,9 @@ TEST(ExportUsd, PointsAreTheFramesHairsExactly) {
   const auto skin = usdTimeSamples(usdBlock(text, "def Mesh \"skin\""), "point3f[] points");
   ASSERT_EQ(skin.size(), 2u);
   for (std::size_t v = 0; v < frames[1].skin.positions.size(); v += 101)
-    for (int a = 0; a < 3; ++a) ASSERT_EQ(static_cast<float>(skin[1].second[v * 3 + static_cast<std::size_t>(a)]), frames[1].skin.positions[v][a]);
+    for (int a = 0; a < 3; ++a)
+      ASSERT_EQ(static_cast<float>(skin[1].second[v * 3 + static_cast<std::size_t>(a)]),
+                frames[1].skin.positions[v][a]);
 }
 
 // Sec. 3.8: the curve style is written as the paper's cubic Bezier; evaluated at t_k = k / (K - 1)
@@ -149,7 +159,8 @@ TEST(ExportUsd, CurveStyleIsTheCubicBezierOfSection38) {
       for (int a = 0; a < 3; ++a) {
         double x = 0.0;
         for (int j = 0; j < 4; ++j) x += w[j] * P[j * 3 + a];
-        worst = std::max(worst, std::abs(x - static_cast<double>(b.positions.data()[(h * K + k) * 3 + a])));
+        worst = std::max(
+            worst, std::abs(x - static_cast<double>(b.positions.data()[(h * K + k) * 3 + a])));
       }
     }
   }
@@ -170,7 +181,8 @@ TEST(ExportUsd, CurledCurvesPassThroughEveryPoint) {
   for (std::int64_t h = 0; h < b.drawn; ++h)
     for (int k = 0; k < K; ++k)
       for (int a = 0; a < 3; ++a)
-        ASSERT_EQ(static_cast<float>(samples[0].second[static_cast<std::size_t>((h * V + 3 * k) * 3 + a)]),
+        ASSERT_EQ(static_cast<float>(
+                      samples[0].second[static_cast<std::size_t>((h * V + 3 * k) * 3 + a)]),
                   b.positions.data()[(h * K + k) * 3 + a]);
 }
 

@@ -11,8 +11,8 @@
 namespace pelage::scene {
 namespace {
 
-using test::sceneFur;
 using test::sceneCritter;
+using test::sceneFur;
 
 TEST(EvaluateFrame, RestPoseGivesTheBindSkinAndItsBounds) {
   const Model& m = sceneCritter();
@@ -37,7 +37,8 @@ TEST(EvaluateFrame, ATranslatedPoseMovesSkinAndBounds) {
   anatomy::Pose p = anatomy::restPose(m.body);
   p.local[0].translation += Eigen::Vector3f(0.5f, -0.25f, 1.0f);
   evaluateFrame(m, p, b);
-  EXPECT_TRUE((b.skinBounds.min() - a.skinBounds.min()).isApprox(Eigen::Vector3f(0.5f, -0.25f, 1.0f), 1e-4f));
+  EXPECT_TRUE((b.skinBounds.min() - a.skinBounds.min())
+                  .isApprox(Eigen::Vector3f(0.5f, -0.25f, 1.0f), 1e-4f));
   // The same FrameState reused: no stale data.
   evaluateFrame(m, anatomy::restPose(m.body), b);
   EXPECT_TRUE(b.skinBounds.min().isApprox(a.skinBounds.min()));
@@ -55,7 +56,9 @@ TEST(EvaluateClipFrame, SamplesTheClipThenDeforms) {
   ch.path = animation::ChannelPath::Rotation;
   ch.interpolation = animation::Interpolation::Linear;
   const Eigen::Quaternionf q0 = m.body.segments[0].rest.rotation;
-  const Eigen::Quaternionf q1 = Eigen::Quaternionf(Eigen::AngleAxisf(2.0f * 3.14159265f / 3.0f, Eigen::Vector3f::UnitY())) * q0;
+  const Eigen::Quaternionf q1 =
+      Eigen::Quaternionf(Eigen::AngleAxisf(2.0f * 3.14159265f / 3.0f, Eigen::Vector3f::UnitY())) *
+      q0;
   ch.times = {0.0f, 1.0f};
   ch.values = {q0.x(), q0.y(), q0.z(), q0.w(), q1.x(), q1.y(), q1.z(), q1.w()};
   roll.channels.push_back(ch);
@@ -66,7 +69,8 @@ TEST(EvaluateClipFrame, SamplesTheClipThenDeforms) {
   animation::sampleClip(m.clips[0], m.body, 1.0, pose);
   evaluateFrame(m, pose, b);
   ASSERT_EQ(a.skin.positions.size(), b.skin.positions.size());
-  for (std::size_t v = 0; v < a.skin.positions.size(); ++v) ASSERT_EQ(a.skin.positions[v], b.skin.positions[v]);
+  for (std::size_t v = 0; v < a.skin.positions.size(); ++v)
+    ASSERT_EQ(a.skin.positions[v], b.skin.positions[v]);
   // Rolled over: the head, 0.2 m ahead (+X) of the root at rest, is now behind and below it
   // (R_y(120 deg) (0.2, 0, 0.05) = (-0.057, 0, -0.198)).
   const int head = m.body.find("head");
@@ -96,9 +100,10 @@ TEST(GrowFur, GenerationsAreUniqueAndRootParametersAreDetected) {
   q.lengthScale = 2.0f;
   q.coats[1].style = fur::HairStyle::Tube;
   EXPECT_FALSE(rootsDiffer(p, q));
-  for (auto change : {+[](fur::FurParams& x) { x.hairs += 1; }, +[](fur::FurParams& x) { x.seed += 1; },
-                      +[](fur::FurParams& x) { x.undercoatShare = 0.9f; },
-                      +[](fur::FurParams& x) { x.densityPerM2 = 1e6; }}) {
+  for (auto change :
+       {+[](fur::FurParams& x) { x.hairs += 1; }, +[](fur::FurParams& x) { x.seed += 1; },
+        +[](fur::FurParams& x) { x.undercoatShare = 0.9f; },
+        +[](fur::FurParams& x) { x.densityPerM2 = 1e6; }}) {
     fur::FurParams r = p;
     change(r);
     EXPECT_TRUE(rootsDiffer(p, r));
@@ -135,7 +140,8 @@ TEST(EvaluateFur, EveryHairLiesWithinTheLongestHairOfItsRoot) {
       const float* q = hb.positions.data() + h * P * 3;
       const Eigen::Vector3f root(q[0], q[1], q[2]);
       for (int i = 1; i < P; ++i)
-        seen = std::max(seen, (Eigen::Vector3f(q[3 * i], q[3 * i + 1], q[3 * i + 2]) - root).norm());
+        seen =
+            std::max(seen, (Eigen::Vector3f(q[3 * i], q[3 * i + 1], q[3 * i + 2]) - root).norm());
     }
   }
   EXPECT_LE(seen, longest * 1.0001f);

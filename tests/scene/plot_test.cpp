@@ -54,14 +54,25 @@ PlotSpec samplePlot() {
 template <class Pred>
 int count(const RgbImage& img, Pred is) {
   int n = 0;
-  for (std::size_t i = 0; i + 2 < img.rgb.size(); i += 3) n += is(img.rgb[i], img.rgb[i + 1], img.rgb[i + 2]);
+  for (std::size_t i = 0; i + 2 < img.rgb.size(); i += 3)
+    n += is(img.rgb[i], img.rgb[i + 1], img.rgb[i + 2]);
   return n;
 }
-bool reddish(int r, int g, int b) { return r > 200 && g < 140 && b < 140; }
-bool greenish(int r, int g, int b) { return g > r + 50 && g > b + 50; }
-bool bluish(int r, int g, int b) { return b > r + 80 && b > g + 80; }
-bool dark(int r, int g, int b) { return r < 110 && g < 110 && b < 110; }
-bool white(int r, int g, int b) { return r == 255 && g == 255 && b == 255; }
+bool reddish(int r, int g, int b) {
+  return r > 200 && g < 140 && b < 140;
+}
+bool greenish(int r, int g, int b) {
+  return g > r + 50 && g > b + 50;
+}
+bool bluish(int r, int g, int b) {
+  return b > r + 80 && b > g + 80;
+}
+bool dark(int r, int g, int b) {
+  return r < 110 && g < 110 && b < 110;
+}
+bool white(int r, int g, int b) {
+  return r == 255 && g == 255 && b == 255;
+}
 
 TEST(RenderPlot, DrawsEverySeriesAxesAndTextOnWhite) {
   const RgbImage img = renderPlot(samplePlot());
@@ -84,7 +95,8 @@ TEST(RenderPlot, DrawsEverySeriesAxesAndTextOnWhite) {
   int leftDark = 0, rightDark = 0;
   for (int y = 0; y < 600; ++y)
     for (int x = 0; x < 800; ++x) {
-      const std::uint8_t* p = img.rgb.data() + (static_cast<std::size_t>(y) * 800 + static_cast<std::size_t>(x)) * 3;
+      const std::uint8_t* p =
+          img.rgb.data() + (static_cast<std::size_t>(y) * 800 + static_cast<std::size_t>(x)) * 3;
       const bool isDark = dark(p[0], p[1], p[2]);
       if (isDark && x < 60) ++leftDark;
       if (isDark && x > 700) ++rightDark;

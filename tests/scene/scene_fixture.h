@@ -1,6 +1,6 @@
-// The test critter (tests/scene/critter.json: body, head facing +X with a "face" region, tail; 40,000
-// triangles, built in a fraction of the monkey's time, also under the sanitizers) and its fur,
-// built once per test binary.
+// The test critter (tests/scene/critter.json: body, head facing +X with a "face" region, tail;
+// 40,000 triangles, built in a fraction of the monkey's time, also under the sanitizers) and its
+// fur, built once per test binary.
 #pragma once
 
 #include "pelage/fur/preset.h"

@@ -16,7 +16,9 @@ namespace {
 
 using test::defaultMonkey;
 
-Eigen::Vector3f vertex(const SkinMesh& s, int v) { return Eigen::Map<const Eigen::Vector3f>(s.restPositions() + 3 * v); }
+Eigen::Vector3f vertex(const SkinMesh& s, int v) {
+  return Eigen::Map<const Eigen::Vector3f>(s.restPositions() + 3 * v);
+}
 
 TEST(BuildSkin, DefaultMonkeyIsAClosedManifoldOfAbout130kTriangles) {
   const SkinMesh& s = defaultMonkey().skin;
@@ -50,9 +52,12 @@ TEST(BuildSkin, VerticesLieOnTheSurfaceAndFacesPointOutward) {
     // Outward = along the distance gradient.
     const Eigen::Vector3f ctr = (a + b + cc) / 3.0f;
     const float e = 1e-4f;
-    const Eigen::Vector3f g(creatureDistance(c, ctr + Eigen::Vector3f(e, 0, 0)) - creatureDistance(c, ctr - Eigen::Vector3f(e, 0, 0)),
-                            creatureDistance(c, ctr + Eigen::Vector3f(0, e, 0)) - creatureDistance(c, ctr - Eigen::Vector3f(0, e, 0)),
-                            creatureDistance(c, ctr + Eigen::Vector3f(0, 0, e)) - creatureDistance(c, ctr - Eigen::Vector3f(0, 0, e)));
+    const Eigen::Vector3f g(creatureDistance(c, ctr + Eigen::Vector3f(e, 0, 0)) -
+                                creatureDistance(c, ctr - Eigen::Vector3f(e, 0, 0)),
+                            creatureDistance(c, ctr + Eigen::Vector3f(0, e, 0)) -
+                                creatureDistance(c, ctr - Eigen::Vector3f(0, e, 0)),
+                            creatureDistance(c, ctr + Eigen::Vector3f(0, 0, e)) -
+                                creatureDistance(c, ctr - Eigen::Vector3f(0, 0, e)));
     if (n.normalized().dot(g.normalized()) <= 0.0f) ++inverted;
   }
   EXPECT_EQ(degenerate, 0);
@@ -69,7 +74,8 @@ TEST(BuildSkin, TriangleCountFollowsTheRequest) {
     EXPECT_EQ(st.nonManifoldVertices, 0) << target;
     EXPECT_GT(st.minAngleDegrees, 5.0) << target;
     // The area converges: coarse meshes lose only a little of it.
-    EXPECT_NEAR(st.area, defaultMonkey().skin.restArea, 0.03 * defaultMonkey().skin.restArea) << target;
+    EXPECT_NEAR(st.area, defaultMonkey().skin.restArea, 0.03 * defaultMonkey().skin.restArea)
+        << target;
   }
   EXPECT_THROW(buildSkin(c, {1999}), InputError);
   EXPECT_THROW(buildSkin(c, {2000001}), InputError);
@@ -84,7 +90,8 @@ TEST(BuildSkin, DeterministicWhateverTheThreadCount) {
   setThreadCount(0);
   ASSERT_EQ(a.numVertices(), b.numVertices());
   EXPECT_EQ(a.triangles, b.triangles);
-  EXPECT_EQ(0, std::memcmp(a.restPositions(), b.restPositions(), sizeof(float) * 3 * static_cast<std::size_t>(a.numVertices())));
+  EXPECT_EQ(0, std::memcmp(a.restPositions(), b.restPositions(),
+                           sizeof(float) * 3 * static_cast<std::size_t>(a.numVertices())));
 }
 
 TEST(Binding, WeightsAreNormalisedAndTheFirstSegmentIsTheClosest) {

@@ -3,8 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstring>
 #include <cstdio>
+#include <cstring>
 
 #include "monkey_fixture.h"
 #include "pelage/util/parallel.h"
@@ -15,14 +15,17 @@ namespace {
 using test::defaultMonkey;
 
 Eigen::Quaternionf rot(const Eigen::Vector3f& axis, float deg) {
-  return Eigen::Quaternionf(Eigen::AngleAxisf(deg * static_cast<float>(M_PI) / 180.0f, axis.normalized()));
+  return Eigen::Quaternionf(
+      Eigen::AngleAxisf(deg * static_cast<float>(M_PI) / 180.0f, axis.normalized()));
 }
 
 double signedVolume(const SkinMesh& s, const std::vector<Eigen::Vector3f>& p) {
   double vol = 0.0;
   for (int f = 0; f < s.numTriangles(); ++f)
     vol += static_cast<double>(p[static_cast<std::size_t>(s.triangles[3 * f])].dot(
-               p[static_cast<std::size_t>(s.triangles[3 * f + 1])].cross(p[static_cast<std::size_t>(s.triangles[3 * f + 2])]))) / 6.0;
+               p[static_cast<std::size_t>(s.triangles[3 * f + 1])].cross(
+                   p[static_cast<std::size_t>(s.triangles[3 * f + 2])]))) /
+           6.0;
   return vol;
 }
 
@@ -30,7 +33,10 @@ double area(const SkinMesh& s, const std::vector<Eigen::Vector3f>& p) {
   double a = 0.0;
   for (int f = 0; f < s.numTriangles(); ++f) {
     const auto& x = p[static_cast<std::size_t>(s.triangles[3 * f])];
-    a += 0.5 * static_cast<double>((p[static_cast<std::size_t>(s.triangles[3 * f + 1])] - x).cross(p[static_cast<std::size_t>(s.triangles[3 * f + 2])] - x).norm());
+    a += 0.5 *
+         static_cast<double>((p[static_cast<std::size_t>(s.triangles[3 * f + 1])] - x)
+                                 .cross(p[static_cast<std::size_t>(s.triangles[3 * f + 2])] - x)
+                                 .norm());
   }
   return a;
 }
@@ -42,7 +48,8 @@ TEST(Deform, RestPoseReproducesTheBindMesh) {
   DeformedSkin d;
   deformSkin(m.skin, st, d);
   for (int v = 0; v < m.skin.numVertices(); ++v)
-    ASSERT_TRUE(d.positions[static_cast<std::size_t>(v)].isApprox(Eigen::Map<const Eigen::Vector3f>(m.skin.restPositions() + 3 * v), 1e-6f));
+    ASSERT_TRUE(d.positions[static_cast<std::size_t>(v)].isApprox(
+        Eigen::Map<const Eigen::Vector3f>(m.skin.restPositions() + 3 * v), 1e-6f));
 }
 
 TEST(Deform, ARigidPoseMovesTheSkinRigidly) {
@@ -67,17 +74,20 @@ TEST(Deform, ARigidPoseMovesTheSkinRigidly) {
 Eigen::Matrix3f blendedLinear(const Binding& b, const anatomy::BodyState& st) {
   Eigen::Matrix3f R = Eigen::Matrix3f::Zero();
   for (int k = 0; k < 4; ++k)
-    R += b.weight[static_cast<std::size_t>(k)] * st.skinning[static_cast<std::size_t>(b.segment[static_cast<std::size_t>(k)])].linear();
+    R += b.weight[static_cast<std::size_t>(k)] *
+         st.skinning[static_cast<std::size_t>(b.segment[static_cast<std::size_t>(k)])].linear();
   return R;
 }
 
 // Faces whose normal turned against the local blended transform of their first vertex (the linear
 // part of sum_i w_i S_i, applied to normals as its inverse transpose): folded-over skin.
-int flippedFaces(const SkinMesh& skin, const anatomy::BodyState& st, const DeformedSkin& rest, const DeformedSkin& d) {
+int flippedFaces(const SkinMesh& skin, const anatomy::BodyState& st, const DeformedSkin& rest,
+                 const DeformedSkin& d) {
   int flipped = 0;
   for (int f = 0; f < skin.numTriangles(); ++f) {
     const Eigen::Matrix3f R = blendedLinear(skin.bindings()[skin.triangles[3 * f]], st);
-    const Eigen::Vector3f expected = R.inverse().transpose() * rest.faceNormals[static_cast<std::size_t>(f)];
+    const Eigen::Vector3f expected =
+        R.inverse().transpose() * rest.faceNormals[static_cast<std::size_t>(f)];
     flipped += expected.dot(d.faceNormals[static_cast<std::size_t>(f)]) <= 0.0f;
   }
   return flipped;
@@ -98,15 +108,17 @@ TEST(Deform, BendingOneJointFoldsNoSkin) {
   const scene::Model& m = defaultMonkey();
   DeformedSkin rest, d;
   restSkin(m.skin, rest);
-  const Bend bends[] = {
-      {"l_forearm", {0, 1, 0}, -90, 0}, {"l_forearm", {0, 1, 0}, 90, 0}, {"r_shin", {0, 1, 0}, 90, 0},
-      {"r_shin", {0, 1, 0}, -90, 0},    {"l_hand", {0, 1, 0}, 60, 0},    {"l_foot", {0, 1, 0}, -50, 0},
-      {"neck", {0, 1, 0}, 30, 0},       {"neck", {0, 1, 0}, -30, 0},     {"head", {0, 0, 1}, 45, 0},
-      {"head", {0, 1, 0}, 30, 0},       {"tail1", {0, 1, 0}, 40, 0},     {"tail2", {0, 0, 1}, 40, 0},
-      {"tail3", {0, 1, 0}, 40, 0},      {"chest", {0, 1, 0}, -25, 0},    {"l_thigh", {1, 0, 0}, 30, 0},
-      {"l_thigh", {0, 1, 0}, 45, 10},    {"l_thigh", {0, 1, 0}, -45, 40}, {"l_upperarm", {1, 0, 0}, -40, 0},
-      {"l_upperarm", {0, 1, 0}, 45, 5}, {"l_upperarm", {0, 1, 0}, -45, 5}, {"spine", {0, 1, 0}, 20, 5},
-      {"spine", {1, 0, 0}, 20, 30}};
+  const Bend bends[] = {{"l_forearm", {0, 1, 0}, -90, 0}, {"l_forearm", {0, 1, 0}, 90, 0},
+                        {"r_shin", {0, 1, 0}, 90, 0},     {"r_shin", {0, 1, 0}, -90, 0},
+                        {"l_hand", {0, 1, 0}, 60, 0},     {"l_foot", {0, 1, 0}, -50, 0},
+                        {"neck", {0, 1, 0}, 30, 0},       {"neck", {0, 1, 0}, -30, 0},
+                        {"head", {0, 0, 1}, 45, 0},       {"head", {0, 1, 0}, 30, 0},
+                        {"tail1", {0, 1, 0}, 40, 0},      {"tail2", {0, 0, 1}, 40, 0},
+                        {"tail3", {0, 1, 0}, 40, 0},      {"chest", {0, 1, 0}, -25, 0},
+                        {"l_thigh", {1, 0, 0}, 30, 0},    {"l_thigh", {0, 1, 0}, 45, 10},
+                        {"l_thigh", {0, 1, 0}, -45, 40},  {"l_upperarm", {1, 0, 0}, -40, 0},
+                        {"l_upperarm", {0, 1, 0}, 45, 5}, {"l_upperarm", {0, 1, 0}, -45, 5},
+                        {"spine", {0, 1, 0}, 20, 5},      {"spine", {1, 0, 0}, 20, 30}};
   anatomy::BodyState st;
   for (const Bend& b : bends) {
     anatomy::Pose pose = anatomy::restPose(m.body);
@@ -117,7 +129,8 @@ TEST(Deform, BendingOneJointFoldsNoSkin) {
     deformSkin(m.skin, st, d);
     const int flipped = flippedFaces(m.skin, st, rest, d);
     EXPECT_LE(flipped, b.maxFlipped) << b.segment << " by " << b.degrees << " degrees";
-    std::printf("%-11s %+4.0f deg: %d folded faces\n", b.segment, static_cast<double>(b.degrees), flipped);
+    std::printf("%-11s %+4.0f deg: %d folded faces\n", b.segment, static_cast<double>(b.degrees),
+                flipped);
   }
 }
 
@@ -147,7 +160,8 @@ TEST(Deform, SamplePosesKeepAreaAndVolume) {
     anatomy::forwardKinematics(b, poses[i], st);
     deformSkin(m.skin, st, d);
     EXPECT_EQ(flippedFaces(m.skin, st, rest, d), 0) << "pose " << i;
-    for (std::size_t v = 0; v < d.normals.size(); ++v) ASSERT_NEAR(d.normals[v].norm(), 1.0f, 1e-5f);
+    for (std::size_t v = 0; v < d.normals.size(); ++v)
+      ASSERT_NEAR(d.normals[v].norm(), 1.0f, 1e-5f);
     const double vol = signedVolume(m.skin, d.positions);
     EXPECT_NEAR(vol, restVolume, 0.03 * restVolume) << "pose " << i;
     const double change = area(m.skin, d.positions) / restArea - 1.0;

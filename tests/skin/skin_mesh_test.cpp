@@ -29,8 +29,10 @@ TEST(SkinMesh, FinalizeBuildsTrianglesAdjacencyAndArea) {
   EXPECT_EQ(s.triangles, (std::vector<std::int32_t>{0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3}));
   // Vertex 0 touches faces 0, 1, 2; vertex 3 touches faces 1, 2, 3.
   EXPECT_EQ(s.vertexFaceStart, (std::vector<std::int32_t>{0, 3, 6, 9, 12}));
-  EXPECT_EQ(std::vector<std::int32_t>(s.vertexFaces.begin(), s.vertexFaces.begin() + 3), (std::vector<std::int32_t>{0, 1, 2}));
-  EXPECT_EQ(std::vector<std::int32_t>(s.vertexFaces.begin() + 9, s.vertexFaces.end()), (std::vector<std::int32_t>{1, 2, 3}));
+  EXPECT_EQ(std::vector<std::int32_t>(s.vertexFaces.begin(), s.vertexFaces.begin() + 3),
+            (std::vector<std::int32_t>{0, 1, 2}));
+  EXPECT_EQ(std::vector<std::int32_t>(s.vertexFaces.begin() + 9, s.vertexFaces.end()),
+            (std::vector<std::int32_t>{1, 2, 3}));
   EXPECT_NEAR(s.restArea, 1.5 + std::sqrt(3.0) / 2.0, 1e-6);
   const SkinStats st = skinStats(s);
   EXPECT_EQ(st.boundaryEdges, 0);

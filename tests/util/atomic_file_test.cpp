@@ -63,8 +63,8 @@ TEST(AtomicFile, MissingDirectoryIsAClearError) {
   }
 }
 
-// A full disk is simulated with a file-size limit (RLIMIT_FSIZE) in a child process: the write fails
-// part-way exactly as with ENOSPC. The writer must report the file and leave nothing behind.
+// A full disk is simulated with a file-size limit (RLIMIT_FSIZE) in a child process: the write
+// fails part-way exactly as with ENOSPC. The writer must report the file and leave nothing behind.
 TEST(AtomicFile, FailedWriteIsAClearErrorAndLeavesNothing) {
   test::TempDir dir;
   const std::string path = dir.file("big.bin");

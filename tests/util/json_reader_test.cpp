@@ -21,7 +21,8 @@ std::string errorOf(const std::function<void()>& f) {
 }
 
 TEST(JsonReader, MalformedTextNamesFileAndLine) {
-  const std::string msg = errorOf([] { JsonReader::parseText("{\n\"a\": 1,\n\"b\": }\n", "x.json"); });
+  const std::string msg =
+      errorOf([] { JsonReader::parseText("{\n\"a\": 1,\n\"b\": }\n", "x.json"); });
   EXPECT_THAT(msg, HasSubstr("x.json"));
   EXPECT_THAT(msg, HasSubstr("line 3"));
 }
@@ -32,13 +33,15 @@ TEST(JsonReader, MissingFile) {
 }
 
 TEST(JsonReader, FieldPathsAndRanges) {
-  const nlohmann::json j = nlohmann::json::parse(R"({"a": {"list": [1, 2, {"v": 7}]}, "s": "str"})");
+  const nlohmann::json j =
+      nlohmann::json::parse(R"({"a": {"list": [1, 2, {"v": 7}]}, "s": "str"})");
   const JsonReader r(j, "f.json");
   EXPECT_EQ(r.at("a").at("list").size(), 3u);
   EXPECT_EQ(r.at("a").at("list").at(2).integer("v", 0, 10), 7);
   EXPECT_THAT(errorOf([&] { r.at("a").at("list").at(2).integer("v", 0, 5); }),
               HasSubstr("f.json: field 'a.list[2].v': value 7 is out of range [0, 5]"));
-  EXPECT_THAT(errorOf([&] { r.at("a").at("missing"); }), HasSubstr("missing required field 'a.missing'"));
+  EXPECT_THAT(errorOf([&] { r.at("a").at("missing"); }),
+              HasSubstr("missing required field 'a.missing'"));
   EXPECT_THAT(errorOf([&] { r.number("s", 0, 1); }), HasSubstr("expected a number, found string"));
   EXPECT_THAT(errorOf([&] { r.rejectUnknown({"a"}); }), HasSubstr("unknown field 's'"));
   EXPECT_DOUBLE_EQ(r.number("absent", 0.25, 0.0, 1.0), 0.25);
@@ -46,7 +49,7 @@ TEST(JsonReader, FieldPathsAndRanges) {
 
 TEST(JsonReader, RejectsNonFiniteAndWrongShapes) {
   EXPECT_THAT(errorOf([] { JsonReader::parseText(R"({"big": 1e400})", "f.json"); }),
-              HasSubstr("f.json: malformed JSON (") );
+              HasSubstr("f.json: malformed JSON ("));
   const nlohmann::json j = nlohmann::json::parse(R"({"big": 1e300, "v": [1, 2], "i": 2.5})");
   const JsonReader r(j, "f.json");
   EXPECT_THAT(errorOf([&] { r.number("big", -1e30, 1e30); }), HasSubstr("out of range"));

@@ -22,7 +22,8 @@ TEST(Random, UniformByChiSquare) {
   constexpr int kBins = 64, kN = 200000;
   for (std::uint64_t stream : {kStreamAllocation, kStreamCulling}) {
     std::vector<int> bins(kBins, 0);
-    for (int i = 0; i < kN; ++i) ++bins[static_cast<std::size_t>(uniform01(7, stream, static_cast<std::uint64_t>(i)) * kBins)];
+    for (int i = 0; i < kN; ++i)
+      ++bins[static_cast<std::size_t>(uniform01(7, stream, static_cast<std::uint64_t>(i)) * kBins)];
     double chi2 = 0.0;
     const double expected = static_cast<double>(kN) / kBins;
     for (int b : bins) chi2 += (b - expected) * (b - expected) / expected;
@@ -38,17 +39,25 @@ TEST(Random, StreamsAndSeedsIndependent) {
     double sa = 0, sb = 0, sab = 0, saa = 0, sbb = 0;
     for (int i = 0; i < kN; ++i) {
       const double a = fa(static_cast<std::uint64_t>(i)), b = fb(static_cast<std::uint64_t>(i));
-      sa += a; sb += b; sab += a * b; saa += a * a; sbb += b * b;
+      sa += a;
+      sb += b;
+      sab += a * b;
+      saa += a * a;
+      sbb += b * b;
     }
     const double n = kN;
-    return (sab / n - sa / n * sb / n) / std::sqrt((saa / n - sa * sa / n / n) * (sbb / n - sb * sb / n / n));
+    return (sab / n - sa / n * sb / n) /
+           std::sqrt((saa / n - sa * sa / n / n) * (sbb / n - sb * sb / n / n));
   };
   EXPECT_LT(std::abs(corr([](std::uint64_t i) { return uniform01(1, 1, i); },
-                          [](std::uint64_t i) { return uniform01(1, 2, i); })), 0.016);
+                          [](std::uint64_t i) { return uniform01(1, 2, i); })),
+            0.016);
   EXPECT_LT(std::abs(corr([](std::uint64_t i) { return uniform01(1, 1, i); },
-                          [](std::uint64_t i) { return uniform01(2, 1, i); })), 0.016);
+                          [](std::uint64_t i) { return uniform01(2, 1, i); })),
+            0.016);
   EXPECT_LT(std::abs(corr([](std::uint64_t i) { return uniform01(1, 1, i); },
-                          [](std::uint64_t i) { return uniform01(1, 1, i + 1); })), 0.016);
+                          [](std::uint64_t i) { return uniform01(1, 1, i + 1); })),
+            0.016);
 }
 
 }  // namespace

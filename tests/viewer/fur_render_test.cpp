@@ -16,7 +16,9 @@
 namespace pelage::viewer {
 namespace {
 
-const scene::Model& critter() { return test::testCritter(); }
+const scene::Model& critter() {
+  return test::testCritter();
+}
 
 // fig9's colours with no specular term, so every lit fur pixel is Ka La + Kd t, t in [0, 1]: its
 // green/red ratio is exactly the diffuse colour's (0.14 / 0.3) and it has no blue.
@@ -42,9 +44,11 @@ class FurRenderTest : public test::GlTest {
     scene::evaluateFrame(critter(), anatomy::restPose(critter().body), frame_);
   }
 
-  Shot render(const scene::Fur* fur, const scene::Camera& cam, scene::DrawOptions opt = {}, bool shadows = false,
-              Renderer* reuse = nullptr) {
-    if (fur) scene::evaluateFur(critter(), *fur, cam.eye, opt.hairSource == scene::HairSource::Cpu, frame_);
+  Shot render(const scene::Fur* fur, const scene::Camera& cam, scene::DrawOptions opt = {},
+              bool shadows = false, Renderer* reuse = nullptr) {
+    if (fur)
+      scene::evaluateFur(critter(), *fur, cam.eye, opt.hairSource == scene::HairSource::Cpu,
+                         frame_);
     scene::Light light;
     light.shadows = shadows;
     Shot s;
@@ -60,7 +64,8 @@ class FurRenderTest : public test::GlTest {
   }
 
   scene::Camera camera(scene::CameraPreset preset, int size, const scene::Fur& fur) {
-    const scene::Framing fr = scene::framingOf(critter(), frame_, scene::maxHairLength(critter(), fur.params));
+    const scene::Framing fr =
+        scene::framingOf(critter(), frame_, scene::maxHairLength(critter(), fur.params));
     return scene::presetCamera(fr, preset, size, size);
   }
 
@@ -76,7 +81,8 @@ bool samePixel(const Image& a, const Image& b, int x, int y) {
 
 TEST_F(FurRenderTest, FurPixelsHaveTheCoatColour) {
   const scene::Fur fur = scene::growFur(critter(), testFur(30000));
-  for (const scene::HairShading shading : {scene::HairShading::Paper, scene::HairShading::KajiyaKay}) {
+  for (const scene::HairShading shading :
+       {scene::HairShading::Paper, scene::HairShading::KajiyaKay}) {
     SCOPED_TRACE(scene::hairShadingName(shading));
     const scene::Camera cam = camera(scene::CameraPreset::Side, 320, fur);
     scene::DrawOptions withFur;
@@ -121,7 +127,8 @@ TEST_F(FurRenderTest, FurCoversTheSilhouetteAndAHairLengthAroundIt) {
   gpu.hairSource = scene::HairSource::Gpu;
   const Shot hairy = render(&fur, cam, gpu);
   const Shot bare = render(nullptr, cam);
-  const float bg[3] = {bare.list.background.x(), bare.list.background.y(), bare.list.background.z()};
+  const float bg[3] = {bare.list.background.x(), bare.list.background.y(),
+                       bare.list.background.z()};
   const double skin = test::coverage(bare.image, bg), all = test::coverage(hairy.image, bg);
   EXPECT_GT(skin, 0.05);
   // Fur adds area around the skin, but not much: hairs are at most a few pixels long here.
@@ -129,8 +136,9 @@ TEST_F(FurRenderTest, FurCoversTheSilhouetteAndAHairLengthAroundIt) {
   EXPECT_LT(all, skin * 2.0);
   // Every covered pixel lies within the projected longest hair of the skin silhouette.
   const float hair = scene::maxHairLength(critter(), fur.params);
-  const float pixelsPerMeter = static_cast<float>(cam.height) /
-                               (2.0f * std::tan(cam.fovYDegrees * 3.14159265f / 360.0f) * (cam.distance() - 0.3f));
+  const float pixelsPerMeter =
+      static_cast<float>(cam.height) /
+      (2.0f * std::tan(cam.fovYDegrees * 3.14159265f / 360.0f) * (cam.distance() - 0.3f));
   const int reach = static_cast<int>(std::ceil(hair * pixelsPerMeter)) + 1;
   for (int y = 0; y < hairy.image.height; ++y)
     for (int x = 0; x < hairy.image.width; ++x) {
@@ -165,7 +173,8 @@ TEST_F(FurRenderTest, DistanceCullingHalvesTheDrawnHairsAtTwiceTheDistance) {
     cam.eye = center + (base.eye - center).normalized() * distance;
     cam.farMeters = distance * 2.0f;
     const Shot s = render(&fur, cam, gpu, false, &r);
-    const std::int64_t gpuCount = r.coatBuffers(0).drawnHairsOnGpu() + r.coatBuffers(1).drawnHairsOnGpu();
+    const std::int64_t gpuCount =
+        r.coatBuffers(0).drawnHairsOnGpu() + r.coatBuffers(1).drawnHairsOnGpu();
     EXPECT_EQ(gpuCount, s.drawn);
     return gpuCount;
   };

@@ -66,7 +66,8 @@ inline const scene::Model& testCritter() {
 inline bool differsFrom(const viewer::Image& img, int x, int y, const float bg[3], int tol = 6) {
   const std::uint8_t* p = img.pixel(x, y);
   for (int c = 0; c < 3; ++c)
-    if (std::abs(static_cast<int>(p[c]) - static_cast<int>(std::lround(bg[c] * 255.0f))) > tol) return true;
+    if (std::abs(static_cast<int>(p[c]) - static_cast<int>(std::lround(bg[c] * 255.0f))) > tol)
+      return true;
   return false;
 }
 

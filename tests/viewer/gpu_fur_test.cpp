@@ -19,7 +19,9 @@
 namespace pelage::viewer {
 namespace {
 
-const scene::Model& critter() { return test::testCritter(); }
+const scene::Model& critter() {
+  return test::testCritter();
+}
 
 // A pose that bends the body (so the skin is not the bind pose) and turns it a little.
 anatomy::Pose bentPose(const anatomy::Body& body) {
@@ -28,7 +30,8 @@ anatomy::Pose bentPose(const anatomy::Body& body) {
     const int s = body.find(name);
     ASSERT_GE(s, 0) << name;
     p.local[static_cast<std::size_t>(s)].rotation =
-        p.local[static_cast<std::size_t>(s)].rotation * Eigen::Quaternionf(Eigen::AngleAxisf(deg * 3.14159265f / 180.0f, axis));
+        p.local[static_cast<std::size_t>(s)].rotation *
+        Eigen::Quaternionf(Eigen::AngleAxisf(deg * 3.14159265f / 180.0f, axis));
   };
   bend("head", Eigen::Vector3f::UnitY(), -25.0f);
   bend("tail", Eigen::Vector3f::UnitX(), 40.0f);
@@ -43,7 +46,9 @@ struct StyleCase {
   float curl;  // helix radius fraction (curve/tube)
 };
 
-void PrintTo(const StyleCase& c, std::ostream* os) { *os << c.name; }
+void PrintTo(const StyleCase& c, std::ostream* os) {
+  *os << c.name;
+}
 
 fur::FurParams paramsFor(const StyleCase& sc, double hairs) {
   fur::FurParams p = fur::loadFurPreset("fig9");
@@ -84,7 +89,8 @@ double maxRelativeError(const std::vector<float>& gpu, const float* cpu, std::si
 // Largest |gpu - cpu| over hair h's points divided by the hair's extent (largest distance of a CPU
 // point from the hair's first point): an error measured against the hair itself, not against its
 // distance from the world origin.
-double maxHairRelativeError(const std::vector<float>& gpu, const float* cpu, std::int64_t hairs, int pointsPerHair) {
+double maxHairRelativeError(const std::vector<float>& gpu, const float* cpu, std::int64_t hairs,
+                            int pointsPerHair) {
   double worst = 0.0;
   for (std::int64_t h = 0; h < hairs; ++h) {
     const std::size_t first = static_cast<std::size_t>(h * pointsPerHair * 3);
@@ -111,7 +117,8 @@ TEST_P(GpuFurParity, MatchesTheCpuModel) {
   ASSERT_GT(fur.roots.coats[1].size(), 2500);
   scene::FrameState frame;
   scene::evaluateFrame(model, bentPose(model.body), frame);
-  const scene::Framing framing = scene::framingOf(model, frame, scene::maxHairLength(model, fur.params));
+  const scene::Framing framing =
+      scene::framingOf(model, frame, scene::maxHairLength(model, fur.params));
 
   for (const bool culling : {false, true}) {
     // Culling on: the camera at 3x the reference distance (c = 3); off: every hair.
@@ -127,7 +134,8 @@ TEST_P(GpuFurParity, MatchesTheCpuModel) {
       ASSERT_EQ(frame.cullFactor, 1.0f);
     }
 
-    for (const scene::HairShading shading : {scene::HairShading::Paper, scene::HairShading::KajiyaKay}) {
+    for (const scene::HairShading shading :
+         {scene::HairShading::Paper, scene::HairShading::KajiyaKay}) {
       scene::DrawOptions opt;
       opt.hairSource = scene::HairSource::Gpu;
       opt.hairShading = shading;
@@ -147,8 +155,9 @@ TEST_P(GpuFurParity, MatchesTheCpuModel) {
         const RenderStats stats = renderer.render(list);
         EXPECT_EQ(stats.hairsDrawn, frame.drawnHairs[0] + frame.drawnHairs[1]);
         for (int c = 0; c < fur::kCoatCount; ++c) {
-          SCOPED_TRACE(testing::Message() << GetParam().name << " coat " << c << (culling ? " culled" : " all")
-                                          << (split ? " split" : "") << " " << scene::hairShadingName(shading));
+          SCOPED_TRACE(testing::Message()
+                       << GetParam().name << " coat " << c << (culling ? " culled" : " all")
+                       << (split ? " split" : "") << " " << scene::hairShadingName(shading));
           const fur::HairBuffers& cpu = frame.fur.coats[static_cast<std::size_t>(c)];
           const HairVertexBuffers& gpu = renderer.coatBuffers(c);
           if (split) {
@@ -166,7 +175,8 @@ TEST_P(GpuFurParity, MatchesTheCpuModel) {
           EXPECT_LT(maxRelativeError(gp, cpu.positions.data(), floats), 1e-4);
           // Also against each hair's own size: a 0.1% error in a 1 cm hair is far below 1e-4 of its
           // distance from the origin. (On llvmpipe the two paths agree bit for bit.)
-          EXPECT_LT(maxHairRelativeError(gp, cpu.positions.data(), cpu.drawn, cpu.pointsPerHair), 1e-4);
+          EXPECT_LT(maxHairRelativeError(gp, cpu.positions.data(), cpu.drawn, cpu.pointsPerHair),
+                    1e-4);
           if (shading == scene::HairShading::Paper) {
             EXPECT_LT(maxRelativeError(gs, cpu.normals.data(), floats), 1e-4);
           } else {
@@ -182,10 +192,11 @@ TEST_P(GpuFurParity, MatchesTheCpuModel) {
 
 INSTANTIATE_TEST_SUITE_P(
     Styles, GpuFurParity,
-    ::testing::Values(StyleCase{"line_polyline", fur::HairStyle::Line, fur::HairStyle::Polyline, 0.0f},
-                      StyleCase{"polyline_line", fur::HairStyle::Polyline, fur::HairStyle::Line, 0.0f},
-                      StyleCase{"curve_tube", fur::HairStyle::Curve, fur::HairStyle::Tube, 0.0f},
-                      StyleCase{"helical_tube_curve", fur::HairStyle::Tube, fur::HairStyle::Curve, 0.15f}),
+    ::testing::Values(
+        StyleCase{"line_polyline", fur::HairStyle::Line, fur::HairStyle::Polyline, 0.0f},
+        StyleCase{"polyline_line", fur::HairStyle::Polyline, fur::HairStyle::Line, 0.0f},
+        StyleCase{"curve_tube", fur::HairStyle::Curve, fur::HairStyle::Tube, 0.0f},
+        StyleCase{"helical_tube_curve", fur::HairStyle::Tube, fur::HairStyle::Curve, 0.15f}),
     [](const ::testing::TestParamInfo<StyleCase>& i) { return i.param.name; });
 
 }  // namespace

@@ -1,8 +1,8 @@
 // `pelage render` as a user and a render farm run it: two processes on disjoint frame ranges equal
 // one run byte for byte; a killed run leaves only complete frames and --resume finishes it; video;
 // clear errors (exit 2) for bad input.
-#include <gtest/gtest.h>
 #include <fcntl.h>
+#include <gtest/gtest.h>
 #include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
@@ -27,13 +27,16 @@ class RenderCommand : public ::testing::Test {
  protected:
   void SetUp() override { writeText(dir.file("wag.json"), kWagClip); }
   // The critter with its clip, 5000 hairs, a small image.
-  std::string args(const std::string& frames, const std::string& out, const std::string& size = "128x96") const {
-    return std::string(PELAGE_SOURCE_DIR "/tests/scene/critter.json --clip ") + dir.file("wag.json") +
-           " --hairs 5000 --fps 12 --camera side --track --size " + size + " --frames " + frames + " --out " + out;
+  std::string args(const std::string& frames, const std::string& out,
+                   const std::string& size = "128x96") const {
+    return std::string(PELAGE_SOURCE_DIR "/tests/scene/critter.json --clip ") +
+           dir.file("wag.json") + " --hairs 5000 --fps 12 --camera side --track --size " + size +
+           " --frames " + frames + " --out " + out;
   }
   static std::vector<std::string> frames(const fs::path& d) {
     std::vector<std::string> names;
-    for (const fs::directory_entry& e : fs::directory_iterator(d)) names.push_back(e.path().filename().string());
+    for (const fs::directory_entry& e : fs::directory_iterator(d))
+      names.push_back(e.path().filename().string());
     std::sort(names.begin(), names.end());
     return names;
   }
@@ -98,20 +101,25 @@ TEST_F(RenderCommand, TwoProcessesOnDisjointRangesEqualOneRun) {
 // run here with the environment those engines give each task.
 TEST_F(RenderCommand, RenderFarmScriptsSplitTheRangeIntoTheSameFrames) {
   const std::string whole = dir.file("whole"), slurm = dir.file("slurm"), k8s = dir.file("k8s");
-  const std::string common = std::string(PELAGE_SOURCE_DIR "/tests/scene/critter.json --clip ") + dir.file("wag.json") +
+  const std::string common = std::string(PELAGE_SOURCE_DIR "/tests/scene/critter.json --clip ") +
+                             dir.file("wag.json") +
                              " --hairs 5000 --fps 12 --camera three-quarter --size 96x72";
   const RunResult one = runPelage("render " + common + " --frames 2:8 --out " + whole);
   ASSERT_EQ(one.exitCode, 0) << one.output;
-  const std::string env = std::string("FIRST=2 LAST=8 PELAGE=") + PELAGE_BIN_DIR + "/pelage PELAGE_ARGS='" + common + "' ";
+  const std::string env = std::string("FIRST=2 LAST=8 PELAGE=") + PELAGE_BIN_DIR +
+                          "/pelage PELAGE_ARGS='" + common + "' ";
   const std::string farm = PELAGE_SOURCE_DIR "/docs/render-farm";
   for (int task = 0; task < 2; ++task) {
-    const std::string cmd = env + "OUT=" + slurm + " SLURM_ARRAY_TASK_ID=" + std::to_string(task + 4) +
-                            " SLURM_ARRAY_TASK_MIN=4 SLURM_ARRAY_TASK_COUNT=2 SLURM_CPUS_PER_TASK=1 SLURM_SUBMIT_DIR=" +
-                            farm + " bash " + farm + "/render.slurm";
+    const std::string cmd =
+        env + "OUT=" + slurm + " SLURM_ARRAY_TASK_ID=" + std::to_string(task + 4) +
+        " SLURM_ARRAY_TASK_MIN=4 SLURM_ARRAY_TASK_COUNT=2 SLURM_CPUS_PER_TASK=1 SLURM_SUBMIT_DIR=" +
+        farm + " bash " + farm + "/render.slurm";
     const test::RunResult r = test::runShell(cmd);
     const std::string& out = r.output;
     ASSERT_EQ(r.exitCode, 0) << out;
-    EXPECT_NE(out.find(task == 0 ? "task 0/2: frames 2..5 of 2..8" : "task 1/2: frames 6..8 of 2..8"), std::string::npos)
+    EXPECT_NE(
+        out.find(task == 0 ? "task 0/2: frames 2..5 of 2..8" : "task 1/2: frames 6..8 of 2..8"),
+        std::string::npos)
         << out;
   }
   for (int task = 0; task < 3; ++task) {
@@ -148,7 +156,8 @@ TEST_F(RenderCommand, AKilledRunLeavesCompleteFramesAndResumeFinishesIt) {
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(2));
   }
-  ASSERT_TRUE(killed) << "the run ended before it could be killed:\n" << readText(dir.file("run.log"));
+  ASSERT_TRUE(killed) << "the run ended before it could be killed:\n"
+                      << readText(dir.file("run.log"));
   int complete = 0;
   for (const std::string& f : frames(out)) {
     if (f.rfind("frame_", 0) != 0) continue;  // temporaries of frames being written
@@ -159,46 +168,55 @@ TEST_F(RenderCommand, AKilledRunLeavesCompleteFramesAndResumeFinishesIt) {
   EXPECT_LT(complete, 30);
   const RunResult resumed = runPelage("render " + a + " --resume");
   ASSERT_EQ(resumed.exitCode, 0) << resumed.output;
-  EXPECT_NE(resumed.output.find("skipped " + std::to_string(complete) + " complete"), std::string::npos) << resumed.output;
+  EXPECT_NE(resumed.output.find("skipped " + std::to_string(complete) + " complete"),
+            std::string::npos)
+      << resumed.output;
   const RunResult clean = runPelage("render " + args("0:29", ref, "320x240"));
   ASSERT_EQ(clean.exitCode, 0) << clean.output;
   ASSERT_EQ(frames(out), frames(ref));  // and no temporaries left
-  for (const std::string& f : frames(ref)) EXPECT_EQ(readText(out + "/" + f), readText(ref + "/" + f)) << f;
+  for (const std::string& f : frames(ref))
+    EXPECT_EQ(readText(out + "/" + f), readText(ref + "/" + f)) << f;
 }
 
 TEST_F(RenderCommand, VideoFileThroughFfmpeg) {
-  const RunResult r = runPelage("render " + args("0:5", dir.file("f")) + " --video " + dir.file("clip.mp4"));
+  const RunResult r =
+      runPelage("render " + args("0:5", dir.file("f")) + " --video " + dir.file("clip.mp4"));
   ASSERT_EQ(r.exitCode, 0) << r.output;
   EXPECT_NE(r.output.find("wrote " + dir.file("clip.mp4")), std::string::npos) << r.output;
   EXPECT_EQ(readText(dir.file("clip.mp4")).substr(4, 4), "ftyp");
 }
 
 TEST_F(RenderCommand, MissingFfmpegFailsBeforeRendering) {
-  const std::string cmd = "PATH=/nonexistent-bin " + std::string(PELAGE_BIN_DIR) + "/pelage render " +
-                          args("0:1", dir.file("f")) + " --video " + dir.file("clip.mp4");
+  const std::string cmd = "PATH=/nonexistent-bin " + std::string(PELAGE_BIN_DIR) +
+                          "/pelage render " + args("0:1", dir.file("f")) + " --video " +
+                          dir.file("clip.mp4");
   const test::RunResult r = test::runShell(cmd);
   const std::string& out = r.output;
   EXPECT_EQ(r.exitCode, 2) << out;
-  EXPECT_NE(out.find("needs the ffmpeg program, which is not on PATH (Debian: apt-get install ffmpeg)"), std::string::npos)
+  EXPECT_NE(
+      out.find("needs the ffmpeg program, which is not on PATH (Debian: apt-get install ffmpeg)"),
+      std::string::npos)
       << out;
   EXPECT_TRUE(!fs::exists(dir.file("f")) || fs::is_empty(dir.file("f")));
 }
 
 struct BadRender {
   const char* name;
-  std::string args;    // <args> = the critter and its clip into <dir>/f (add --frames, --size...)
+  std::string args;  // <args> = the critter and its clip into <dir>/f (add --frames, --size...)
   std::string expect;
 };
 
-class RenderCommandErrors : public RenderCommand, public ::testing::WithParamInterface<BadRender> {};
+class RenderCommandErrors : public RenderCommand,
+                            public ::testing::WithParamInterface<BadRender> {};
 
 TEST_P(RenderCommandErrors, ExitTwoWithAClearMessage) {
   std::string line = GetParam().args;
-  const std::string base = std::string(PELAGE_SOURCE_DIR "/tests/scene/critter.json --clip ") + dir.file("wag.json") +
-                           " --hairs 2000";
+  const std::string base = std::string(PELAGE_SOURCE_DIR "/tests/scene/critter.json --clip ") +
+                           dir.file("wag.json") + " --hairs 2000";
   if (line.find("--out") == std::string::npos) line += " --out " + dir.file("f");
   for (std::size_t at; (at = line.find("<args>")) != std::string::npos;) line.replace(at, 6, base);
-  for (std::size_t at; (at = line.find("<dir>")) != std::string::npos;) line.replace(at, 5, dir.path().string());
+  for (std::size_t at; (at = line.find("<dir>")) != std::string::npos;)
+    line.replace(at, 5, dir.path().string());
   const RunResult r = runPelage("render " + line);
   EXPECT_EQ(r.exitCode, 2) << r.output;
   EXPECT_NE(r.output.find(GetParam().expect), std::string::npos) << r.output;
@@ -211,17 +229,22 @@ INSTANTIATE_TEST_SUITE_P(
         BadRender{"reversed", "<args> --frames 9:3", "--frames 9:3 is out of range"},
         BadRender{"not_a_range", "<args> --frames 1-5", "'1-5' is not a frame range"},
         BadRender{"too_far", "<args> --frames 0:10000000", "out of range"},
-        BadRender{"unknown_clip", PELAGE_SOURCE_DIR "/tests/scene/critter.json --clip dance --frames 0:1 --out <dir>/f",
+        BadRender{"unknown_clip",
+                  PELAGE_SOURCE_DIR
+                  "/tests/scene/critter.json --clip dance --frames 0:1 --out <dir>/f",
                   "has no clip 'dance' (it has no clips"},
-        BadRender{"camera", "<args> --frames 0:1 --camera overhead", "unknown camera preset 'overhead'"},
+        BadRender{"camera", "<args> --frames 0:1 --camera overhead",
+                  "unknown camera preset 'overhead'"},
         BadRender{"camera_file", "<args> --frames 0:1 --camera-file <dir>/none.json", "none.json"},
         BadRender{"size", "<args> --frames 0:1 --size 100", "--size '100' is not WIDTHxHEIGHT"},
         BadRender{"tiny", "<args> --frames 0:1 --size 8x8", "out of range [16, 16384]"},
         BadRender{"fps", "<args> --frames 0:1 --fps 0", "--fps 0 is out of range"},
-        BadRender{"video_ext", "<args> --frames 0:1 --video <dir>/clip.avi", "must end in .mp4 or .gif"},
+        BadRender{"video_ext", "<args> --frames 0:1 --video <dir>/clip.avi",
+                  "must end in .mp4 or .gif"},
         BadRender{"unwritable", "<args> --frames 0:1 --out /dev/null/frames", "/dev/null/frames"},
         BadRender{"hair_source", "<args> --frames 0:1 --hair-source tpu", "--hair-source 'tpu'"},
-        BadRender{"fur_set", "<args> --frames 0:1 --fur-set undercoat.curvePoints=1", "curvePoints"}),
+        BadRender{"fur_set", "<args> --frames 0:1 --fur-set undercoat.curvePoints=1",
+                  "curvePoints"}),
     [](const ::testing::TestParamInfo<BadRender>& param) { return std::string(param.param.name); });
 
 }  // namespace

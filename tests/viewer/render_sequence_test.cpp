@@ -31,7 +31,9 @@ class RenderSequenceTest : public GlTest {
     o.encoderThreads = 2;
     return o;
   }
-  static std::string frame(const TempDir& dir, int f) { return dir.file(viewer::frameFileName(f, ".png")); }
+  static std::string frame(const TempDir& dir, int f) {
+    return dir.file(viewer::frameFileName(f, ".png"));
+  }
   static const float* background() {
     static const float bg[3] = {0.80f, 0.82f, 0.86f};
     return bg;
@@ -41,12 +43,12 @@ class RenderSequenceTest : public GlTest {
 TEST_F(RenderSequenceTest, FramesAreCompletePngsShowingTheCreature) {
   TempDir dir;
   std::vector<int> reported;
-  const viewer::SequenceReport r = viewer::renderSequence(
-      wagCritter(), wagFur(), options(dir), [&](const viewer::SequenceProgress& p) {
-        reported.push_back(p.done);
-        EXPECT_EQ(p.total, 6);
-        EXPECT_GE(p.framesPerSecond, 0.0);
-      });
+  const viewer::SequenceReport r = viewer::renderSequence(wagCritter(), wagFur(), options(dir),
+                                                          [&](const viewer::SequenceProgress& p) {
+                                                            reported.push_back(p.done);
+                                                            EXPECT_EQ(p.total, 6);
+                                                            EXPECT_GE(p.framesPerSecond, 0.0);
+                                                          });
   EXPECT_EQ(r.rendered, 6);
   EXPECT_EQ(r.skipped, 0);
   EXPECT_GT(r.hairsDrawn, 0);
@@ -60,7 +62,8 @@ TEST_F(RenderSequenceTest, FramesAreCompletePngsShowingTheCreature) {
     EXPECT_GT(cov, 0.05) << f;
     EXPECT_LT(cov, 0.9) << f;
   }
-  EXPECT_EQ(std::distance(fs::directory_iterator(dir.path()), fs::directory_iterator()), 6);  // no temporaries
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir.path()), fs::directory_iterator()),
+            6);                                                 // no temporaries
   EXPECT_NE(readText(frame(dir, 0)), readText(frame(dir, 3)));  // the clip moves
 }
 
@@ -134,7 +137,8 @@ TEST_F(RenderSequenceTest, ResumeSkipsCompleteFramesAndRedoesTheRest) {
   EXPECT_EQ(r.removedTemporaries, 1);
   EXPECT_FALSE(fs::exists(resumed.file(".frame_00003.png.tmp-999999-0")));
   EXPECT_TRUE(fs::exists(resumed.file(".frame_00042.png.tmp-1-0")));
-  for (int f = 0; f < 6; ++f) EXPECT_EQ(readText(frame(resumed, f)), readText(frame(whole, f))) << f;
+  for (int f = 0; f < 6; ++f)
+    EXPECT_EQ(readText(frame(resumed, f)), readText(frame(whole, f))) << f;
 }
 
 // A disk that fills up while frames are written: the error reaches the caller, and the directory
@@ -142,11 +146,13 @@ TEST_F(RenderSequenceTest, ResumeSkipsCompleteFramesAndRedoesTheRest) {
 TEST_F(RenderSequenceTest, AFailingWriteStopsTheRunAndLeavesOnlyCompleteFrames) {
   TempDir dir;
   const std::string bad = frame(dir, 3);
-  const viewer::FileWriter writer = [&](const std::string& path, const std::vector<std::uint8_t>& bytes) {
+  const viewer::FileWriter writer = [&](const std::string& path,
+                                        const std::vector<std::uint8_t>& bytes) {
     if (path == bad) {
       AtomicFileWriter w(path);
       w.write(bytes.data(), bytes.size() / 2);
-      throw InputError(path + ": write failed (no space left on device (disk full)); no file was written");
+      throw InputError(path +
+                       ": write failed (no space left on device (disk full)); no file was written");
     }
     AtomicFileWriter w(path);
     w.write(bytes.data(), bytes.size());
@@ -156,7 +162,9 @@ TEST_F(RenderSequenceTest, AFailingWriteStopsTheRunAndLeavesOnlyCompleteFrames) 
     viewer::renderSequence(wagCritter(), wagFur(), options(dir), {}, writer);
     FAIL() << "no error";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("frame_00003.png: write failed (no space left"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("frame_00003.png: write failed (no space left"),
+              std::string::npos)
+        << e.what();
   }
   EXPECT_FALSE(fs::exists(bad));
   for (const fs::directory_entry& e : fs::directory_iterator(dir.path())) {
@@ -185,16 +193,20 @@ TEST_F(RenderSequenceTest, UnwritableOutputAndBadOptionsAreInputErrors) {
 // Frames of a video file as ffprobe counts them, or -1 without ffprobe.
 int videoFrames(const std::string& path) {
   if (viewer::findOnPath("ffprobe").empty()) return -1;
-  const std::string cmd = "ffprobe -v error -count_frames -select_streams v:0 -show_entries stream=nb_read_frames "
-                          "-of csv=p=0 '" + path + "'";
+  const std::string cmd =
+      "ffprobe -v error -count_frames -select_streams v:0 -show_entries stream=nb_read_frames "
+      "-of csv=p=0 '" +
+      path + "'";
   return std::atoi(runShell(cmd).output.c_str());
 }
 
 TEST_F(RenderSequenceTest, VideoThroughFfmpegWithResumedFrames) {
-  ASSERT_FALSE(viewer::findOnPath("ffmpeg").empty()) << "ffmpeg is a dependency (scripts/install-deps.sh)";
+  ASSERT_FALSE(viewer::findOnPath("ffmpeg").empty())
+      << "ffmpeg is a dependency (scripts/install-deps.sh)";
   TempDir dir;
   viewer::SequenceOptions o = options(dir, 0, 3);
-  viewer::renderSequence(wagCritter(), wagFur(), o);  // frames 0..3 exist: the video run resumes them
+  viewer::renderSequence(wagCritter(), wagFur(),
+                         o);  // frames 0..3 exist: the video run resumes them
   o.frames = {0, 5};
   o.resume = true;
   o.video = dir.file("clip.mp4");
@@ -223,8 +235,10 @@ TEST_F(RenderSequenceTest, MissingFfmpegIsAClearError) {
     viewer::VideoEncoder v(dir.file("x.mp4"), 64, 64, 24.0);
     ADD_FAILURE() << "no error";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("needs the ffmpeg program, which is not on PATH (Debian: apt-get install ffmpeg)"),
-              std::string::npos)
+    EXPECT_NE(
+        std::string(e.what()).find(
+            "needs the ffmpeg program, which is not on PATH (Debian: apt-get install ffmpeg)"),
+        std::string::npos)
         << e.what();
   }
   ::setenv("PATH", path.c_str(), 1);
@@ -282,7 +296,8 @@ TEST(CameraFile, MalformedFilesNameTheFileAndField) {
       {R"({ "eye": [1, 0, 0], "target": [0, 0, 0], "fovYDegrees": 200 })", "fovYDegrees"},
       {R"({ "keys": [] })", "at least one key"},
       {R"({ "keys": [ { "frame": 5, "eye": [1, 0, 0], "target": [0, 0, 0] },
-                      { "frame": 5, "eye": [2, 0, 0], "target": [0, 0, 0] } ] })", "must increase"},
+                      { "frame": 5, "eye": [2, 0, 0], "target": [0, 0, 0] } ] })",
+       "must increase"},
       {R"([1, 2])", "JSON object"},
       {R"({ "eye": [1, 0, 0], )", "cam.json"},
   };

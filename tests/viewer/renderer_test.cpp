@@ -6,11 +6,11 @@
 #include <cmath>
 
 #include "gl_fixture.h"
-#include "pelage/util/error.h"
-#include "test_support.h"
 #include "pelage/scene/draw_list.h"
 #include "pelage/scene/frame.h"
+#include "pelage/util/error.h"
 #include "pelage/viewer/hair_vertex_buffers.h"
+#include "test_support.h"
 
 namespace pelage::viewer {
 namespace {
@@ -18,10 +18,14 @@ namespace {
 using test::coverage;
 using test::differsFrom;
 
-const scene::Model& critter() { return test::testCritter(); }
+const scene::Model& critter() {
+  return test::testCritter();
+}
 
-// A CPU point-in-triangle rasteriser of the projected skin: the expected silhouette (pixel centres).
-std::vector<std::uint8_t> cpuSilhouette(const scene::Model& m, const scene::FrameState& f, const scene::Camera& cam) {
+// A CPU point-in-triangle rasteriser of the projected skin: the expected silhouette (pixel
+// centres).
+std::vector<std::uint8_t> cpuSilhouette(const scene::Model& m, const scene::FrameState& f,
+                                        const scene::Camera& cam) {
   const int W = cam.width, H = cam.height;
   std::vector<std::uint8_t> mask(static_cast<std::size_t>(W * H), 0);
   const Eigen::Matrix4f vp = cam.viewProjection();
@@ -33,9 +37,12 @@ std::vector<std::uint8_t> cpuSilhouette(const scene::Model& m, const scene::Fram
                            (0.5f - c.y() / c.w() * 0.5f) * static_cast<float>(H));
   }
   for (int t = 0; t < m.skin.numTriangles(); ++t) {
-    const Eigen::Vector2f& a = s[static_cast<std::size_t>(m.skin.triangles[static_cast<std::size_t>(3 * t)])];
-    const Eigen::Vector2f& b = s[static_cast<std::size_t>(m.skin.triangles[static_cast<std::size_t>(3 * t + 1)])];
-    const Eigen::Vector2f& c = s[static_cast<std::size_t>(m.skin.triangles[static_cast<std::size_t>(3 * t + 2)])];
+    const Eigen::Vector2f& a =
+        s[static_cast<std::size_t>(m.skin.triangles[static_cast<std::size_t>(3 * t)])];
+    const Eigen::Vector2f& b =
+        s[static_cast<std::size_t>(m.skin.triangles[static_cast<std::size_t>(3 * t + 1)])];
+    const Eigen::Vector2f& c =
+        s[static_cast<std::size_t>(m.skin.triangles[static_cast<std::size_t>(3 * t + 2)])];
     const int x0 = std::max(0, static_cast<int>(std::floor(std::min({a.x(), b.x(), c.x()}))));
     const int x1 = std::min(W - 1, static_cast<int>(std::ceil(std::max({a.x(), b.x(), c.x()}))));
     const int y0 = std::max(0, static_cast<int>(std::floor(std::min({a.y(), b.y(), c.y()}))));
@@ -67,15 +74,17 @@ class RendererTest : public test::GlTest {
     scene::Light light;
     light.shadows = shadows;
     scene::DrawList list;
-    scene::buildDrawList(critter(), frame_, nullptr, scene::presetCamera(fr, preset, w, h), light, {}, list);
+    scene::buildDrawList(critter(), frame_, nullptr, scene::presetCamera(fr, preset, w, h), light,
+                         {}, list);
     return list;
   }
   scene::FrameState frame_;
 };
 
 TEST_F(RendererTest, SkinSilhouetteMatchesTheCpuProjection) {
-  for (scene::CameraPreset preset : {scene::CameraPreset::Front, scene::CameraPreset::Side,
-                                     scene::CameraPreset::ThreeQuarter, scene::CameraPreset::Face}) {
+  for (scene::CameraPreset preset :
+       {scene::CameraPreset::Front, scene::CameraPreset::Side, scene::CameraPreset::ThreeQuarter,
+        scene::CameraPreset::Face}) {
     RendererOptions o;
     o.samples = 0;
     Renderer r(o);
@@ -98,7 +107,8 @@ TEST_F(RendererTest, SkinSilhouetteMatchesTheCpuProjection) {
       }
     ASSERT_GT(expected, 500) << scene::cameraPresetName(preset);
     // Intersection over union of the rendered and the projected silhouettes.
-    EXPECT_GT(static_cast<double>(both) / static_cast<double>(either), 0.97) << scene::cameraPresetName(preset);
+    EXPECT_GT(static_cast<double>(both) / static_cast<double>(either), 0.97)
+        << scene::cameraPresetName(preset);
   }
 }
 

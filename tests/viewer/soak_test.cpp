@@ -39,8 +39,10 @@ Memory memory() {
   std::string key;
   double kb = 0.0;
   while (in >> key) {
-    if (key == "VmRSS:" && (in >> kb)) m.rss = kb / 1024.0;
-    else if (key == "VmHWM:" && (in >> kb)) m.peak = kb / 1024.0;
+    if (key == "VmRSS:" && (in >> kb))
+      m.rss = kb / 1024.0;
+    else if (key == "VmHWM:" && (in >> kb))
+      m.peak = kb / 1024.0;
   }
   return m;
 }
@@ -52,8 +54,9 @@ void report(const char* what, int frame, const Memory& m) {
 
 void checkFlat(const char* what, int frames, const Memory& early, const Memory& end) {
   if (frames < 2000) return;  // too short to tell growth from warm-up
-  EXPECT_LT(end.rss - early.rss, 48.0) << what << ": resident memory grew from " << early.rss << " MB to " << end.rss
-                                       << " MB over " << frames << " frames";
+  EXPECT_LT(end.rss - early.rss, 48.0)
+      << what << ": resident memory grew from " << early.rss << " MB to " << end.rss << " MB over "
+      << frames << " frames";
 }
 
 const scene::Model& monkey() {
@@ -73,8 +76,8 @@ TEST_F(Soak, ViewerUpdatePathWithAChangeEveryFrame) {
   o.samples = 0;
   ViewerSession s(o, monkey());
   ASSERT_GE(s.model().clips.size(), 2u);
-  const fur::HairStyle styles[] = {fur::HairStyle::Polyline, fur::HairStyle::Line, fur::HairStyle::Curve,
-                                   fur::HairStyle::Tube};
+  const fur::HairStyle styles[] = {fur::HairStyle::Polyline, fur::HairStyle::Line,
+                                   fur::HairStyle::Curve, fur::HairStyle::Tube};
   Memory early;
   report("viewer", 0, memory());
   for (int i = 0; i < frames; ++i) {
@@ -88,7 +91,8 @@ TEST_F(Soak, ViewerUpdatePathWithAChangeEveryFrame) {
     if (i % 100 == 0) {
       s.shadows = !s.shadows;
       s.edit.culling.enabled = !s.edit.culling.enabled;
-      s.hairSource = s.hairSource == scene::HairSource::Gpu ? scene::HairSource::Cpu : scene::HairSource::Gpu;
+      s.hairSource =
+          s.hairSource == scene::HairSource::Gpu ? scene::HairSource::Cpu : scene::HairSource::Gpu;
     }
     s.orbitBy(1.0f, 0.0f);
     s.frame(1.0 / 30.0, o.width, o.height);

@@ -26,20 +26,24 @@ std::string smallModel(const TempDir& dir) {
   for (int i = 0; i <= rings; ++i)
     for (int j = 0; j < sectors; ++j) {
       const double th = M_PI * i / rings, ph = 2 * M_PI * j / sectors;
-      obj += "v " + std::to_string(0.2 * std::sin(th) * std::cos(ph)) + " " + std::to_string(0.2 * std::sin(th) * std::sin(ph)) +
-             " " + std::to_string(0.2 + 0.2 * std::cos(th)) + "\n";
+      obj += "v " + std::to_string(0.2 * std::sin(th) * std::cos(ph)) + " " +
+             std::to_string(0.2 * std::sin(th) * std::sin(ph)) + " " +
+             std::to_string(0.2 + 0.2 * std::cos(th)) + "\n";
     }
   auto idx = [&](int i, int j) { return std::to_string(i * sectors + (j % sectors) + 1); };
   for (int i = 0; i < rings; ++i)
     for (int j = 0; j < sectors; ++j) {
       if (i > 0) obj += "f " + idx(i, j) + " " + idx(i + 1, j) + " " + idx(i, j + 1) + "\n";
-      if (i + 1 < rings) obj += "f " + idx(i, j + 1) + " " + idx(i + 1, j) + " " + idx(i + 1, j + 1) + "\n";
+      if (i + 1 < rings)
+        obj += "f " + idx(i, j + 1) + " " + idx(i + 1, j) + " " + idx(i + 1, j + 1) + "\n";
     }
   test::writeText(path, obj);
   return " " + path + " --hairs 20000 ";
 }
 
-bool hasXvfb() { return std::system("command -v xvfb-run >/dev/null 2>&1") == 0; }
+bool hasXvfb() {
+  return std::system("command -v xvfb-run >/dev/null 2>&1") == 0;
+}
 
 using test::runShell;
 
@@ -56,11 +60,14 @@ int countNear(const Image& img, int r, int g, int b, int tol) {
 
 TEST(ViewCommand, WindowUnderXvfbRendersTheFullUiPath) {
   // CI installs xvfb (scripts/install-deps.sh); elsewhere the window test is skipped, saying why.
-  if (!hasXvfb()) GTEST_SKIP() << "xvfb-run is missing: the window backend is not tested (Debian: apt-get install xvfb xauth)";
+  if (!hasXvfb())
+    GTEST_SKIP() << "xvfb-run is missing: the window backend is not tested (Debian: apt-get "
+                    "install xvfb xauth)";
   TempDir dir;
   const std::string shot = dir.file("window.png");
-  const auto r = runShell(std::string("xvfb-run -a -s \"-screen 0 1280x1024x24\" ") + PELAGE_BIN_DIR +
-                          "/pelage view" + smallModel(dir) + "--size 640x480 --frames 4 --debug-gl --screenshot " + shot);
+  const auto r = runShell(std::string("xvfb-run -a -s \"-screen 0 1280x1024x24\" ") +
+                          PELAGE_BIN_DIR + "/pelage view" + smallModel(dir) +
+                          "--size 640x480 --frames 4 --debug-gl --screenshot " + shot);
   const std::string& out = r.output;
   ASSERT_EQ(r.exitCode, 0) << out;
   EXPECT_NE(out.find("(glfw)"), std::string::npos) << out;
@@ -78,8 +85,8 @@ TEST(ViewCommand, WindowUnderXvfbRendersTheFullUiPath) {
 
 TEST(ViewCommand, WithoutADisplayItSaysSoAndExitsNonZero) {
   TempDir dir;
-  const auto r = runShell(std::string("env -u DISPLAY -u WAYLAND_DISPLAY ") + PELAGE_BIN_DIR + "/pelage view" +
-                          smallModel(dir));
+  const auto r = runShell(std::string("env -u DISPLAY -u WAYLAND_DISPLAY ") + PELAGE_BIN_DIR +
+                          "/pelage view" + smallModel(dir));
   const std::string& out = r.output;
   EXPECT_EQ(r.exitCode, 2) << out;
   EXPECT_NE(out.find("cannot open a window"), std::string::npos) << out;
@@ -89,8 +96,10 @@ TEST(ViewCommand, WithoutADisplayItSaysSoAndExitsNonZero) {
 TEST(ViewCommand, HeadlessRendersAScreenshot) {
   TempDir dir;
   const std::string shot = dir.file("headless.png");
-  const auto r = runPelage(std::string("view") + smallModel(dir) + "--headless --size 320x240 --frames 2 --debug-gl --shadows "
-                           "--screenshot " + shot);
+  const auto r = runPelage(std::string("view") + smallModel(dir) +
+                           "--headless --size 320x240 --frames 2 --debug-gl --shadows "
+                           "--screenshot " +
+                           shot);
   ASSERT_EQ(r.exitCode, 0) << r.output;
   EXPECT_NE(r.output.find("egl"), std::string::npos) << r.output;
   const Image img = readPng(shot);
@@ -108,14 +117,16 @@ TEST(ViewCommand, ClipsPlayAtTheirTimes) {
   const std::string fox = std::string(PELAGE_SHARED_MODELS_DIR) + "/Fox/Fox.glb";
   if (!std::filesystem::exists(fox)) GTEST_SKIP() << "shared models absent: " << fox;
   auto shot = [&](const std::string& args, const std::string& name) {
-    const auto r = runPelage("view " + fox + " --hairs 5000 --headless --size 160x120 --camera side " + args +
-                             " --screenshot " + dir.file(name));
+    const auto r =
+        runPelage("view " + fox + " --hairs 5000 --headless --size 160x120 --camera side " + args +
+                  " --screenshot " + dir.file(name));
     EXPECT_EQ(r.exitCode, 0) << r.output;
     return readPng(dir.file(name));
   };
   auto differing = [](const Image& a, const Image& b) {
     int n = 0;
-    for (std::size_t i = 0; i < a.rgba.size(); i += 4) n += a.rgba[i] != b.rgba[i] || a.rgba[i + 1] != b.rgba[i + 1];
+    for (std::size_t i = 0; i < a.rgba.size(); i += 4)
+      n += a.rgba[i] != b.rgba[i] || a.rgba[i + 1] != b.rgba[i + 1];
     return n;
   };
   const Image start = shot("--clip Survey --time 0", "a.png");
@@ -125,13 +136,15 @@ TEST(ViewCommand, ClipsPlayAtTheirTimes) {
   EXPECT_GT(differing(start, later), 160 * 120 / 50);
   const auto unknown = runPelage("view " + fox + " --headless --clip moonwalk");
   EXPECT_EQ(unknown.exitCode, 2);
-  EXPECT_NE(unknown.output.find("its clips: Survey, Walk, Run"), std::string::npos) << unknown.output;
+  EXPECT_NE(unknown.output.find("its clips: Survey, Walk, Run"), std::string::npos)
+      << unknown.output;
 }
 
 TEST(ViewCommand, BenchmarkPrintsMsPerFrame) {
   TempDir dir;
-  const auto r = runPelage(std::string("view") + smallModel(dir) + "--benchmark --benchmark-hairs 3000 8000 " +
-                           "--benchmark-frames 2 --size 128x96 --samples 0");
+  const auto r =
+      runPelage(std::string("view") + smallModel(dir) + "--benchmark --benchmark-hairs 3000 8000 " +
+                "--benchmark-frames 2 --size 128x96 --samples 0");
   ASSERT_EQ(r.exitCode, 0) << r.output;
   EXPECT_NE(r.output.find("ms/frame"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("        3000"), std::string::npos) << r.output;
@@ -159,7 +172,8 @@ TEST(ViewCommand, BadOptionsGetClearMessages) {
   };
   // An absurd hair count is refused up front, with the memory it would need and the accepted range.
   const std::string model = smallModel(dir);
-  const auto huge = runPelage("view " + model.substr(0, model.find("--hairs")) + "--headless --hairs 1e12");
+  const auto huge =
+      runPelage("view " + model.substr(0, model.find("--hairs")) + "--headless --hairs 1e12");
   EXPECT_EQ(huge.exitCode, 2) << huge.output;
   EXPECT_NE(huge.output.find("1e+12 hairs need"), std::string::npos) << huge.output;
   EXPECT_NE(huge.output.find("accepted: 0 to 2e+07 hairs"), std::string::npos) << huge.output;

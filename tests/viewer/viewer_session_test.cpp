@@ -30,9 +30,11 @@ scene::Model critterWithClips() {
     ch.segment = head;
     ch.path = animation::ChannelPath::Rotation;
     const Eigen::Quaternionf q0 = m.body.segments[static_cast<std::size_t>(head)].rest.rotation;
-    const Eigen::Quaternionf q1 = q0 * Eigen::Quaternionf(Eigen::AngleAxisf(sign * 1.0f, Eigen::Vector3f::UnitZ()));
+    const Eigen::Quaternionf q1 =
+        q0 * Eigen::Quaternionf(Eigen::AngleAxisf(sign * 1.0f, Eigen::Vector3f::UnitZ()));
     ch.times = {0.0f, 1.0f, 2.0f};
-    ch.values = {q0.x(), q0.y(), q0.z(), q0.w(), q1.x(), q1.y(), q1.z(), q1.w(), q0.x(), q0.y(), q0.z(), q0.w()};
+    ch.values = {q0.x(), q0.y(), q0.z(), q0.w(), q1.x(), q1.y(),
+                 q1.z(), q1.w(), q0.x(), q0.y(), q0.z(), q0.w()};
     c.channels.push_back(ch);
     m.clips.push_back(c);
   }
@@ -179,7 +181,8 @@ TEST_F(ViewerSessionTest, PlaybackPlaysScrubsLoopsAndCrossFades) {
   s.selectClip(1);
   EXPECT_EQ(s.clip(), 1);
   s.frame(0.1, 96, 64);
-  EXPECT_TRUE(s.state().body.world[static_cast<std::size_t>(head)].linear().isApprox(turned, 1e-5f));
+  EXPECT_TRUE(
+      s.state().body.world[static_cast<std::size_t>(head)].linear().isApprox(turned, 1e-5f));
   s.frame(0.05, 96, 64);
   const Eigen::Matrix3f fading = s.state().body.world[static_cast<std::size_t>(head)].linear();
   for (int i = 0; i < 20; ++i) s.frame(0.05, 96, 64);  // 1 s: the fade (0.3 s) is over
@@ -220,7 +223,8 @@ TEST_F(ViewerSessionTest, PresetsSaveAndLoad) {
   s.loadPreset("fig8");
   EXPECT_NE(s.message.find("loaded"), std::string::npos);
   s.frame(0.0, 96, 64);
-  EXPECT_EQ(s.fur().params.coats[0].material.shininess, fur::loadFurPreset("fig8").coats[0].material.shininess);
+  EXPECT_EQ(s.fur().params.coats[0].material.shininess,
+            fur::loadFurPreset("fig8").coats[0].material.shininess);
   s.loadPreset(dir.file("missing.json"));
   EXPECT_NE(s.message.find("missing.json"), std::string::npos) << s.message;
   s.savePreset(dir.file("no/such/dir/x.json"));

@@ -8,7 +8,9 @@
 
 namespace pelage {
 namespace {
-std::string typeName(const nlohmann::json& j) { return j.type_name(); }
+std::string typeName(const nlohmann::json& j) {
+  return j.type_name();
+}
 }  // namespace
 
 JsonReader::JsonReader(const nlohmann::json& value, std::string file, std::string path)
@@ -41,7 +43,9 @@ std::string JsonReader::where() const {
   return path_.empty() ? file_ + ": top level" : file_ + ": field '" + path_ + "'";
 }
 
-void JsonReader::fail(const std::string& message) const { inputError(where(), ": ", message); }
+void JsonReader::fail(const std::string& message) const {
+  inputError(where(), ": ", message);
+}
 
 bool JsonReader::has(const std::string& key) const {
   return value_->is_object() && value_->contains(key);
@@ -157,14 +161,18 @@ std::int64_t JsonReader::integer(const std::string& key, std::int64_t fallback, 
                                  std::int64_t hi) const {
   return has(key) ? at(key).asInteger(lo, hi) : fallback;
 }
-std::string JsonReader::string(const std::string& key) const { return at(key).asString(); }
+std::string JsonReader::string(const std::string& key) const {
+  return at(key).asString();
+}
 std::string JsonReader::string(const std::string& key, const std::string& fallback) const {
   return has(key) ? at(key).asString() : fallback;
 }
 bool JsonReader::boolean(const std::string& key, bool fallback) const {
   return has(key) ? at(key).asBool() : fallback;
 }
-Eigen::Vector3f JsonReader::vec3(const std::string& key) const { return at(key).asVec3(); }
+Eigen::Vector3f JsonReader::vec3(const std::string& key) const {
+  return at(key).asVec3();
+}
 Eigen::Vector3f JsonReader::vec3(const std::string& key, const Eigen::Vector3f& fallback) const {
   return has(key) ? at(key).asVec3() : fallback;
 }

@@ -12,7 +12,9 @@ std::atomic<int>& threadSetting() {
 }
 }  // namespace
 
-void setThreadCount(int threads) { threadSetting() = threads < 0 ? 0 : threads; }
+void setThreadCount(int threads) {
+  threadSetting() = threads < 0 ? 0 : threads;
+}
 
 int threadCount() {
   const int n = threadSetting();

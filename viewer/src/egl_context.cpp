@@ -16,18 +16,30 @@ namespace {
 
 const char* eglErrorName(EGLint e) {
   switch (e) {
-    case EGL_SUCCESS: return "EGL_SUCCESS";
-    case EGL_NOT_INITIALIZED: return "EGL_NOT_INITIALIZED";
-    case EGL_BAD_ACCESS: return "EGL_BAD_ACCESS";
-    case EGL_BAD_ALLOC: return "EGL_BAD_ALLOC";
-    case EGL_BAD_ATTRIBUTE: return "EGL_BAD_ATTRIBUTE";
-    case EGL_BAD_CONFIG: return "EGL_BAD_CONFIG";
-    case EGL_BAD_CONTEXT: return "EGL_BAD_CONTEXT";
-    case EGL_BAD_DISPLAY: return "EGL_BAD_DISPLAY";
-    case EGL_BAD_MATCH: return "EGL_BAD_MATCH";
-    case EGL_BAD_PARAMETER: return "EGL_BAD_PARAMETER";
-    case EGL_BAD_SURFACE: return "EGL_BAD_SURFACE";
-    default: return "EGL error";
+    case EGL_SUCCESS:
+      return "EGL_SUCCESS";
+    case EGL_NOT_INITIALIZED:
+      return "EGL_NOT_INITIALIZED";
+    case EGL_BAD_ACCESS:
+      return "EGL_BAD_ACCESS";
+    case EGL_BAD_ALLOC:
+      return "EGL_BAD_ALLOC";
+    case EGL_BAD_ATTRIBUTE:
+      return "EGL_BAD_ATTRIBUTE";
+    case EGL_BAD_CONFIG:
+      return "EGL_BAD_CONFIG";
+    case EGL_BAD_CONTEXT:
+      return "EGL_BAD_CONTEXT";
+    case EGL_BAD_DISPLAY:
+      return "EGL_BAD_DISPLAY";
+    case EGL_BAD_MATCH:
+      return "EGL_BAD_MATCH";
+    case EGL_BAD_PARAMETER:
+      return "EGL_BAD_PARAMETER";
+    case EGL_BAD_SURFACE:
+      return "EGL_BAD_SURFACE";
+    default:
+      return "EGL error";
   }
 }
 
@@ -77,24 +89,30 @@ EGLContext createCoreContext(EGLDisplay display, bool debug, int& major, int& mi
     return EGL_NO_CONTEXT;
   }
   // The default EGL_SURFACE_TYPE is EGL_WINDOW_BIT, which headless platforms do not offer.
-  const EGLint configAttribs[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_SURFACE_TYPE, EGL_PBUFFER_BIT,
-                                  EGL_NONE};
+  const EGLint configAttribs[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_SURFACE_TYPE,
+                                  EGL_PBUFFER_BIT, EGL_NONE};
   EGLConfig config = nullptr;
   EGLint count = 0;
   if (eglChooseConfig(display, configAttribs, &config, 1, &count) != EGL_TRUE || count < 1) {
     // No config at all: a context without one (EGL_KHR_no_config_context) still renders into FBOs.
     if (!hasExtension(eglQueryString(display, EGL_EXTENSIONS), "EGL_KHR_no_config_context")) {
-      log += str("  eglChooseConfig(EGL_OPENGL_BIT, EGL_PBUFFER_BIT): no config (", eglErrorName(eglGetError()),
-                 ")\n");
+      log += str("  eglChooseConfig(EGL_OPENGL_BIT, EGL_PBUFFER_BIT): no config (",
+                 eglErrorName(eglGetError()), ")\n");
       return EGL_NO_CONTEXT;
     }
     config = EGL_NO_CONFIG_KHR;
   }
   const int versions[][2] = {{4, 6}, {4, 5}, {4, 3}};
   for (const auto& v : versions) {
-    const EGLint attribs[] = {EGL_CONTEXT_MAJOR_VERSION, v[0], EGL_CONTEXT_MINOR_VERSION, v[1],
-                              EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
-                              EGL_CONTEXT_OPENGL_DEBUG, debug ? EGL_TRUE : EGL_FALSE, EGL_NONE};
+    const EGLint attribs[] = {EGL_CONTEXT_MAJOR_VERSION,
+                              v[0],
+                              EGL_CONTEXT_MINOR_VERSION,
+                              v[1],
+                              EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                              EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                              EGL_CONTEXT_OPENGL_DEBUG,
+                              debug ? EGL_TRUE : EGL_FALSE,
+                              EGL_NONE};
     EGLContext ctx = eglCreateContext(display, config, EGL_NO_CONTEXT, attribs);
     if (ctx != EGL_NO_CONTEXT) {
       major = v[0];
@@ -166,8 +184,10 @@ std::unique_ptr<GlContext> createHeadlessContext(const ContextOptions& options) 
     c.display = getPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
     c.backend = "egl-surfaceless";
     c.device = "surfaceless platform";
-    if (c.display != EGL_NO_DISPLAY) candidates.push_back(c);
-    else log += str("  surfaceless platform: no display (", eglErrorName(eglGetError()), ")\n");
+    if (c.display != EGL_NO_DISPLAY)
+      candidates.push_back(c);
+    else
+      log += str("  surfaceless platform: no display (", eglErrorName(eglGetError()), ")\n");
   } else {
     log += "  EGL surfaceless platform: not supported by this EGL\n";
   }
@@ -175,7 +195,8 @@ std::unique_ptr<GlContext> createHeadlessContext(const ContextOptions& options) 
   for (const Candidate& c : candidates) {
     EGLint eglMajor = 0, eglMinor = 0;
     if (eglInitialize(c.display, &eglMajor, &eglMinor) != EGL_TRUE) {
-      log += str("  ", c.backend, " (", c.device, "): eglInitialize: ", eglErrorName(eglGetError()), "\n");
+      log += str("  ", c.backend, " (", c.device, "): eglInitialize: ", eglErrorName(eglGetError()),
+                 "\n");
       continue;
     }
     int major = 0, minor = 0;
@@ -185,7 +206,8 @@ std::unique_ptr<GlContext> createHeadlessContext(const ContextOptions& options) 
       continue;
     }
     if (eglMakeCurrent(c.display, EGL_NO_SURFACE, EGL_NO_SURFACE, ctx) != EGL_TRUE) {
-      log += str("  ", c.backend, ": eglMakeCurrent without a surface: ", eglErrorName(eglGetError()), "\n");
+      log += str("  ", c.backend,
+                 ": eglMakeCurrent without a surface: ", eglErrorName(eglGetError()), "\n");
       eglDestroyContext(c.display, ctx);
       eglTerminate(c.display);
       continue;

@@ -18,11 +18,15 @@ namespace {
 
 std::string infoLog(GLuint object, bool isProgram) {
   GLint len = 0;
-  if (isProgram) glGetProgramiv(object, GL_INFO_LOG_LENGTH, &len);
-  else glGetShaderiv(object, GL_INFO_LOG_LENGTH, &len);
+  if (isProgram)
+    glGetProgramiv(object, GL_INFO_LOG_LENGTH, &len);
+  else
+    glGetShaderiv(object, GL_INFO_LOG_LENGTH, &len);
   std::string log(static_cast<std::size_t>(len > 0 ? len : 1), '\0');
-  if (isProgram) glGetProgramInfoLog(object, len, nullptr, log.data());
-  else glGetShaderInfoLog(object, len, nullptr, log.data());
+  if (isProgram)
+    glGetProgramInfoLog(object, len, nullptr, log.data());
+  else
+    glGetShaderInfoLog(object, len, nullptr, log.data());
   return log;
 }
 
@@ -48,7 +52,8 @@ GLuint buildProgram(const std::string& name, std::initializer_list<ShaderStage> 
     glCompileShader(s);
     GLint ok = 0;
     glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
-    PELAGE_CHECK(ok == GL_TRUE, "shader ", name, " (", files, ") does not compile:\n", infoLog(s, false));
+    PELAGE_CHECK(ok == GL_TRUE, "shader ", name, " (", files, ") does not compile:\n",
+                 infoLog(s, false));
     glAttachShader(program, s);
     shaders.push_back(s);
   }

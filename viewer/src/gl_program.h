@@ -52,12 +52,24 @@ class GlHandle {
   GLuint id_ = 0;
 };
 
-inline void deleteBuffer(GLuint id) { glDeleteBuffers(1, &id); }
-inline void deleteVertexArray(GLuint id) { glDeleteVertexArrays(1, &id); }
-inline void deleteTexture(GLuint id) { glDeleteTextures(1, &id); }
-inline void deleteRenderbuffer(GLuint id) { glDeleteRenderbuffers(1, &id); }
-inline void deleteFramebuffer(GLuint id) { glDeleteFramebuffers(1, &id); }
-inline void deleteProgram(GLuint id) { glDeleteProgram(id); }
+inline void deleteBuffer(GLuint id) {
+  glDeleteBuffers(1, &id);
+}
+inline void deleteVertexArray(GLuint id) {
+  glDeleteVertexArrays(1, &id);
+}
+inline void deleteTexture(GLuint id) {
+  glDeleteTextures(1, &id);
+}
+inline void deleteRenderbuffer(GLuint id) {
+  glDeleteRenderbuffers(1, &id);
+}
+inline void deleteFramebuffer(GLuint id) {
+  glDeleteFramebuffers(1, &id);
+}
+inline void deleteProgram(GLuint id) {
+  glDeleteProgram(id);
+}
 
 using Buffer = GlHandle<deleteBuffer>;
 using VertexArray = GlHandle<deleteVertexArray>;
@@ -73,6 +85,8 @@ inline Buffer createBuffer() {
 }
 
 // Uniform location by name (-1 if the program does not use it; setting -1 is a no-op in GL).
-inline GLint uniform(GLuint program, const char* name) { return glGetUniformLocation(program, name); }
+inline GLint uniform(GLuint program, const char* name) {
+  return glGetUniformLocation(program, name);
+}
 
 }  // namespace pelage::viewer::detail

@@ -39,7 +39,8 @@ struct GpuCoatShape {
   float polyAlpha[fur::kPolylinePoints], polyBeta[fur::kPolylinePoints];
   float curveC1[fur::kMaxCurvePoints], curveC2[fur::kMaxCurvePoints];
   float curveDc1[fur::kMaxCurvePoints], curveDc2[fur::kMaxCurvePoints];
-  float curlEnvelope[fur::kMaxCurvePoints], curlCos[fur::kMaxCurvePoints], curlSin[fur::kMaxCurvePoints];
+  float curlEnvelope[fur::kMaxCurvePoints], curlCos[fur::kMaxCurvePoints],
+      curlSin[fur::kMaxCurvePoints];
   float tubeRadius[fur::kMaxCurvePoints];
   float ringCos[fur::kMaxTubeSides], ringSin[fur::kMaxTubeSides];
 };
@@ -157,7 +158,8 @@ struct GpuFur::Impl {
   std::array<Coat, fur::kCoatCount> coats;
 
   explicit Impl(const GpuFurOptions& o) : options(o) {
-    maxBinding = options.maxBindingBytes > 0 ? options.maxBindingBytes : maxShaderStorageBlockSize();
+    maxBinding =
+        options.maxBindingBytes > 0 ? options.maxBindingBytes : maxShaderStorageBlockSize();
     PELAGE_CHECK(options.maxGroupsPerDimension >= 1 && options.maxGroupsPerDimension <= 65535,
                  "maxGroupsPerDimension ", options.maxGroupsPerDimension);
     glGetIntegerv(GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT, &alignment);
@@ -165,13 +167,14 @@ struct GpuFur::Impl {
     hairProgram.reset(detail::buildProgram(
         "fur hair", {ShaderStage{GL_COMPUTE_SHADER, {"hair_math.glsl", "fur_hair.comp"}}}));
     checkShapeLayout(hairProgram.get());
-    cullProgram.reset(detail::buildProgram("fur cull", {ShaderStage{GL_COMPUTE_SHADER, {"fur_cull.comp"}}}));
-    scanBlocksProgram.reset(
-        detail::buildProgram("fur scan 1", {ShaderStage{GL_COMPUTE_SHADER, {"fur_scan.comp"}}}, "#define PASS 1"));
-    scanAddProgram.reset(
-        detail::buildProgram("fur scan 2", {ShaderStage{GL_COMPUTE_SHADER, {"fur_scan.comp"}}}, "#define PASS 2"));
-    commandsProgram.reset(
-        detail::buildProgram("fur commands", {ShaderStage{GL_COMPUTE_SHADER, {"fur_commands.comp"}}}));
+    cullProgram.reset(
+        detail::buildProgram("fur cull", {ShaderStage{GL_COMPUTE_SHADER, {"fur_cull.comp"}}}));
+    scanBlocksProgram.reset(detail::buildProgram(
+        "fur scan 1", {ShaderStage{GL_COMPUTE_SHADER, {"fur_scan.comp"}}}, "#define PASS 1"));
+    scanAddProgram.reset(detail::buildProgram(
+        "fur scan 2", {ShaderStage{GL_COMPUTE_SHADER, {"fur_scan.comp"}}}, "#define PASS 2"));
+    commandsProgram.reset(detail::buildProgram(
+        "fur commands", {ShaderStage{GL_COMPUTE_SHADER, {"fur_commands.comp"}}}));
     static_assert(sizeof(GpuCoatShape) % 4 == 0);
   }
 
@@ -179,15 +182,17 @@ struct GpuFur::Impl {
     skin = &s;
     triangleCount = s.numTriangles();
     vertexCount = s.numVertices();
-    triangles = makeBuffer(static_cast<GLsizeiptr>(s.triangles.size() * sizeof(std::int32_t)), s.triangles.data());
+    triangles = makeBuffer(static_cast<GLsizeiptr>(s.triangles.size() * sizeof(std::int32_t)),
+                           s.triangles.data());
     lengths = makeBuffer(static_cast<GLsizeiptr>(vertexCount) * 4, s.furLengths());
     directions = makeBuffer(static_cast<GLsizeiptr>(vertexCount) * 12, nullptr);
   }
 
   void uploadRoots(const fur::FurRoots& r) {
-    PELAGE_CHECK(r.triangleCount == triangleCount, "roots grown on ", r.triangleCount, " triangles, skin has ",
-                 triangleCount);
-    barycentric = makeBuffer(static_cast<GLsizeiptr>(r.barycentric.size() * sizeof(float)), r.barycentric.data());
+    PELAGE_CHECK(r.triangleCount == triangleCount, "roots grown on ", r.triangleCount,
+                 " triangles, skin has ", triangleCount);
+    barycentric = makeBuffer(static_cast<GLsizeiptr>(r.barycentric.size() * sizeof(float)),
+                             r.barycentric.data());
     for (int c = 0; c < fur::kCoatCount; ++c) {
       const fur::CoatRoots& cr = r.coats[static_cast<std::size_t>(c)];
       Coat& g = coats[static_cast<std::size_t>(c)];
@@ -199,15 +204,18 @@ struct GpuFur::Impl {
       }
       g.rootData = makeBuffer(static_cast<GLsizeiptr>(packed.size() * 4), packed.data());
       g.jitter = makeBuffer(static_cast<GLsizeiptr>(cr.jitter.size() * 4), cr.jitter.data());
-      g.triangleStart = makeBuffer(static_cast<GLsizeiptr>(cr.triangleStart.size() * 4), cr.triangleStart.data());
+      g.triangleStart =
+          makeBuffer(static_cast<GLsizeiptr>(cr.triangleStart.size() * 4), cr.triangleStart.data());
       g.drawnStart = makeBuffer(static_cast<GLsizeiptr>(cr.triangleStart.size() * 4), nullptr);
       // Sec. 3.3's u_t, exactly as fur::computeDrawnStart draws it.
       const std::uint64_t seed = fur::coatSeed(r.seed, c);
       std::vector<float> u(static_cast<std::size_t>(triangleCount));
       for (std::int32_t t = 0; t < triangleCount; ++t)
-        u[static_cast<std::size_t>(t)] = uniform01(seed, kStreamCulling, static_cast<std::uint64_t>(t));
+        u[static_cast<std::size_t>(t)] =
+            uniform01(seed, kStreamCulling, static_cast<std::uint64_t>(t));
       g.cullU = makeBuffer(static_cast<GLsizeiptr>(u.size() * 4), u.data());
-      g.blockSums = makeBuffer(static_cast<GLsizeiptr>((triangleCount + 255) / 256 + 1) * 4, nullptr);
+      g.blockSums =
+          makeBuffer(static_cast<GLsizeiptr>((triangleCount + 255) / 256 + 1) * 4, nullptr);
       g.shape = makeBuffer(sizeof(GpuCoatShape), nullptr);
       g.twistAmount = -1.0f;
     }
@@ -232,7 +240,8 @@ void GpuFur::beginFrame(const GpuFurFrame& f) {
   PELAGE_CHECK(f.skin && f.roots && f.params && f.deformed && f.skinPositions && f.skinNormals,
                "incomplete GPU fur frame");
   Impl& m = *impl_;
-  if (m.skin != f.skin || m.triangleCount != f.skin->numTriangles() || m.vertexCount != f.skin->numVertices()) {
+  if (m.skin != f.skin || m.triangleCount != f.skin->numTriangles() ||
+      m.vertexCount != f.skin->numVertices()) {
     m.uploadSkin(*f.skin);
     m.generation = ~std::uint64_t{0};
   }
@@ -255,7 +264,8 @@ void GpuFur::generate(int coat, const HairLayout& layout, bool tangents, HairVer
   PELAGE_CHECK(coat >= 0 && coat < fur::kCoatCount && m.params, "generate before beginFrame");
   Impl::Coat& g = m.coats[static_cast<std::size_t>(coat)];
   const fur::CoatShape shape = fur::makeCoatShape(*m.params, coat);
-  PELAGE_CHECK(layout.pointsPerHair() == shape.points && layout.triangles == (shape.style == fur::HairStyle::Tube),
+  PELAGE_CHECK(layout.pointsPerHair() == shape.points &&
+                   layout.triangles == (shape.style == fur::HairStyle::Tube),
                "layout of ", layout.pointsPerHair(), " points for a coat of ", shape.points);
   out.reserve(g.rootCount, layout, m.maxBinding);
   const GpuCoatShape packed = pack(shape);
@@ -321,7 +331,8 @@ void GpuFur::generate(int coat, const HairLayout& layout, bool tangents, HairVer
                       chunk.capacity * pointBytes);
     glUniform1i(uniform(hp, "uChunkFirst"), static_cast<GLint>(chunk.firstHair));
     glUniform1i(uniform(hp, "uChunkCount"), static_cast<GLint>(chunk.capacity));
-    const std::int64_t rootEnd = culling ? g.rootCount : std::min(g.rootCount, chunk.firstHair + chunk.capacity);
+    const std::int64_t rootEnd =
+        culling ? g.rootCount : std::min(g.rootCount, chunk.firstHair + chunk.capacity);
     for (std::int64_t first = chunk.firstHair; first < rootEnd; first += window) {
       const std::int64_t count = std::min(window, rootEnd - first);
       glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 4, g.rootData.get(), first * 8, count * 8);
@@ -345,8 +356,8 @@ void GpuFur::generate(int coat, const HairLayout& layout, bool tangents, HairVer
   glUniform1i(uniform(cp, "uPointsPerHair"), static_cast<GLint>(P));
   glUniform1i(uniform(cp, "uIndicesPerHair"), layout.indicesPerHair());
   dispatch1d(static_cast<std::int64_t>(out.chunks().size()), 64, m.options.maxGroupsPerDimension);
-  glMemoryBarrier(GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT |
-                  GL_SHADER_STORAGE_BARRIER_BIT);
+  glMemoryBarrier(GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT | GL_COMMAND_BARRIER_BIT |
+                  GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
   glUseProgram(0);
 }
 

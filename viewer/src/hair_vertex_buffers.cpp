@@ -33,14 +33,17 @@ std::int64_t maxShaderStorageBlockSize() {
   return v > 0 ? static_cast<std::int64_t>(v) : std::int64_t{1} << 27;
 }
 
-HairVertexBuffers::HairVertexBuffers() { glCreateVertexArrays(1, &vao_); }
+HairVertexBuffers::HairVertexBuffers() {
+  glCreateVertexArrays(1, &vao_);
+}
 
 HairVertexBuffers::~HairVertexBuffers() {
   deleteAll(positions_, shading_, indices_, commands_);
   glDeleteVertexArrays(1, &vao_);
 }
 
-void HairVertexBuffers::reserve(std::int64_t hairs, const HairLayout& layout, std::int64_t maxChunkBytes) {
+void HairVertexBuffers::reserve(std::int64_t hairs, const HairLayout& layout,
+                                std::int64_t maxChunkBytes) {
   PELAGE_CHECK(hairs >= 0 && layout.strandPoints >= 2 && layout.strandStride >= 1);
   if (maxChunkBytes <= 0) maxChunkBytes = maxShaderStorageBlockSize();
   const bool layoutChanged = !(layout == layout_) || maxChunkBytes != maxChunkBytes_;
@@ -55,7 +58,8 @@ void HairVertexBuffers::reserve(std::int64_t hairs, const HairLayout& layout, st
   perChunk -= perChunk % std::max<std::int64_t>(align, 1);
   PELAGE_CHECK(perChunk > 0, "a chunk of ", maxChunkBytes, " bytes cannot hold ", align, " hairs");
   // Grow with headroom so that small increases of the hair count do not reallocate every time.
-  const std::int64_t capacity = std::max<std::int64_t>(layoutChanged ? hairs : hairs + hairs / 4, 1);
+  const std::int64_t capacity =
+      std::max<std::int64_t>(layoutChanged ? hairs : hairs + hairs / 4, 1);
 
   deleteAll(positions_, shading_, indices_, commands_);
   layout_ = layout;
@@ -87,7 +91,8 @@ void HairVertexBuffers::reserve(std::int64_t hairs, const HairLayout& layout, st
         for (std::uint32_t i : {a, b, d, a, d, c}) pattern[n++] = i;
       }
   } else {
-    for (int i = 0; i < P; ++i) pattern[static_cast<std::size_t>(i)] = static_cast<std::uint32_t>(i);
+    for (int i = 0; i < P; ++i)
+      pattern[static_cast<std::size_t>(i)] = static_cast<std::uint32_t>(i);
     pattern.back() = kRestart;
   }
   std::vector<std::uint32_t> indices(static_cast<std::size_t>(indexCapacity_ * perHair));
@@ -126,41 +131,50 @@ void HairVertexBuffers::upload(const float* positions, const float* shading, std
   std::vector<DrawCommand>& cmds = commandScratch_;
   cmds.assign(chunks_.size(), DrawCommand{});
   for (std::size_t c = 0; c < chunks_.size(); ++c) {
-    const std::int64_t n = std::clamp<std::int64_t>(hairs - chunks_[c].firstHair, 0, chunks_[c].capacity);
+    const std::int64_t n =
+        std::clamp<std::int64_t>(hairs - chunks_[c].firstHair, 0, chunks_[c].capacity);
     cmds[c].count = static_cast<std::uint32_t>(n * layout_.indicesPerHair());
     cmds[c].baseVertex = static_cast<std::int32_t>(chunks_[c].firstHair * P);
   }
-  glNamedBufferSubData(commands_, 0, static_cast<GLsizeiptr>(cmds.size() * sizeof(DrawCommand)), cmds.data());
+  glNamedBufferSubData(commands_, 0, static_cast<GLsizeiptr>(cmds.size() * sizeof(DrawCommand)),
+                       cmds.data());
 }
 
 std::int64_t HairVertexBuffers::drawnHairsOnGpu() const {
   std::vector<DrawCommand> cmds(chunks_.size());
-  glGetNamedBufferSubData(commands_, 0, static_cast<GLsizeiptr>(cmds.size() * sizeof(DrawCommand)), cmds.data());
+  glGetNamedBufferSubData(commands_, 0, static_cast<GLsizeiptr>(cmds.size() * sizeof(DrawCommand)),
+                          cmds.data());
   std::int64_t n = 0;
-  for (const DrawCommand& c : cmds) n += c.count / static_cast<std::uint32_t>(layout_.indicesPerHair());
+  for (const DrawCommand& c : cmds)
+    n += c.count / static_cast<std::uint32_t>(layout_.indicesPerHair());
   return n;
 }
 
 void HairVertexBuffers::readBack(std::vector<float>& positions, std::vector<float>& shading) const {
   std::vector<DrawCommand> cmds(chunks_.size());
-  glGetNamedBufferSubData(commands_, 0, static_cast<GLsizeiptr>(cmds.size() * sizeof(DrawCommand)), cmds.data());
+  glGetNamedBufferSubData(commands_, 0, static_cast<GLsizeiptr>(cmds.size() * sizeof(DrawCommand)),
+                          cmds.data());
   const std::int64_t P = layout_.pointsPerHair();
   positions.clear();
   shading.clear();
   for (std::size_t c = 0; c < chunks_.size(); ++c) {
     const std::int64_t n = cmds[c].count / static_cast<std::uint32_t>(layout_.indicesPerHair());
     const std::int64_t floats = n * P * 3;
-    const std::int64_t offset = chunks_[c].firstHair * P * 3 * static_cast<std::int64_t>(sizeof(float));
+    const std::int64_t offset =
+        chunks_[c].firstHair * P * 3 * static_cast<std::int64_t>(sizeof(float));
     const std::size_t at = positions.size();
     positions.resize(at + static_cast<std::size_t>(floats));
     shading.resize(at + static_cast<std::size_t>(floats));
     if (floats == 0) continue;
-    glGetNamedBufferSubData(positions_, offset, static_cast<GLsizeiptr>(floats * 4), positions.data() + at);
-    glGetNamedBufferSubData(shading_, offset, static_cast<GLsizeiptr>(floats * 4), shading.data() + at);
+    glGetNamedBufferSubData(positions_, offset, static_cast<GLsizeiptr>(floats * 4),
+                            positions.data() + at);
+    glGetNamedBufferSubData(shading_, offset, static_cast<GLsizeiptr>(floats * 4),
+                            shading.data() + at);
   }
 }
 
-void strandTangents(const float* positions, std::int64_t hairs, const HairLayout& layout, std::vector<float>& out) {
+void strandTangents(const float* positions, std::int64_t hairs, const HairLayout& layout,
+                    std::vector<float>& out) {
   const int K = layout.strandPoints, M = layout.strandStride, P = layout.pointsPerHair();
   out.resize(static_cast<std::size_t>(hairs * P * 3));
   for (std::int64_t h = 0; h < hairs; ++h) {
@@ -169,7 +183,8 @@ void strandTangents(const float* positions, std::int64_t hairs, const HairLayout
     for (int k = 0; k < K; ++k)
       for (int m = 0; m < M; ++m) {
         const int a = (k + 1 < K ? k : k - 1) * M + m, b = a + M;
-        Eigen::Vector3f d(p[3 * b] - p[3 * a], p[3 * b + 1] - p[3 * a + 1], p[3 * b + 2] - p[3 * a + 2]);
+        Eigen::Vector3f d(p[3 * b] - p[3 * a], p[3 * b + 1] - p[3 * a + 1],
+                          p[3 * b + 2] - p[3 * a + 2]);
         const float len = d.norm();
         d = len > 0.0f ? Eigen::Vector3f(d / len) : Eigen::Vector3f::UnitZ();
         float* o = t + (k * M + m) * 3;

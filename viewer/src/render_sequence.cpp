@@ -56,10 +56,12 @@ void defaultWrite(const std::string& path, const std::vector<std::uint8_t>& byte
 }
 
 // PNG encoders on worker threads: the main thread hands over rendered images (blocking while every
-// image buffer is in use, which bounds memory) and gets the buffers back when the files are written.
+// image buffer is in use, which bounds memory) and gets the buffers back when the files are
+// written.
 class EncoderPool {
  public:
-  EncoderPool(int threads, int width, int height, FileWriter writer, std::function<void(int)> onWritten)
+  EncoderPool(int threads, int width, int height, FileWriter writer,
+              std::function<void(int)> onWritten)
       : writer_(std::move(writer)), onWritten_(std::move(onWritten)) {
     const int buffers = threads + 2;
     for (int i = 0; i < buffers; ++i) {
@@ -196,7 +198,8 @@ CameraPath loadCameraFile(const std::string& path) {
     k.up = j.vec3("up", Eigen::Vector3f::UnitZ());
     k.fovYDegrees = static_cast<float>(j.number("fovYDegrees", 35.0, 1.0, 179.0));
     if ((k.eye - k.target).norm() < 1e-6f) j.fail("eye and target must differ");
-    if (k.up.norm() < 1e-6f || (k.eye - k.target).normalized().cross(k.up.normalized()).norm() < 1e-4f)
+    if (k.up.norm() < 1e-6f ||
+        (k.eye - k.target).normalized().cross(k.up.normalized()).norm() < 1e-4f)
       j.fail("up must be non-zero and not parallel to the view direction");
   };
   if (root.has("keys")) {
@@ -255,9 +258,10 @@ void validateSequenceOptions(const SequenceOptions& o) {
   if (!(o.framesPerSecond >= 1.0 && o.framesPerSecond <= 1000.0))
     inputError("--fps ", o.framesPerSecond, " is out of range [1, 1000]");
   if (o.frames.first < 0 || o.frames.first > o.frames.last || o.frames.last > kMaxFrameNumber)
-    inputError("--frames ", o.frames.first, ":", o.frames.last, " is out of range: need 0 <= FIRST <= LAST <= ",
-               kMaxFrameNumber);
-  if (o.samples < -1 || o.samples > 64) inputError("--samples ", o.samples, " is out of range [-1, 64]");
+    inputError("--frames ", o.frames.first, ":", o.frames.last,
+               " is out of range: need 0 <= FIRST <= LAST <= ", kMaxFrameNumber);
+  if (o.samples < -1 || o.samples > 64)
+    inputError("--samples ", o.samples, " is out of range [-1, 64]");
   if (o.encoderThreads < 0 || o.encoderThreads > 256)
     inputError("--encoders ", o.encoderThreads, " is out of range [0, 256]");
   if (!(o.camera.fovYDegrees > 1.0f && o.camera.fovYDegrees < 179.0f))
@@ -271,7 +275,8 @@ void validateSequenceOptions(const SequenceOptions& o) {
   }
   if (!o.video.empty()) {
     const std::string ext = fs::path(o.video).extension().string();
-    if (ext != ".mp4" && ext != ".gif") inputError("--video ", o.video, ": the file must end in .mp4 or .gif");
+    if (ext != ".mp4" && ext != ".gif")
+      inputError("--video ", o.video, ": the file must end in .mp4 or .gif");
   }
 }
 
@@ -292,11 +297,13 @@ struct SequenceRenderer::Impl {
   int nextDynamicFrame = -1;
   scene::FrameState preRollScratch;
 
-  Impl(const scene::Model& m, const scene::Fur& f, const SequenceOptions& o) : model(m), fur(f), options(o) {}
+  Impl(const scene::Model& m, const scene::Fur& f, const SequenceOptions& o)
+      : model(m), fur(f), options(o) {}
 
   void evaluate(int frame) {
     if (options.clip >= 0)
-      scene::evaluateClipFrame(model, options.clip, static_cast<double>(frame) / options.framesPerSecond, state);
+      scene::evaluateClipFrame(model, options.clip,
+                               static_cast<double>(frame) / options.framesPerSecond, state);
     else
       scene::evaluateFrame(model, restPose, state);
   }
@@ -328,7 +335,8 @@ struct SequenceRenderer::Impl {
   }
 };
 
-SequenceRenderer::SequenceRenderer(const scene::Model& model, const scene::Fur& fur, const SequenceOptions& options)
+SequenceRenderer::SequenceRenderer(const scene::Model& model, const scene::Fur& fur,
+                                   const SequenceOptions& options)
     : impl_(std::make_unique<Impl>(model, fur, options)) {
   validateSequenceOptions(options);
   Impl& m = *impl_;
@@ -370,9 +378,10 @@ RenderStats SequenceRenderer::render(int frame, Image& out) {
     // Frames come in order; any other frame (the first, or one after frames skipped by --resume)
     // is reached by pre-rolling, exactly as a whole run reaches it.
     if (frame != m.nextDynamicFrame)
-      scene::preRollDynamics(m.model, m.fur, m.options.dynamicsParams, m.options.clip, frame, clock, m.dynamics,
-                             m.preRollScratch);
-    scene::stepClipDynamics(m.model, m.fur, m.options.dynamicsParams, clock, cam.eye, true, m.dynamics, m.state);
+      scene::preRollDynamics(m.model, m.fur, m.options.dynamicsParams, m.options.clip, frame, clock,
+                             m.dynamics, m.preRollScratch);
+    scene::stepClipDynamics(m.model, m.fur, m.options.dynamicsParams, clock, cam.eye, true,
+                            m.dynamics, m.state);
     m.nextDynamicFrame = frame + 1;
   } else {
     scene::evaluateFur(m.model, m.fur, cam.eye, cpu, m.state);
@@ -393,18 +402,22 @@ RenderStats SequenceRenderer::render(int frame, Image& out) {
 
 // ---- renderSequence ---------------------------------------------------------------------------
 
-SequenceReport renderSequence(const scene::Model& model, const scene::Fur& fur, const SequenceOptions& options,
-                              const ProgressCallback& progress, const FileWriter& writer) {
+SequenceReport renderSequence(const scene::Model& model, const scene::Fur& fur,
+                              const SequenceOptions& options, const ProgressCallback& progress,
+                              const FileWriter& writer) {
   validateSequenceOptions(options);
   ensureWritableDirectory(options.outDir);
   SequenceReport report;
   const Clock::time_point t0 = Clock::now();
-  if (options.resume) report.removedTemporaries = removeStaleTemporaries(options.outDir, options.frames);
+  if (options.resume)
+    report.removedTemporaries = removeStaleTemporaries(options.outDir, options.frames);
 
   // Which frames are already complete (--resume).
   const int total = options.frames.count();
   std::vector<char> done(static_cast<std::size_t>(total), 0);
-  auto framePath = [&](int frame) { return (fs::path(options.outDir) / frameFileName(frame, ".png")).string(); };
+  auto framePath = [&](int frame) {
+    return (fs::path(options.outDir) / frameFileName(frame, ".png")).string();
+  };
   if (options.resume)
     for (int i = 0; i < total; ++i)
       if (isCompletePng(framePath(options.frames.first + i))) {
@@ -414,7 +427,8 @@ SequenceReport renderSequence(const scene::Model& model, const scene::Fur& fur, 
 
   std::unique_ptr<VideoEncoder> video;
   if (!options.video.empty())
-    video = std::make_unique<VideoEncoder>(options.video, options.width, options.height, options.framesPerSecond);
+    video = std::make_unique<VideoEncoder>(options.video, options.width, options.height,
+                                           options.framesPerSecond);
 
   SequenceRenderer sequence(model, fur, options);
   const int toRender = total - report.skipped;
@@ -442,16 +456,19 @@ SequenceReport renderSequence(const scene::Model& model, const scene::Fur& fur, 
     p.frame = options.frames.first;
     progress(p);
   }
-  const int threads = options.encoderThreads > 0 ? options.encoderThreads : std::max(1, threadCount());
-  EncoderPool pool(threads, options.width, options.height, writer ? writer : FileWriter(defaultWrite), onWritten);
+  const int threads =
+      options.encoderThreads > 0 ? options.encoderThreads : std::max(1, threadCount());
+  EncoderPool pool(threads, options.width, options.height,
+                   writer ? writer : FileWriter(defaultWrite), onWritten);
   for (int i = 0; i < total; ++i) {
     const int frame = options.frames.first + i;
     if (done[static_cast<std::size_t>(i)]) {
       if (video) {
         const Image img = readPng(framePath(frame));
         if (img.width != options.width || img.height != options.height)
-          inputError(framePath(frame), ": --resume found a ", img.width, "x", img.height, " frame, not ", options.width,
-                     "x", options.height, " (render into an empty directory, or without --resume)");
+          inputError(framePath(frame), ": --resume found a ", img.width, "x", img.height,
+                     " frame, not ", options.width, "x", options.height,
+                     " (render into an empty directory, or without --resume)");
         video->addFrame(img);
       }
       continue;
@@ -471,7 +488,8 @@ SequenceReport renderSequence(const scene::Model& model, const scene::Fur& fur, 
 // ---- ffmpeg -----------------------------------------------------------------------------------
 
 std::string findOnPath(const std::string& program) {
-  if (program.find('/') != std::string::npos) return ::access(program.c_str(), X_OK) == 0 ? program : "";
+  if (program.find('/') != std::string::npos)
+    return ::access(program.c_str(), X_OK) == 0 ? program : "";
   const char* env = std::getenv("PATH");
   if (!env) return "";
   std::string_view rest(env);
@@ -480,7 +498,8 @@ std::string findOnPath(const std::string& program) {
     const std::string dir(rest.substr(0, colon));
     const std::string candidate = (dir.empty() ? std::string(".") : dir) + "/" + program;
     struct stat st {};
-    if (::stat(candidate.c_str(), &st) == 0 && S_ISREG(st.st_mode) && ::access(candidate.c_str(), X_OK) == 0)
+    if (::stat(candidate.c_str(), &st) == 0 && S_ISREG(st.st_mode) &&
+        ::access(candidate.c_str(), X_OK) == 0)
       return candidate;
     if (colon == std::string_view::npos) return "";
     rest.remove_prefix(colon + 1);
@@ -503,13 +522,17 @@ VideoEncoder::VideoEncoder(const std::string& path, int width, int height, doubl
     : path_(path), width_(width), height_(height) {
   const fs::path p(path);
   const std::string ext = p.extension().string();
-  if (ext != ".mp4" && ext != ".gif") inputError("--video ", path, ": the file must end in .mp4 or .gif");
+  if (ext != ".mp4" && ext != ".gif")
+    inputError("--video ", path, ": the file must end in .mp4 or .gif");
   const std::string ffmpeg = findOnPath("ffmpeg");
   if (ffmpeg.empty())
-    inputError("--video ", path, " needs the ffmpeg program, which is not on PATH (Debian: apt-get install ffmpeg)");
+    inputError("--video ", path,
+               " needs the ffmpeg program, which is not on PATH (Debian: apt-get install ffmpeg)");
   const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
-  if (!fs::is_directory(dir)) inputError("--video ", path, ": the directory ", dir.string(), " does not exist");
-  if (::access(dir.c_str(), W_OK) != 0) inputError("--video ", path, ": cannot write (permission denied)");
+  if (!fs::is_directory(dir))
+    inputError("--video ", path, ": the directory ", dir.string(), " does not exist");
+  if (::access(dir.c_str(), W_OK) != 0)
+    inputError("--video ", path, ": cannot write (permission denied)");
   const std::string tag = std::to_string(::getpid()) + "-" + std::to_string(videoCounter++);
   tempPath_ = (dir / ("." + p.stem().string() + ".tmp-" + tag + ext)).string();
   logPath_ = (fs::temp_directory_path() / ("pelage-ffmpeg-" + tag + ".log")).string();
@@ -517,23 +540,27 @@ VideoEncoder::VideoEncoder(const std::string& path, int width, int height, doubl
   char size[32], rate[32];
   std::snprintf(size, sizeof size, "%dx%d", width, height);
   std::snprintf(rate, sizeof rate, "%.6g", fps);
-  std::vector<std::string> args = {ffmpeg, "-nostdin", "-hide_banner", "-loglevel", "error", "-y",
-                                   "-f", "rawvideo", "-pix_fmt", "rgba", "-s", size, "-framerate", rate, "-i", "-"};
+  std::vector<std::string> args = {
+      ffmpeg,     "-nostdin", "-hide_banner", "-loglevel", "error",      "-y", "-f", "rawvideo",
+      "-pix_fmt", "rgba",     "-s",           size,        "-framerate", rate, "-i", "-"};
   if (ext == ".mp4") {
     // H.264 needs even sizes in yuv420p: pad by one pixel where needed.
-    for (const char* a : {"-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2", "-c:v", "libx264", "-preset", "fast", "-crf", "18",
-                          "-pix_fmt", "yuv420p", "-movflags", "+faststart", "-f", "mp4"})
+    for (const char* a :
+         {"-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2", "-c:v", "libx264", "-preset", "fast", "-crf",
+          "18", "-pix_fmt", "yuv420p", "-movflags", "+faststart", "-f", "mp4"})
       args.emplace_back(a);
   } else {
     // One palette per frame: no buffering of the whole clip (memory stays bounded).
-    for (const char* a : {"-vf", "split[a][b];[a]palettegen=stats_mode=single[p];[b][p]paletteuse=new=1", "-loop", "0",
-                          "-f", "gif"})
+    for (const char* a :
+         {"-vf", "split[a][b];[a]palettegen=stats_mode=single[p];[b][p]paletteuse=new=1", "-loop",
+          "0", "-f", "gif"})
       args.emplace_back(a);
   }
   args.push_back(tempPath_);
 
   int fds[2];
-  if (::pipe2(fds, O_CLOEXEC) != 0) inputError("--video: cannot create a pipe to ffmpeg (", std::strerror(errno), ")");
+  if (::pipe2(fds, O_CLOEXEC) != 0)
+    inputError("--video: cannot create a pipe to ffmpeg (", std::strerror(errno), ")");
   const int log = ::open(logPath_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0600);
   posix_spawn_file_actions_t fa;
   posix_spawn_file_actions_init(&fa);
@@ -594,9 +621,11 @@ void VideoEncoder::fail(const std::string& what) {
 
 void VideoEncoder::addFrame(const Image& image) {
   PELAGE_CHECK(!done_ && pipe_ >= 0, "VideoEncoder::addFrame after finish");
-  PELAGE_CHECK(image.width == width_ && image.height == height_, "frame ", image.width, "x", image.height);
+  PELAGE_CHECK(image.width == width_ && image.height == height_, "frame ", image.width, "x",
+               image.height);
   // A write to a pipe whose reader died raises SIGPIPE: ignore it here and report EPIPE instead.
-  struct sigaction ignore {}, old {};
+  struct sigaction ignore {
+  }, old{};
   ignore.sa_handler = SIG_IGN;
   sigemptyset(&ignore.sa_mask);
   ::sigaction(SIGPIPE, &ignore, &old);
@@ -637,7 +666,8 @@ void VideoEncoder::finish() {
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
     fail(WIFEXITED(status) ? str("ffmpeg failed (exit status ", WEXITSTATUS(status), ")")
                            : str("ffmpeg was killed (signal ", WTERMSIG(status), ")"));
-  if (std::rename(tempPath_.c_str(), path_.c_str()) != 0) fail(str("rename failed (", std::strerror(errno), ")"));
+  if (std::rename(tempPath_.c_str(), path_.c_str()) != 0)
+    fail(str("rename failed (", std::strerror(errno), ")"));
   done_ = true;
 }
 

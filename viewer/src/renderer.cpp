@@ -97,13 +97,15 @@ struct Renderer::Impl {
     hairProgram.reset(detail::buildProgram(
         "hair", {ShaderStage{GL_VERTEX_SHADER, {"hair.vert"}},
                  ShaderStage{GL_FRAGMENT_SHADER, {"lighting.glsl", "hair.frag"}}}));
-    ribbonProgram.reset(detail::buildProgram(
-        "hair ribbons", {ShaderStage{GL_VERTEX_SHADER, {"hair.vert"}},
-                         ShaderStage{GL_GEOMETRY_SHADER, {"hair_ribbon.geom"}},
-                         ShaderStage{GL_FRAGMENT_SHADER, {"lighting.glsl", "hair.frag"}}},
-        "#define RIBBON 1"));
-    depthProgram.reset(detail::buildProgram(
-        "depth", {ShaderStage{GL_VERTEX_SHADER, {"depth.vert"}}, ShaderStage{GL_FRAGMENT_SHADER, {"depth.frag"}}}));
+    ribbonProgram.reset(
+        detail::buildProgram("hair ribbons",
+                             {ShaderStage{GL_VERTEX_SHADER, {"hair.vert"}},
+                              ShaderStage{GL_GEOMETRY_SHADER, {"hair_ribbon.geom"}},
+                              ShaderStage{GL_FRAGMENT_SHADER, {"lighting.glsl", "hair.frag"}}},
+                             "#define RIBBON 1"));
+    depthProgram.reset(
+        detail::buildProgram("depth", {ShaderStage{GL_VERTEX_SHADER, {"depth.vert"}},
+                                       ShaderStage{GL_FRAGMENT_SHADER, {"depth.frag"}}}));
 
     GLuint vao = 0;
     glCreateVertexArrays(1, &vao);
@@ -135,8 +137,9 @@ struct Renderer::Impl {
       glNamedRenderbufferStorage(id, GL_DEPTH_COMPONENT24, w, h);
       glNamedFramebufferRenderbuffer(resolveFbo.get(), GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, id);
     }
-    PELAGE_CHECK(glCheckNamedFramebufferStatus(resolveFbo.get(), GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE,
-                 "resolve framebuffer incomplete");
+    PELAGE_CHECK(
+        glCheckNamedFramebufferStatus(resolveFbo.get(), GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE,
+        "resolve framebuffer incomplete");
     if (samples > 0) {
       glCreateRenderbuffers(1, &id);
       msaaColor.reset(id);
@@ -176,10 +179,12 @@ struct Renderer::Impl {
 
   // The deformed skin's positions and normals (nV x 3 floats each), drawn as the skin and read by
   // the GPU fur pass.
-  void uploadSkinArrays(const std::vector<Eigen::Vector3f>& positions, const std::vector<Eigen::Vector3f>& normals) {
+  void uploadSkinArrays(const std::vector<Eigen::Vector3f>& positions,
+                        const std::vector<Eigen::Vector3f>& normals) {
     const int vertices = static_cast<int>(positions.size());
     PELAGE_CHECK(normals.size() == positions.size());
-    const auto bytes = static_cast<GLsizeiptr>(static_cast<std::size_t>(vertices) * 3 * sizeof(float));
+    const auto bytes =
+        static_cast<GLsizeiptr>(static_cast<std::size_t>(vertices) * 3 * sizeof(float));
     if (vertices != skinVertices) {
       skinVertices = vertices;
       skinPositions = detail::createBuffer();
@@ -208,7 +213,8 @@ struct Renderer::Impl {
       skinTrianglesSource = s.triangles;
       skinTrianglesSize = s.triangles->size();
       skinIndices = detail::createBuffer();
-      glNamedBufferStorage(skinIndices.get(), static_cast<GLsizeiptr>(skinTrianglesSize * sizeof(std::int32_t)),
+      glNamedBufferStorage(skinIndices.get(),
+                           static_cast<GLsizeiptr>(skinTrianglesSize * sizeof(std::int32_t)),
                            s.triangles->data(), 0);
       glVertexArrayElementBuffer(skinVao.get(), skinIndices.get());
     }
@@ -240,12 +246,14 @@ struct Renderer::Impl {
     setInt(program, "uStrandStride", b.layout().strandStride);
     glBindVertexArray(b.vertexArray());
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, b.commands());
-    glMultiDrawElementsIndirect(b.layout().triangles ? GL_TRIANGLES : GL_LINE_STRIP, GL_UNSIGNED_INT, nullptr,
-                                static_cast<GLsizei>(b.chunks().size()), sizeof(DrawCommand));
+    glMultiDrawElementsIndirect(b.layout().triangles ? GL_TRIANGLES : GL_LINE_STRIP,
+                                GL_UNSIGNED_INT, nullptr, static_cast<GLsizei>(b.chunks().size()),
+                                sizeof(DrawCommand));
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
   }
 
-  void setLighting(GLuint program, const scene::DrawList& list, const Eigen::Matrix4f& lightViewProj, float bias) {
+  void setLighting(GLuint program, const scene::DrawList& list,
+                   const Eigen::Matrix4f& lightViewProj, float bias) {
     setVec3(program, "uLightDir", list.light.direction.normalized());
     setVec3(program, "uLightColor", list.light.color);
     setVec3(program, "uAmbientLight", list.light.ambient);
@@ -259,14 +267,15 @@ struct Renderer::Impl {
   // Light-space view-projection fitting the scene bounds (orthographic: a directional light).
   Eigen::Matrix4f lightMatrix(const scene::DrawList& list) const {
     Eigen::AlignedBox3f box = list.bounds;
-    if (box.isEmpty()) box = Eigen::AlignedBox3f(Eigen::Vector3f::Constant(-1), Eigen::Vector3f::Constant(1));
+    if (box.isEmpty())
+      box = Eigen::AlignedBox3f(Eigen::Vector3f::Constant(-1), Eigen::Vector3f::Constant(1));
     const Eigen::Vector3f c = box.center();
     const float r = std::max(0.5f * box.diagonal().norm(), 1e-3f);
     scene::Camera lc;
     lc.target = c;
     lc.eye = c + list.light.direction.normalized() * (2.0f * r);
     lc.up = std::abs(list.light.direction.normalized().z()) > 0.99f ? Eigen::Vector3f::UnitX()
-                                                                   : Eigen::Vector3f::UnitZ();
+                                                                    : Eigen::Vector3f::UnitZ();
     return ortho(-r, r, -r, r, r * 0.5f, r * 3.5f) * lc.view();
   }
 
@@ -285,7 +294,8 @@ struct Renderer::Impl {
       } else {
         if (!gpuBegun) {
           const scene::GpuFurInputs& in = list.gpuFur;
-          PELAGE_CHECK(in.params && in.roots && in.skin && in.deformed, "GPU hair source without its inputs");
+          PELAGE_CHECK(in.params && in.roots && in.skin && in.deformed,
+                       "GPU hair source without its inputs");
           if (!list.skin.positions) uploadSkinArrays(in.deformed->positions, in.deformed->normals);
           if (!gpuFur) gpuFur = std::make_unique<GpuFur>(options.gpuFur);
           GpuFurFrame g;
@@ -331,7 +341,8 @@ struct Renderer::Impl {
         if (drawCoat[c]) drawHairs(coats[c], depthProgram.get());
       glBindTextureUnit(0, shadowMap.get());
     } else {
-      if (!shadowMap) ensureShadowMap(256);  // a bound sampler keeps every driver happy; uShadows = 0 skips it
+      if (!shadowMap)
+        ensureShadowMap(256);  // a bound sampler keeps every driver happy; uShadows = 0 skips it
       glBindTextureUnit(0, shadowMap.get());
     }
 
@@ -359,17 +370,19 @@ struct Renderer::Impl {
       setLighting(p, list, lightViewProj, bias * 2.0f);
       setMaterial(p, f.material);
       setInt(p, "uKajiyaKay", list.hairShading == scene::HairShading::KajiyaKay ? 1 : 0);
-      glProgramUniform2f(p, uniform(p, "uViewport"), static_cast<float>(width), static_cast<float>(height));
+      glProgramUniform2f(p, uniform(p, "uViewport"), static_cast<float>(width),
+                         static_cast<float>(height));
       setFloat(p, "uRootWidth", list.ribbonRootWidthPixels);
       drawHairs(b, p);
     }
     glBindVertexArray(0);
     glUseProgram(0);
-    glDisable(GL_PRIMITIVE_RESTART_FIXED_INDEX);  // others (the UI) draw 16-bit indices up to 0xFFFF
+    glDisable(
+        GL_PRIMITIVE_RESTART_FIXED_INDEX);  // others (the UI) draw 16-bit indices up to 0xFFFF
 
     if (samples > 0)
-      glBlitNamedFramebuffer(msaaFbo.get(), resolveFbo.get(), 0, 0, width, height, 0, 0, width, height,
-                             GL_COLOR_BUFFER_BIT, GL_NEAREST);
+      glBlitNamedFramebuffer(msaaFbo.get(), resolveFbo.get(), 0, 0, width, height, 0, 0, width,
+                             height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     return stats;
   }
@@ -378,7 +391,9 @@ struct Renderer::Impl {
 Renderer::Renderer(const RendererOptions& options) : impl_(std::make_unique<Impl>(options)) {}
 Renderer::~Renderer() = default;
 
-RenderStats Renderer::render(const scene::DrawList& list) { return impl_->render(list); }
+RenderStats Renderer::render(const scene::DrawList& list) {
+  return impl_->render(list);
+}
 
 void Renderer::readPixels(Image& out) {
   PELAGE_CHECK(impl_->width > 0, "readPixels before render");
@@ -394,9 +409,10 @@ void Renderer::readPixels(Image& out) {
   glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
   // GL's rows are bottom-up; images are top-down.
   for (int y = 0; y < h / 2; ++y)
-    std::swap_ranges(out.rgba.begin() + static_cast<std::ptrdiff_t>(row * static_cast<std::size_t>(y)),
-                     out.rgba.begin() + static_cast<std::ptrdiff_t>(row * static_cast<std::size_t>(y + 1)),
-                     out.rgba.begin() + static_cast<std::ptrdiff_t>(row * static_cast<std::size_t>(h - 1 - y)));
+    std::swap_ranges(
+        out.rgba.begin() + static_cast<std::ptrdiff_t>(row * static_cast<std::size_t>(y)),
+        out.rgba.begin() + static_cast<std::ptrdiff_t>(row * static_cast<std::size_t>(y + 1)),
+        out.rgba.begin() + static_cast<std::ptrdiff_t>(row * static_cast<std::size_t>(h - 1 - y)));
 }
 
 Image Renderer::readPixels() {
@@ -406,14 +422,22 @@ Image Renderer::readPixels() {
 }
 
 void Renderer::blitTo(GLuint target, int x, int y, int width, int height) {
-  glBlitNamedFramebuffer(impl_->resolveFbo.get(), target, 0, 0, impl_->width, impl_->height, x, y, x + width,
-                         y + height, GL_COLOR_BUFFER_BIT, GL_LINEAR);
+  glBlitNamedFramebuffer(impl_->resolveFbo.get(), target, 0, 0, impl_->width, impl_->height, x, y,
+                         x + width, y + height, GL_COLOR_BUFFER_BIT, GL_LINEAR);
 }
 
-void Renderer::finish() { glFinish(); }
-int Renderer::samples() const { return impl_->samples; }
-int Renderer::width() const { return impl_->width; }
-int Renderer::height() const { return impl_->height; }
+void Renderer::finish() {
+  glFinish();
+}
+int Renderer::samples() const {
+  return impl_->samples;
+}
+int Renderer::width() const {
+  return impl_->width;
+}
+int Renderer::height() const {
+  return impl_->height;
+}
 const HairVertexBuffers& Renderer::coatBuffers(int coat) const {
   PELAGE_CHECK(coat == 0 || coat == 1);
   return impl_->coats[static_cast<std::size_t>(coat)];

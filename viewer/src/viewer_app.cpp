@@ -4,9 +4,9 @@
 #include "pelage/viewer/gl.h"  // before GLFW, which must not include the legacy GL header
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
-#include <imgui.h>
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
+#include <imgui.h>
 
 #include <algorithm>
 #include <chrono>
@@ -37,14 +37,17 @@ double msSince(Clock::time_point t0) {
 void checkOptions(const ViewerOptions& o) {
   if (o.width < 16 || o.width > 16384 || o.height < 16 || o.height > 16384)
     inputError("--size ", o.width, "x", o.height, " is out of range [16, 16384] per side");
-  if (o.frames < 0 || o.frames > 10000000) inputError("--frames ", o.frames, " is out of range [0, 10000000]");
-  if (o.samples < -1 || o.samples > 64) inputError("--samples ", o.samples, " is out of range [-1, 64]");
+  if (o.frames < 0 || o.frames > 10000000)
+    inputError("--frames ", o.frames, " is out of range [0, 10000000]");
+  if (o.samples < -1 || o.samples > 64)
+    inputError("--samples ", o.samples, " is out of range [-1, 64]");
   if (o.benchmarkFrames < 1 || o.benchmarkFrames > 100000)
     inputError("--benchmark-frames ", o.benchmarkFrames, " is out of range [1, 100000]");
   if (!o.screenshot.empty()) {
     const std::filesystem::path parent = std::filesystem::path(o.screenshot).parent_path();
     if (!parent.empty() && !std::filesystem::is_directory(parent))
-      inputError("--screenshot ", o.screenshot, ": the directory ", parent.string(), " does not exist");
+      inputError("--screenshot ", o.screenshot, ": the directory ", parent.string(),
+                 " does not exist");
   }
   for (double h : o.benchmarkHairs)
     if (!(h >= 0.0 && h <= fur::kMaxHairs))
@@ -70,9 +73,11 @@ Image readBackBuffer(int width, int height) {
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
   glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, img.rgba.data());
   for (int y = 0; y < height / 2; ++y)
-    std::swap_ranges(img.rgba.begin() + static_cast<std::ptrdiff_t>(row * static_cast<std::size_t>(y)),
-                     img.rgba.begin() + static_cast<std::ptrdiff_t>(row * static_cast<std::size_t>(y + 1)),
-                     img.rgba.begin() + static_cast<std::ptrdiff_t>(row * static_cast<std::size_t>(height - 1 - y)));
+    std::swap_ranges(
+        img.rgba.begin() + static_cast<std::ptrdiff_t>(row * static_cast<std::size_t>(y)),
+        img.rgba.begin() + static_cast<std::ptrdiff_t>(row * static_cast<std::size_t>(y + 1)),
+        img.rgba.begin() +
+            static_cast<std::ptrdiff_t>(row * static_cast<std::size_t>(height - 1 - y)));
   return img;
 }
 
@@ -86,7 +91,8 @@ class Controls {
     if (!io.WantCaptureMouse) {
       const float dx = io.MouseDelta.x, dy = io.MouseDelta.y;
       if (io.MouseDown[0]) s.orbitBy(-dx * 0.4f, dy * 0.4f);
-      if (io.MouseDown[1] || io.MouseDown[2]) s.panBy(dx / static_cast<float>(height), dy / static_cast<float>(height));
+      if (io.MouseDown[1] || io.MouseDown[2])
+        s.panBy(dx / static_cast<float>(height), dy / static_cast<float>(height));
       if (io.MouseWheel != 0.0f) s.zoomBy(std::pow(0.9f, io.MouseWheel));
     }
     if (io.WantCaptureKeyboard) return;
@@ -96,8 +102,10 @@ class Controls {
     if (down(GLFW_KEY_RIGHT)) s.orbitBy(90.0f * step, 0.0f);
     if (down(GLFW_KEY_UP)) s.orbitBy(0.0f, 60.0f * step);
     if (down(GLFW_KEY_DOWN)) s.orbitBy(0.0f, -60.0f * step);
-    if (down(GLFW_KEY_EQUAL) || down(GLFW_KEY_KP_ADD) || down(GLFW_KEY_PAGE_UP)) s.zoomBy(std::pow(0.3f, step));
-    if (down(GLFW_KEY_MINUS) || down(GLFW_KEY_KP_SUBTRACT) || down(GLFW_KEY_PAGE_DOWN)) s.zoomBy(std::pow(3.0f, step));
+    if (down(GLFW_KEY_EQUAL) || down(GLFW_KEY_KP_ADD) || down(GLFW_KEY_PAGE_UP))
+      s.zoomBy(std::pow(0.3f, step));
+    if (down(GLFW_KEY_MINUS) || down(GLFW_KEY_KP_SUBTRACT) || down(GLFW_KEY_PAGE_DOWN))
+      s.zoomBy(std::pow(3.0f, step));
     if (down(GLFW_KEY_A)) s.panBy(-0.8f * step, 0.0f);
     if (down(GLFW_KEY_D)) s.panBy(0.8f * step, 0.0f);
     if (down(GLFW_KEY_W)) s.panBy(0.0f, -0.8f * step);
@@ -105,8 +113,8 @@ class Controls {
     if (pressed(w, GLFW_KEY_SPACE)) s.playing = !s.playing;
     if (pressed(w, GLFW_KEY_F)) s.follow = !s.follow;
     const scene::CameraPreset presets[] = {scene::CameraPreset::Front, scene::CameraPreset::Side,
-                                           scene::CameraPreset::ThreeQuarter, scene::CameraPreset::Face,
-                                           scene::CameraPreset::Follow};
+                                           scene::CameraPreset::ThreeQuarter,
+                                           scene::CameraPreset::Face, scene::CameraPreset::Follow};
     for (int i = 0; i < 5; ++i)
       if (pressed(w, GLFW_KEY_1 + i)) s.applyPreset(presets[i]);
     if (pressed(w, GLFW_KEY_ESCAPE)) glfwSetWindowShouldClose(w, GLFW_TRUE);
@@ -131,15 +139,16 @@ int runWindow(const ViewerOptions& o, scene::Model model) {
     log = std::make_unique<GlDebugLog>();
     log->setEcho(true);
   }
-  std::printf("pelage view: %s, %s (%s)\n", window.info().renderer.c_str(), window.info().version.c_str(),
-              window.info().backend.c_str());
+  std::printf("pelage view: %s, %s (%s)\n", window.info().renderer.c_str(),
+              window.info().version.c_str(), window.info().backend.c_str());
   detail::ViewerSession session(o, std::move(model));
 
   IMGUI_CHECKVERSION();
   ImGui::CreateContext();
   ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini next to the user's files
   ImGui::StyleColorsDark();
-  if (!ImGui_ImplGlfw_InitForOpenGL(window.handle(), true) || !ImGui_ImplOpenGL3_Init("#version 410 core"))
+  if (!ImGui_ImplGlfw_InitForOpenGL(window.handle(), true) ||
+      !ImGui_ImplOpenGL3_Init("#version 410 core"))
     inputError("cannot initialise the Dear ImGui OpenGL backend");
   detail::PanelState panel;
   Controls controls;
@@ -180,8 +189,9 @@ int runWindow(const ViewerOptions& o, scene::Model model) {
     const bool last_frame = frames > 0 && rendered >= frames;
     if (last_frame && !o.screenshot.empty()) {
       writePng(o.screenshot, readBackBuffer(fbw, fbh));
-      std::printf("wrote %s (%dx%d, %lld hairs drawn, %d skin triangles)\n", o.screenshot.c_str(), fbw, fbh,
-                  static_cast<long long>(session.hairsDrawn()), session.model().skin.numTriangles());
+      std::printf("wrote %s (%dx%d, %lld hairs drawn, %d skin triangles)\n", o.screenshot.c_str(),
+                  fbw, fbh, static_cast<long long>(session.hairsDrawn()),
+                  session.model().skin.numTriangles());
     }
     window.swapBuffers();
     session.recordFrameTime(msSince(t0));
@@ -215,9 +225,9 @@ int runHeadless(const ViewerOptions& o, scene::Model model) {
     totalMs += msSince(t0);
   }
   failOnGlErrors(log.get());
-  std::printf("rendered %d frame(s) at %dx%d: %lld hairs drawn, %d skin triangles, %.1f ms/frame\n", frames,
-              o.width, o.height, static_cast<long long>(session.hairsDrawn()), session.model().skin.numTriangles(),
-              totalMs / frames);
+  std::printf("rendered %d frame(s) at %dx%d: %lld hairs drawn, %d skin triangles, %.1f ms/frame\n",
+              frames, o.width, o.height, static_cast<long long>(session.hairsDrawn()),
+              session.model().skin.numTriangles(), totalMs / frames);
   if (!o.screenshot.empty()) {
     writePng(o.screenshot, session.renderer().readPixels());
     std::printf("wrote %s\n", o.screenshot.c_str());

@@ -24,16 +24,27 @@ int runBenchmark(const ViewerOptions& options, const scene::Model& model) {
   std::unique_ptr<GlDebugLog> log;
   if (options.debugGl) log = std::make_unique<GlDebugLog>();
   const ContextInfo& info = context->info();
-  std::printf("pelage view --benchmark: %s | %s | %s | %dx%d | %d CPU threads | hairs on the %s | model %s\n",
-              info.renderer.c_str(), info.version.c_str(), info.backend.c_str(), options.width, options.height,
-              threadCount(), options.dynamics ? "CPU (dynamic fur)" : options.hairSource == "cpu" ? "CPU" : "GPU", model.name.c_str());
-  // MSAA off is the setting of the reference figures (../shared/docs/headless-gl.md); on a GPU 4x is
-  // measured too, as the viewer uses it there. A software rasteriser only without (4x costs ~2.3x).
+  std::printf(
+      "pelage view --benchmark: %s | %s | %s | %dx%d | %d CPU threads | hairs on the %s | model "
+      "%s\n",
+      info.renderer.c_str(), info.version.c_str(), info.backend.c_str(), options.width,
+      options.height, threadCount(),
+      options.dynamics              ? "CPU (dynamic fur)"
+      : options.hairSource == "cpu" ? "CPU"
+                                    : "GPU",
+      model.name.c_str());
+  // MSAA off is the setting of the reference figures (../shared/docs/headless-gl.md); on a GPU 4x
+  // is measured too, as the viewer uses it there. A software rasteriser only without (4x costs
+  // ~2.3x).
   std::vector<int> sampleCounts;
-  if (options.samples >= 0) sampleCounts = {options.samples};
-  else if (info.software) sampleCounts = {0};
-  else sampleCounts = {0, 4};
-  std::printf("%12s %6s %12s %12s %14s %12s\n", "hairs", "MSAA", "drawn", "ms/frame", "M hairs/s", "min ms");
+  if (options.samples >= 0)
+    sampleCounts = {options.samples};
+  else if (info.software)
+    sampleCounts = {0};
+  else
+    sampleCounts = {0, 4};
+  std::printf("%12s %6s %12s %12s %14s %12s\n", "hairs", "MSAA", "drawn", "ms/frame", "M hairs/s",
+              "min ms");
   for (const double hairs : options.benchmarkHairs) {
     ViewerOptions o = options;
     o.fur.hairs = hairs;
@@ -56,15 +67,17 @@ int runBenchmark(const ViewerOptions& options, const scene::Model& model) {
         const auto t0 = std::chrono::steady_clock::now();
         session.frame(dt, o.width, o.height);
         session.renderer().finish();
-        ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+        ms.push_back(
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
+                .count());
       }
       double mean = 0.0;
       for (double v : ms) mean += v;
       mean /= static_cast<double>(ms.size());
       const double best = *std::min_element(ms.begin(), ms.end());
       const auto drawn = static_cast<double>(session.hairsDrawn());
-      std::printf("%12.0f %6d %12.0f %12.2f %14.1f %12.2f\n", hairs, session.renderer().samples(), drawn, mean,
-                  drawn / mean * 1e-3, best);
+      std::printf("%12.0f %6d %12.0f %12.2f %14.1f %12.2f\n", hairs, session.renderer().samples(),
+                  drawn, mean, drawn / mean * 1e-3, best);
       std::fflush(stdout);
     }
   }

@@ -12,7 +12,9 @@
 namespace pelage::viewer::detail {
 namespace {
 
-bool color(const char* label, Eigen::Vector3f& c) { return ImGui::ColorEdit3(label, c.data(), ImGuiColorEditFlags_Float); }
+bool color(const char* label, Eigen::Vector3f& c) {
+  return ImGui::ColorEdit3(label, c.data(), ImGuiColorEditFlags_Float);
+}
 
 void coatPanel(const char* title, fur::CoatParams& c, bool undercoat) {
   if (!ImGui::TreeNodeEx(title, ImGuiTreeNodeFlags_DefaultOpen)) return;
@@ -24,8 +26,8 @@ void coatPanel(const char* title, fur::CoatParams& c, bool undercoat) {
   ImGui::SliderFloat("normal randomize", &c.normalRandomize, 0.0f, 1.0f);
   ImGui::SliderFloat("hair end randomize", &c.hairEndRandomize, 0.0f, 2.0f);
   ImGui::SliderFloat("segment direction wt", &c.segmentDirectionWeight, 0.0f, 1.0f);
-  ImGui::SliderFloat(undercoat ? "relative length" : "length factor", &c.lengthFactor, 0.0f, 10.0f, "%.3f",
-                     ImGuiSliderFlags_Logarithmic);
+  ImGui::SliderFloat(undercoat ? "relative length" : "length factor", &c.lengthFactor, 0.0f, 10.0f,
+                     "%.3f", ImGuiSliderFlags_Logarithmic);
   if (c.style == fur::HairStyle::Curve || c.style == fur::HairStyle::Tube) {
     ImGui::SliderInt("curve points (K)", &c.curvePoints, 2, 64);
     ImGui::SliderFloat("curl radius", &c.curlRadius, 0.0f, 0.5f);
@@ -33,12 +35,14 @@ void coatPanel(const char* title, fur::CoatParams& c, bool undercoat) {
   }
   if (c.style == fur::HairStyle::Tube) {
     ImGui::SliderInt("tube sides (M)", &c.tubeSides, 3, 32);
-    ImGui::SliderFloat("tube radius (m)", &c.tubeRadiusMeters, 1e-6f, 0.01f, "%.6f", ImGuiSliderFlags_Logarithmic);
+    ImGui::SliderFloat("tube radius (m)", &c.tubeRadiusMeters, 1e-6f, 0.01f, "%.6f",
+                       ImGuiSliderFlags_Logarithmic);
   }
   color("ambient", c.material.ambient);
   color("diffuse", c.material.diffuse);
   color("specular", c.material.specular);
-  ImGui::SliderFloat("shininess", &c.material.shininess, 1.0f, 1000.0f, "%.0f", ImGuiSliderFlags_Logarithmic);
+  ImGui::SliderFloat("shininess", &c.material.shininess, 1.0f, 1000.0f, "%.0f",
+                     ImGuiSliderFlags_Logarithmic);
   ImGui::PopID();
   ImGui::TreePop();
 }
@@ -47,10 +51,12 @@ void furPanel(ViewerSession& s) {
   fur::FurParams& p = s.edit;
   if (!ImGui::CollapsingHeader("Fur", ImGuiTreeNodeFlags_DefaultOpen)) return;
   float hairs = static_cast<float>(p.hairs);
-  if (ImGui::SliderFloat("hairs", &hairs, 0.0f, static_cast<float>(fur::kMaxHairs), "%.0f", ImGuiSliderFlags_Logarithmic))
+  if (ImGui::SliderFloat("hairs", &hairs, 0.0f, static_cast<float>(fur::kMaxHairs), "%.0f",
+                         ImGuiSliderFlags_Logarithmic))
     p.hairs = std::round(static_cast<double>(hairs));
   float density = static_cast<float>(p.densityPerM2);
-  if (ImGui::SliderFloat("density (/m^2)", &density, 0.0f, 1e8f, "%.0f", ImGuiSliderFlags_Logarithmic))
+  if (ImGui::SliderFloat("density (/m^2)", &density, 0.0f, 1e8f, "%.0f",
+                         ImGuiSliderFlags_Logarithmic))
     p.densityPerM2 = static_cast<double>(density);
   ImGui::SameLine();
   ImGui::TextDisabled("(0: use hairs)");
@@ -59,7 +65,8 @@ void furPanel(ViewerSession& s) {
   const std::uint64_t step = 1;
   ImGui::InputScalar("seed", ImGuiDataType_U64, &p.seed, &step);
   if (s.regrowing()) ImGui::TextColored(ImVec4(1, 0.8f, 0.3f, 1), "growing new roots...");
-  ImGui::SliderFloat("length scale (all)", &p.lengthScale, 0.0f, 10.0f, "%.3f", ImGuiSliderFlags_Logarithmic);
+  ImGui::SliderFloat("length scale (all)", &p.lengthScale, 0.0f, 10.0f, "%.3f",
+                     ImGuiSliderFlags_Logarithmic);
 
   if (ImGui::TreeNode("length scale in a 3D region")) {
     const char* shapes[] = {"none", "sphere", "box"};
@@ -87,7 +94,8 @@ void furPanel(ViewerSession& s) {
   if (ImGui::TreeNode("gravity")) {
     // Sec. 3.5: hairs droop along gravity = -U (the paper's -Z).
     Eigen::Vector3f g = -p.up;
-    if (ImGui::DragFloat3("direction", g.data(), 0.01f, -1.0f, 1.0f) && g.norm() > 1e-3f) p.up = -g.normalized();
+    if (ImGui::DragFloat3("direction", g.data(), 0.01f, -1.0f, 1.0f) && g.norm() > 1e-3f)
+      p.up = -g.normalized();
     ImGui::TreePop();
   }
   if (ImGui::TreeNode("distance culling (sec. 3.3)")) {
@@ -112,8 +120,10 @@ void dynamicsPanel(ViewerSession& s) {
     fur::CoatDynamics& d = s.dynamicsParams.coats[static_cast<std::size_t>(c)];
     ImGui::PushID(c);
     ImGui::Text("%s", c == fur::kOvercoat ? "overcoat" : "undercoat");
-    ImGui::SliderFloat("frequency (Hz at 1 cm)", &d.frequencyHz, 0.1f, 100.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
-    ImGui::SliderFloat("damping ratio", &d.dampingRatio, 0.0f, 10.0f, "%.3f", ImGuiSliderFlags_Logarithmic);
+    ImGui::SliderFloat("frequency (Hz at 1 cm)", &d.frequencyHz, 0.1f, 100.0f, "%.2f",
+                       ImGuiSliderFlags_Logarithmic);
+    ImGui::SliderFloat("damping ratio", &d.dampingRatio, 0.0f, 10.0f, "%.3f",
+                       ImGuiSliderFlags_Logarithmic);
     ImGui::PopID();
   }
 }
@@ -138,11 +148,13 @@ void viewPanel(ViewerSession& s) {
   if (!ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) return;
   // Playback: clip selector (cross-fades), play/pause, scrub, speed, loop.
   const auto& clips = s.model().clips;
-  std::string current = s.clip() >= 0 ? clips[static_cast<std::size_t>(s.clip())].name : std::string("(still pose)");
+  std::string current =
+      s.clip() >= 0 ? clips[static_cast<std::size_t>(s.clip())].name : std::string("(still pose)");
   if (ImGui::BeginCombo("clip", current.c_str())) {
     if (ImGui::Selectable("(still pose)", s.clip() < 0)) s.selectClip(-1);
     for (int i = 0; i < static_cast<int>(clips.size()); ++i)
-      if (ImGui::Selectable(clips[static_cast<std::size_t>(i)].name.c_str(), s.clip() == i)) s.selectClip(i);
+      if (ImGui::Selectable(clips[static_cast<std::size_t>(i)].name.c_str(), s.clip() == i))
+        s.selectClip(i);
     ImGui::EndCombo();
   }
   ImGui::Checkbox("play", &s.playing);
@@ -171,33 +183,42 @@ void viewPanel(ViewerSession& s) {
   ImGui::SameLine();
   ImGui::Checkbox("skin", &s.drawSkin);
   ImGui::SameLine();
-  ImGui::ColorEdit3("##skin colour", s.skinColor.data(), ImGuiColorEditFlags_NoInputs | ImGuiColorEditFlags_Float);
+  ImGui::ColorEdit3("##skin colour", s.skinColor.data(),
+                    ImGuiColorEditFlags_NoInputs | ImGuiColorEditFlags_Float);
   ImGui::SameLine();
   ImGui::Checkbox("fur", &s.drawFur);
   int shading = static_cast<int>(s.shading);
   const char* shadings[] = {"paper (Phong, style normals)", "Kajiya-Kay (tangents)"};
-  if (ImGui::Combo("hair shading", &shading, shadings, 2)) s.shading = static_cast<scene::HairShading>(shading);
+  if (ImGui::Combo("hair shading", &shading, shadings, 2))
+    s.shading = static_cast<scene::HairShading>(shading);
   int width = static_cast<int>(s.hairWidth);
   const char* widths[] = {"1-pixel lines", "tapered ribbons"};
-  if (ImGui::Combo("hair width", &width, widths, 2)) s.hairWidth = static_cast<scene::HairWidth>(width);
-  if (s.hairWidth == scene::HairWidth::Ribbons) ImGui::SliderFloat("root width (px)", &s.ribbonWidth, 0.5f, 8.0f);
+  if (ImGui::Combo("hair width", &width, widths, 2))
+    s.hairWidth = static_cast<scene::HairWidth>(width);
+  if (s.hairWidth == scene::HairWidth::Ribbons)
+    ImGui::SliderFloat("root width (px)", &s.ribbonWidth, 0.5f, 8.0f);
   int source = static_cast<int>(s.hairSource);
   const char* sources[] = {"CPU fur model", "GPU compute"};
-  if (ImGui::Combo("hairs computed on", &source, sources, 2)) s.hairSource = static_cast<scene::HairSource>(source);
+  if (ImGui::Combo("hairs computed on", &source, sources, 2))
+    s.hairSource = static_cast<scene::HairSource>(source);
 }
 
 void statusLine(ViewerSession& s) {
   const ImGuiViewport* vp = ImGui::GetMainViewport();
-  ImGui::SetNextWindowPos(ImVec2(vp->WorkPos.x, vp->WorkPos.y + vp->WorkSize.y), ImGuiCond_Always, ImVec2(0, 1));
+  ImGui::SetNextWindowPos(ImVec2(vp->WorkPos.x, vp->WorkPos.y + vp->WorkSize.y), ImGuiCond_Always,
+                          ImVec2(0, 1));
   ImGui::SetNextWindowBgAlpha(0.6f);
   ImGui::Begin("status", nullptr,
-               ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoMove |
-                   ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav);
+               ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
+                   ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoSavedSettings |
+                   ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav);
   const scene::FrameState& f = s.state();
   ImGui::Text("hairs drawn %lld of %lld (c = %.2f) | frame %.1f ms | skin %d triangles | %s | %s",
               static_cast<long long>(s.hairsDrawn()), static_cast<long long>(s.fur().roots.total()),
               static_cast<double>(f.cullFactor), s.frameMs(), s.model().skin.numTriangles(),
-              s.dynamics ? "CPU dynamic fur" : s.hairSource == scene::HairSource::Gpu ? "GPU fur" : "CPU fur",
+              s.dynamics                               ? "CPU dynamic fur"
+              : s.hairSource == scene::HairSource::Gpu ? "GPU fur"
+                                                       : "CPU fur",
               s.model().name.c_str());
   ImGui::End();
 }

@@ -16,7 +16,8 @@ struct PanelState {
 };
 
 // Draws the panel and the status line (between ImGui::NewFrame and ImGui::Render); edits `session`.
-// Returns the panel's right edge in pixels (0 when collapsed), so the view can be centred beside it.
+// Returns the panel's right edge in pixels (0 when collapsed), so the view can be centred beside
+// it.
 float drawPanel(ViewerSession& session, PanelState& state);
 
 }  // namespace pelage::viewer::detail

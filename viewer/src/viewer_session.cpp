@@ -25,8 +25,10 @@ ViewerSession::ViewerSession(const ViewerOptions& options, scene::Model model)
     : edit(initialParams(options)), model_(std::move(model)) {
   stillPose_ = options.posePath.empty() ? anatomy::restPose(model_.body)
                                         : anatomy::loadPose(model_.body, options.posePath);
-  if (!options.clip.empty() && !options.posePath.empty()) inputError("--pose and --clip cannot be used together");
-  if (!(options.time >= 0.0 && options.time <= 1e6)) inputError("--time ", options.time, " is out of range [0, 1000000] s");
+  if (!options.clip.empty() && !options.posePath.empty())
+    inputError("--pose and --clip cannot be used together");
+  if (!(options.time >= 0.0 && options.time <= 1e6))
+    inputError("--time ", options.time, " is out of range [0, 1000000] s");
   if (!options.clip.empty()) {
     clip_ = model_.findClip(options.clip);
     if (clip_ < 0) {
@@ -52,10 +54,12 @@ ViewerSession::ViewerSession(const ViewerOptions& options, scene::Model model)
   fur::validateDynamicsParams(dynamicsParams, "--frequency/--damping");
   skinColor = model_.skin.color;
   if (!options.skinColor.empty()) {
-    if (options.skinColor.size() != 3) inputError("--skin-color takes 3 values (R G B in [0, 1]), got ", options.skinColor.size());
+    if (options.skinColor.size() != 3)
+      inputError("--skin-color takes 3 values (R G B in [0, 1]), got ", options.skinColor.size());
     for (int c = 0; c < 3; ++c) {
       const float v = options.skinColor[static_cast<std::size_t>(c)];
-      if (!(v >= 0.0f && v <= 1.0f)) inputError("--skin-color ", "RGB"[c], " = ", v, " is out of range [0, 1]");
+      if (!(v >= 0.0f && v <= 1.0f))
+        inputError("--skin-color ", "RGB"[c], " = ", v, " is out of range [0, 1]");
       skinColor[c] = v;
     }
   }
@@ -74,7 +78,8 @@ ViewerSession::ViewerSession(const ViewerOptions& options, scene::Model model)
   lastRoot_ = framing_.rootPosition;
   pivot_ = Eigen::Vector3f(framing_.center.x(), framing_.center.y(), 0.0f);
   pendingPreset_ = scene::parseCameraPreset(options.camera);
-  orbit = scene::orbitOf(scene::presetCamera(framing_, *pendingPreset_, options.width, options.height));
+  orbit =
+      scene::orbitOf(scene::presetCamera(framing_, *pendingPreset_, options.width, options.height));
 }
 
 ViewerSession::~ViewerSession() {
@@ -151,7 +156,9 @@ void ViewerSession::applyEdits() {
   }
   if (scene::rootsDiffer(fur_.params, candidate)) {
     if (!pending_.valid()) {
-      pending_ = std::async(std::launch::async, [this, candidate] { return scene::growFur(model_, candidate, "fur panel"); });
+      pending_ = std::async(std::launch::async, [this, candidate] {
+        return scene::growFur(model_, candidate, "fur panel");
+      });
     }
     // Until the new roots arrive, everything but the root parameters applies to the old ones.
     const fur::FurParams& grown = fur_.params;
@@ -186,7 +193,8 @@ void ViewerSession::setTime(double seconds) {
 }
 
 double ViewerSession::clipDuration() const {
-  return clip_ >= 0 ? static_cast<double>(model_.clips[static_cast<std::size_t>(clip_)].duration) : 0.0;
+  return clip_ >= 0 ? static_cast<double>(model_.clips[static_cast<std::size_t>(clip_)].duration)
+                    : 0.0;
 }
 
 void ViewerSession::advance(double dtSeconds) {
@@ -212,8 +220,8 @@ void ViewerSession::posedFrame() {
     const animation::Clip& c = model_.clips[static_cast<std::size_t>(clip_)];
     if (fromClip_ >= 0) {
       const float w = animation::crossFadeWeight(fadeSeconds_, kCrossFadeSeconds);
-      animation::sampleBlend(model_.clips[static_cast<std::size_t>(fromClip_)], fromTime_, c, time_, w, model_.body,
-                             blendScratch_, pose_);
+      animation::sampleBlend(model_.clips[static_cast<std::size_t>(fromClip_)], fromTime_, c, time_,
+                             w, model_.body, blendScratch_, pose_);
     } else {
       animation::sampleClip(c, model_.body, time_, pose_);
     }
@@ -239,7 +247,8 @@ void ViewerSession::frame(double dtSeconds, int width, int height) {
   if (follow) orbit.target += framing_.rootPosition - lastRoot_;
   lastRoot_ = framing_.rootPosition;
   if (pendingPreset_) {
-    orbit = scene::orbitOf(scene::presetCamera(framing_, *pendingPreset_, std::max(width, 1), std::max(height, 1)));
+    orbit = scene::orbitOf(
+        scene::presetCamera(framing_, *pendingPreset_, std::max(width, 1), std::max(height, 1)));
     pendingPreset_.reset();
   }
   scene::Camera cam = scene::orbitCamera(orbit, std::max(width, 1), std::max(height, 1));
@@ -288,7 +297,8 @@ void ViewerSession::dynamicFur(const Eigen::Vector3f& cameraEye, double stepSeco
   // frame's (0) is ignored after a reset.
   scene::DynamicsClock clock;
   clock.fps = 1.0 / std::clamp(stepSeconds, 1e-3, 1.0);
-  scene::stepClipDynamics(model_, fur_, appliedDynamics_, clock, cameraEye, true, dynamicsState_, frame_);
+  scene::stepClipDynamics(model_, fur_, appliedDynamics_, clock, cameraEye, true, dynamicsState_,
+                          frame_);
 }
 
 }  // namespace pelage::viewer::detail

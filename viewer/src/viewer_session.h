@@ -31,16 +31,16 @@ class ViewerSession {
   void frame(double dtSeconds, int width, int height);
 
   // ---- What the UI edits (applied on the next frame) -----------------------------------------
-  fur::FurParams edit;          // the parameters being edited; roots follow when count/share/seed change
-  std::string editError;        // why `edit` was not applied (validation message), or empty
-  std::string message;          // last preset save/load result
+  fur::FurParams edit;    // the parameters being edited; roots follow when count/share/seed change
+  std::string editError;  // why `edit` was not applied (validation message), or empty
+  std::string message;    // last preset save/load result
   scene::Orbit orbit;
   bool follow = false;
   scene::HairSource hairSource = scene::HairSource::Gpu;
   scene::HairShading shading = scene::HairShading::Paper;
   scene::HairWidth hairWidth = scene::HairWidth::Lines;
   float ribbonWidth = 2.5f;
-  Eigen::Vector3f skinColor;    // the skin's diffuse colour (the model's, or --skin-color)
+  Eigen::Vector3f skinColor;  // the skin's diffuse colour (the model's, or --skin-color)
   bool drawSkin = true;
   bool drawFur = true;
   float lightAzimuth = 35.0f, lightElevation = 50.0f;
@@ -69,7 +69,7 @@ class ViewerSession {
   void applyPreset(scene::CameraPreset preset);
   void orbitBy(float dAzimuthDeg, float dElevationDeg);
   void panBy(float dxFraction, float dyFraction);  // fractions of the view height
-  void zoomBy(float factor);                        // distance *= factor
+  void zoomBy(float factor);                       // distance *= factor
 
   // Presets (the fur module's JSON format). Saving writes the panel's parameters (`edit`) when they
   // are valid, so a hair count still being regrown is saved too; otherwise it reports why not.
@@ -101,7 +101,7 @@ class ViewerSession {
   anatomy::Pose pose_;
   anatomy::Pose blendScratch_;
   int clip_ = -1;
-  int fromClip_ = -1;       // the clip being faded out, or -1
+  int fromClip_ = -1;  // the clip being faded out, or -1
   double fromTime_ = 0.0;
   double fadeSeconds_ = 0.0;
   Eigen::Vector3f pivot_ = Eigen::Vector3f::Zero();
@@ -111,16 +111,17 @@ class ViewerSession {
   scene::DrawList list_;
   std::unique_ptr<Renderer> renderer_;
   scene::Framing framing_;
-  std::optional<scene::CameraPreset> pendingPreset_;  // applied on the next frame, at its viewport size
+  std::optional<scene::CameraPreset>
+      pendingPreset_;  // applied on the next frame, at its viewport size
   Eigen::Vector3f lastRoot_ = Eigen::Vector3f::Zero();
   double time_ = 0.0;
   double frameMs_ = 0.0;
   std::int64_t hairsDrawn_ = 0;
   fur::FurDynamicsState dynamicsState_;
   std::uint64_t dynamicsGeneration_ = 0;  // the roots the state was sized to
-  bool dynamicsRunning_ = false;          // false: the next step restarts from the quasi-static hairs
-  double lastStep_ = 0.0;                 // clip seconds played since the previous frame
-  fur::DynamicsParams appliedDynamics_;   // the last valid dynamicsParams
+  bool dynamicsRunning_ = false;  // false: the next step restarts from the quasi-static hairs
+  double lastStep_ = 0.0;         // clip seconds played since the previous frame
+  fur::DynamicsParams appliedDynamics_;  // the last valid dynamicsParams
 };
 
 // `pelage view --headless --benchmark`: ms/frame for each of options.benchmarkHairs.

@@ -18,7 +18,8 @@ std::string gLastError;
 
 void onGlfwError(int code, const char* description) {
   std::lock_guard<std::mutex> lock(gErrorMutex);
-  gLastError = str(description ? description : "unknown error", " (GLFW error 0x", std::hex, code, ")");
+  gLastError =
+      str(description ? description : "unknown error", " (GLFW error 0x", std::hex, code, ")");
 }
 
 std::string lastGlfwError() {
@@ -64,11 +65,23 @@ GlfwWindow::~GlfwWindow() {
   // initialised until the process exits; a later window in the same process reuses it.
 }
 
-void GlfwWindow::makeCurrent() { glfwMakeContextCurrent(window_); }
-bool GlfwWindow::shouldClose() const { return glfwWindowShouldClose(window_) == GLFW_TRUE; }
-void GlfwWindow::requestClose() { glfwSetWindowShouldClose(window_, GLFW_TRUE); }
-void GlfwWindow::framebufferSize(int& width, int& height) const { glfwGetFramebufferSize(window_, &width, &height); }
-void GlfwWindow::swapBuffers() { glfwSwapBuffers(window_); }
-void GlfwWindow::pollEvents() { glfwPollEvents(); }
+void GlfwWindow::makeCurrent() {
+  glfwMakeContextCurrent(window_);
+}
+bool GlfwWindow::shouldClose() const {
+  return glfwWindowShouldClose(window_) == GLFW_TRUE;
+}
+void GlfwWindow::requestClose() {
+  glfwSetWindowShouldClose(window_, GLFW_TRUE);
+}
+void GlfwWindow::framebufferSize(int& width, int& height) const {
+  glfwGetFramebufferSize(window_, &width, &height);
+}
+void GlfwWindow::swapBuffers() {
+  glfwSwapBuffers(window_);
+}
+void GlfwWindow::pollEvents() {
+  glfwPollEvents();
+}
 
 }  // namespace pelage::viewer

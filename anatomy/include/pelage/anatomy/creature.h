@@ -49,9 +49,9 @@ struct Creature {
   Body body;
   std::vector<Shape> shapes;
   std::vector<FurRegion> regions;
-  float furLengthMeters = 0.02f;         // default overcoat fur length at a skin vertex
-  float blendRadiusMeters = 0.02f;       // default smooth-union radius between shapes
-  int defaultTriangles = 130000;         // skin triangle count when the user gives none
+  float furLengthMeters = 0.02f;                   // default overcoat fur length at a skin vertex
+  float blendRadiusMeters = 0.02f;                 // default smooth-union radius between shapes
+  int defaultTriangles = 130000;                   // skin triangle count when the user gives none
   Eigen::Vector3f skinColor{0.45f, 0.32f, 0.26f};  // skin material diffuse colour (linear RGB)
 };
 

@@ -58,7 +58,8 @@ ClipTime clipTime(const Clip& clip, double t);
 
 // Value of one channel at local time `t` (s): `out` receives components() floats. Before the first
 // key: the first value; after the last: the last. Rotations are unit quaternions (x, y, z, w):
-// LINEAR uses shortest-arc slerp, CUBICSPLINE normalises the Hermite result (glTF 2.0 spec, App. C).
+// LINEAR uses shortest-arc slerp, CUBICSPLINE normalises the Hermite result (glTF 2.0 spec, App.
+// C).
 void sampleChannel(const Channel& channel, double t, float* out);
 
 // Samples `clip` at time `t` (s) into `pose`: every segment starts at its rest transform, then each
@@ -83,9 +84,9 @@ float crossFadeWeight(double seconds, double fadeSeconds);
 // that two gaits blend foot-in-step.
 double syncedTime(const Clip& from, double t, const Clip& to);
 
-// The bind pose: every segment at its bind transform (the inverse of Body::inverseBind), so that all
-// skinning matrices are the identity and the skin is exactly its stored bind-space mesh. (A glTF
-// file's node rest transforms may differ from its skin's bind pose.) Each local transform is
+// The bind pose: every segment at its bind transform (the inverse of Body::inverseBind), so that
+// all skinning matrices are the identity and the skin is exactly its stored bind-space mesh. (A
+// glTF file's node rest transforms may differ from its skin's bind pose.) Each local transform is
 // decomposed into TRS (rotation from the polar decomposition, scale = column norms).
 anatomy::Pose bindPose(const anatomy::Body& body);
 

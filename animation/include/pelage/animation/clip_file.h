@@ -6,8 +6,8 @@
 //         "keys": [ { "time": 0, "axis": [0, 1, 0], "degrees": 0 },
 //                   { "time": 1, "axis": [0, 1, 0], "degrees": -60 },
 //                   { "time": 2, "axis": [0, 1, 0], "degrees": 0 } ] },
-//       { "segment": "pelvis", "path": "translate", "keys": [ { "time": 0, "value": [0, 0, 0] } ] },
-//       { "segment": "head", "path": "scale", "interpolation": "step",
+//       { "segment": "pelvis", "path": "translate", "keys": [ { "time": 0, "value": [0, 0, 0] } ]
+//       }, { "segment": "head", "path": "scale", "interpolation": "step",
 //         "keys": [ { "time": 0, "value": [1, 1, 1] } ] } ] }
 // rotate:    local rotation = rest rotation * R(axis, degrees) (axis in the segment's frame);
 // translate: value (metres) added to the rest local translation;
@@ -24,7 +24,8 @@
 
 namespace pelage::animation {
 
-// Parses a clip for `body`; errors name `source` and the field (unknown segment, unsorted times...).
+// Parses a clip for `body`; errors name `source` and the field (unknown segment, unsorted
+// times...).
 Clip parseClip(const anatomy::Body& body, const std::string& jsonText, const std::string& source);
 // Reads a clip file; the clip's name defaults to the file's stem.
 Clip loadClip(const anatomy::Body& body, const std::string& path);

@@ -1,5 +1,5 @@
-// glTF 2.0 creatures (.gltf with embedded or external buffers, .glb): the node hierarchy becomes the
-// Body, the skinned (and rigid) meshes one SkinMesh, and every animation a Clip.
+// glTF 2.0 creatures (.gltf with embedded or external buffers, .glb): the node hierarchy becomes
+// the Body, the skinned (and rigid) meshes one SkinMesh, and every animation a Clip.
 //
 // Conventions (pelage: metres, Z up, the creature facing +X with its left at +Y; glTF: Y up, the
 // asset's front at +Z and its left at +X): the change of basis C (x, y, z) -> (z, x, y) times the
@@ -13,10 +13,11 @@
 // millimetres (0.001). The Quaternius animals (L = 4-6) and CesiumMan (L = 1.5) stay in metres.
 //
 // Body: every node on a path from the scene roots to a joint of a used skin, or to a rigid mesh
-// node, becomes a segment (named after the node; unnamed nodes "node<i>"). Bind transforms: a joint's
-// is the inverse of its inverse bind matrix; any other node's is its parent's bind transform times
-// its rest transform (for roots, the rest transform). Body::inverseBind is the inverse of the bind
-// transform, so a joint's equals its IBM and a rigid mesh bound to its own node follows that node.
+// node, becomes a segment (named after the node; unnamed nodes "node<i>"). Bind transforms: a
+// joint's is the inverse of its inverse bind matrix; any other node's is its parent's bind
+// transform times its rest transform (for roots, the rest transform). Body::inverseBind is the
+// inverse of the bind transform, so a joint's equals its IBM and a rigid mesh bound to its own node
+// follows that node.
 //
 // Skin: skinned primitives (JOINTS_0/WEIGHTS_0, and JOINTS_1/WEIGHTS_1 when present) keep their
 // positions as stored (the bind space); rigid mesh nodes (unskinned, e.g. the Stag's antlers under
@@ -38,8 +39,8 @@
 // see headToTailDirections below; overridable per segment by a JSON side file
 //   { "directions": { "b_Tail01_012": [-1, 0, -0.2], "b_Head_05": [0, 0, 0] } }
 // (bind-pose world coordinates after the conversion above; [0, 0, 0] = no segment direction). The
-// side file is LoadOptions' `segmentDirections`, else `<model path without extension>.directions.json`
-// when it exists.
+// side file is LoadOptions' `segmentDirections`, else `<model path without
+// extension>.directions.json` when it exists.
 //
 // Clips: each animation becomes a looping clip named after it ("clip<i>" when unnamed), duration =
 // its last key time. Channels that drive nodes outside the body have no effect on the skin and are
@@ -65,7 +66,8 @@ namespace pelage::animation {
 
 struct GltfImportOptions {
   float unitScale = 0.0f;  // metres per file unit; 0 = detect (range when given: [1e-6, 1e6])
-  // Region names or patterns (case-insensitive, '*' wildcards) that grow no fur; nullopt = defaults.
+  // Region names or patterns (case-insensitive, '*' wildcards) that grow no fur; nullopt =
+  // defaults.
   std::optional<std::vector<std::string>> noFurRegions;
   float furLengthMeters = 0.0f;   // 0 = 2% of the bounding-box diagonal
   std::string segmentDirections;  // side file; "" = <model>.directions.json if present

@@ -34,11 +34,13 @@ double monkeyClipDuration(const std::string& name);
 // The procedural clip `name` evaluated at time t (s, any real) for the creature's body: the pose,
 // root drift included. The creature's body shapes keep the tumbling ball on the ground. InputError
 // for an unknown name or a body without the monkey's segments.
-void evaluateMonkeyClip(const anatomy::Creature& creature, const std::string& name, double t, anatomy::Pose& pose);
+void evaluateMonkeyClip(const anatomy::Creature& creature, const std::string& name, double t,
+                        anatomy::Pose& pose);
 
 // Bakes a procedural clip into a looping keyframed clip with root motion.
 // keysPerSecond in [4, 240].
-Clip bakeMonkeyClip(const anatomy::Creature& creature, const std::string& name, int keysPerSecond = 30);
+Clip bakeMonkeyClip(const anatomy::Creature& creature, const std::string& name,
+                    int keysPerSecond = 30);
 
 // All procedural clips, baked, in monkeyClipNames() order.
 std::vector<Clip> monkeyClips(const anatomy::Creature& creature);

@@ -4,8 +4,8 @@
 // and settles when the body accelerates or turns; the hair is then built by its style from the
 // resulting ending direction exactly as before (sec. 3.6 to 3.8).
 //
-// Model (per hair, world coordinates): the paper's E_qs is the equilibrium of the hair under gravity
-// for the current pose, so the deviation u = E - E_qs obeys, in the frame moving with E_qs,
+// Model (per hair, world coordinates): the paper's E_qs is the equilibrium of the hair under
+// gravity for the current pose, so the deviation u = E - E_qs obeys, in the frame moving with E_qs,
 //   u'' + 2 zeta w0 u' + w0^2 u = -E_qs''
 // (the inertial force of the equilibrium point's acceleration: the root's acceleration, the
 // tangential and centripetal acceleration of a turning segment, and the change of droop as the body
@@ -93,9 +93,9 @@ struct FurDynamicsState {
 // rest, and the one after moving with them. Allocates.
 void resetFurDynamics(const FurRoots& roots, FurDynamicsState& state);
 
-// Advances every hair's end to the frame of `deformed` (all roots, whatever the culling), dt seconds
-// after the previous step (ignored on the first step after a reset). Parallel over hairs, bit-
-// identical whatever the thread count. `params` and `dynamics` validated; dt in (0, 10].
+// Advances every hair's end to the frame of `deformed` (all roots, whatever the culling), dt
+// seconds after the previous step (ignored on the first step after a reset). Parallel over hairs,
+// bit- identical whatever the thread count. `params` and `dynamics` validated; dt in (0, 10].
 void stepFurDynamics(const skin::SkinMesh& skin, const FurRoots& roots, const FurParams& params,
                      const DynamicsParams& dynamics, const skin::DeformedSkin& deformed,
                      double dtSeconds, FurDynamicsState& state, FurWorkspace& workspace);

@@ -23,13 +23,13 @@ namespace pelage::scene {
 enum class AnalysisGroups { Region, Segment };
 
 struct AnalysisOptions {
-  int clip = 0;        // index into model.clips
-  int firstFrame = 0;  // frame f shows clip time f / fps
-  int lastFrame = 0;   // inclusive
+  int clip = 0;              // index into model.clips
+  int firstFrame = 0;        // frame f shows clip time f / fps
+  int lastFrame = 0;         // inclusive
   double holdSeconds = 0.0;  // after lastFrame, the last pose held still this long, [0, 1000]
   bool dynamics = false;     // also the damped dynamic ends (fur/dynamics.h)
   fur::DynamicsParams dynamicsParams;
-  DynamicsClock clock;       // fps and pre-roll
+  DynamicsClock clock;  // fps and pre-roll
   AnalysisGroups groups = AnalysisGroups::Region;
   double settleTolerance = 0.02;  // settled: within this fraction of the largest swing, (0, 1)
 };
@@ -37,9 +37,9 @@ struct AnalysisOptions {
 // Droop statistics of one set of hairs. Droop angle: between the hair's end direction e (root to
 // ending point) and its weightless direction d~ (root to weightless ending point, sec. 3.4-3.5).
 struct DroopStats {
-  double hairs = 0;            // hairs counted (length > 0)
-  double droopMeanDeg = 0.0;   // mean droop angle (degrees)
-  double droopStdDeg = 0.0;    // its standard deviation over the hairs (degrees)
+  double hairs = 0;           // hairs counted (length > 0)
+  double droopMeanDeg = 0.0;  // mean droop angle (degrees)
+  double droopStdDeg = 0.0;   // its standard deviation over the hairs (degrees)
 };
 
 // One frame's measurements for one model of the ends (quasi-static or dynamic).
@@ -50,7 +50,7 @@ struct EndStats {
   double tipHeightMm = 0.0;        // mean (E - R) . U (mm): ending point above (+) / below the root
   double droopBodyUpMm = 0.0;      // mean (E - W) . up_body (mm): < 0 when the ends fall toward the
                                    // body's underside, > 0 when it is upside down
-  double tipSpeed = 0.0;           // mean |E(t) - E(t - dt)| / dt (m/s, world); 0 on the first frame
+  double tipSpeed = 0.0;  // mean |E(t) - E(t - dt)| / dt (m/s, world); 0 on the first frame
 };
 
 struct FrameAnalysis {
@@ -64,9 +64,9 @@ struct FrameAnalysis {
   // down). Pitch and roll are unwrapped over the frames (continuous past +-180).
   Eigen::Vector3d bodyUp = Eigen::Vector3d::UnitZ();
   double pitchDeg = 0.0, rollDeg = 0.0, tiltDeg = 0.0;
-  EndStats quasiStatic;  // the paper's model
-  EndStats dynamic;      // the dynamic ends (when AnalysisOptions::dynamics)
-  double lagDeg = 0.0;   // mean angle between the dynamic and the quasi-static end directions
+  EndStats quasiStatic;   // the paper's model
+  EndStats dynamic;       // the dynamic ends (when AnalysisOptions::dynamics)
+  double lagDeg = 0.0;    // mean angle between the dynamic and the quasi-static end directions
   double offsetMm = 0.0;  // mean |E_dyn - E_qs| (mm), the dynamic ends' distance from the paper's
   // After the body stops (held frames, and the last moving frame): the mean of each hair's
   // deviation E_dyn - E_qs along its direction at the stop (mm). Linear in the springs' state, so
@@ -82,13 +82,13 @@ struct FrameAnalysis {
 // settlingTime(f, zeta, tolerance) of an overcoat hair of the coat's mean length (f =
 // hairFrequencyHz).
 struct SettlingAnalysis {
-  bool measured = false;        // dynamic mode with a hold of at least two frames
-  double stopSeconds = 0.0;     // when the body stopped
-  double swingMm = 0.0;         // P
-  double swingSeconds = 0.0;    // when P was reached, after the stop
+  bool measured = false;      // dynamic mode with a hold of at least two frames
+  double stopSeconds = 0.0;   // when the body stopped
+  double swingMm = 0.0;       // P
+  double swingSeconds = 0.0;  // when P was reached, after the stop
   double overshootPercent = 0.0;
-  double settlingSeconds = 0.0;  // NaN when still outside the band at the end of the hold
-  double meanLengthMm = 0.0;      // the overcoat's mean hair length (rest pose)
+  double settlingSeconds = 0.0;    // NaN when still outside the band at the end of the hold
+  double meanLengthMm = 0.0;       // the overcoat's mean hair length (rest pose)
   double springFrequencyHz = 0.0;  // of a hair of that length
   double springOvershootPercent = 0.0;
   double springSettlingSeconds = 0.0;
@@ -133,7 +133,8 @@ struct SweepResult {
   std::vector<AnalysisResult> runs;  // one per value
 };
 // Runs analyzeClip once per value (fur parameters changed per run; the roots stay).
-SweepResult sweepClip(const Model& model, const Fur& fur, const AnalysisOptions& options, const SweepSpec& spec);
+SweepResult sweepClip(const Model& model, const Fur& fur, const AnalysisOptions& options,
+                      const SweepSpec& spec);
 
 // The sweep's CSV: time_s, frame, held, pitch_deg, tilt_deg, then per value v the mean droop and
 // tip height of the model in use (dynamic in dynamic mode): "droop_mean_deg[stiffness=0.2]", ...

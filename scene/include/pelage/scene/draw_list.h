@@ -51,12 +51,12 @@ CameraPreset parseCameraPreset(std::string_view name);
 
 // Where a creature is and which way it faces in one frame; what camera framing needs.
 struct Framing {
-  Eigen::AlignedBox3f bounds;                    // deformed skin plus the longest hair
-  Eigen::Vector3f center = Eigen::Vector3f::Zero();  // centre of the bounding sphere
-  float radius = 0.0f;                           // bounding-sphere radius (metres)
+  Eigen::AlignedBox3f bounds;                          // deformed skin plus the longest hair
+  Eigen::Vector3f center = Eigen::Vector3f::Zero();    // centre of the bounding sphere
+  float radius = 0.0f;                                 // bounding-sphere radius (metres)
   Eigen::Vector3f forward = Eigen::Vector3f::UnitX();  // horizontal unit vector the creature faces
   Eigen::Vector3f faceCenter = Eigen::Vector3f::Zero();  // centre of the face (see framingOf)
-  float faceRadius = 0.0f;                       // radius of a sphere around the face (metres)
+  float faceRadius = 0.0f;  // radius of a sphere around the face (metres)
   Eigen::Vector3f rootPosition = Eigen::Vector3f::Zero();  // world position of segment 0
 };
 
@@ -90,7 +90,7 @@ struct Light {
   Eigen::Vector3f direction{0.5f, 0.35f, 0.8f};  // towards the light (normalised by the renderer)
   Eigen::Vector3f color{1.0f, 1.0f, 1.0f};
   Eigen::Vector3f ambient{0.35f, 0.35f, 0.35f};  // ambient light intensity (the paper's GL model)
-  bool shadows = false;                           // shadow map: fur and skin shadow each other
+  bool shadows = false;                          // shadow map: fur and skin shadow each other
   int shadowMapSize = 2048;
 };
 
@@ -130,15 +130,15 @@ enum class HairSource { Cpu, Gpu };
 
 // One coat (paper sec. 3.1). Non-owning pointers into the scene; valid for the frame.
 struct FurDrawItem {
-  int coat = 0;                // fur::kOvercoat or fur::kUndercoat
+  int coat = 0;  // fur::kOvercoat or fur::kUndercoat
   fur::HairStyle style = fur::HairStyle::Polyline;
   Material material;
-  int strandPoints = 2;        // points along one hair
-  int strandStride = 1;        // points per ring for tubes (the nurbs-surface style), else 1
-  bool triangles = false;      // tubes are drawn as triangles, other styles as line strips
-  std::int64_t rootCount = 0;  // hairs grown on the skin
-  std::int64_t drawnHairs = 0; // after distance culling (sec. 3.3)
-  float cullFactor = 1.0f;     // c of sec. 3.3 (1 = all hairs)
+  int strandPoints = 2;         // points along one hair
+  int strandStride = 1;         // points per ring for tubes (the nurbs-surface style), else 1
+  bool triangles = false;       // tubes are drawn as triangles, other styles as line strips
+  std::int64_t rootCount = 0;   // hairs grown on the skin
+  std::int64_t drawnHairs = 0;  // after distance culling (sec. 3.3)
+  float cullFactor = 1.0f;      // c of sec. 3.3 (1 = all hairs)
   HairSource source = HairSource::Cpu;
   // CPU source: drawnHairs * P * 3 floats each (P = strandPoints * strandStride).
   const float* positions = nullptr;
@@ -182,11 +182,13 @@ struct DrawOptions {
 };
 
 // Fills `list` for one evaluated frame: skin item from the frame's deformed skin and the model's
-// skin colour, one fur item per coat with roots (when `fur` is given and options.drawFur), camera and
-// light as given. With the CPU source the fur items point at the frame's hair buffers (evaluateFur
-// must have run with cpuHairs); with the GPU source, at the roots and parameters in `fur`.
-void buildDrawList(const Model& model, const FrameState& frame, const Fur* fur, const Camera& camera,
-                   const Light& light, const DrawOptions& options, DrawList& list);
+// skin colour, one fur item per coat with roots (when `fur` is given and options.drawFur), camera
+// and light as given. With the CPU source the fur items point at the frame's hair buffers
+// (evaluateFur must have run with cpuHairs); with the GPU source, at the roots and parameters in
+// `fur`.
+void buildDrawList(const Model& model, const FrameState& frame, const Fur* fur,
+                   const Camera& camera, const Light& light, const DrawOptions& options,
+                   DrawList& list);
 
 // The scene material of a fur coat's material.
 Material furMaterial(const fur::Material& material);

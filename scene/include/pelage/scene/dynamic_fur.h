@@ -24,9 +24,9 @@ int preRollStart(int firstFrame, const DynamicsClock& clock);
 // Resets `state` and advances it through the frames [preRollStart, firstFrame) of clip `clip`
 // (evaluated into `scratch`; no hairs drawn). Then step frame firstFrame, firstFrame + 1, ... with
 // stepClipDynamics.
-void preRollDynamics(const Model& model, const Fur& fur, const fur::DynamicsParams& dynamics, int clip,
-                     int firstFrame, const DynamicsClock& clock, fur::FurDynamicsState& state,
-                     FrameState& scratch);
+void preRollDynamics(const Model& model, const Fur& fur, const fur::DynamicsParams& dynamics,
+                     int clip, int firstFrame, const DynamicsClock& clock,
+                     fur::FurDynamicsState& state, FrameState& scratch);
 
 // Advances `state` to the skin already evaluated in `frame` (evaluateFrame / evaluateClipFrame),
 // 1 / fps after the previous step; with `cpuHairs`, also the frame's hairs (culling for

@@ -1,8 +1,8 @@
 // One frame of a furred creature as a glTF 2.0 binary (.glb) that any glTF viewer loads: the posed
 // skin as a triangle mesh (POSITION, NORMAL, indices) and each coat's hairs (Van Gelder & Wilhelms
 // 1997, sec. 3.1) as one LINES primitive (POSITION, index pairs joining consecutive points of each
-// hair: the line, polyline or tessellated curve; a tube's ring centres), each with a material of its
-// colour. Written atomically; the data streams from the frame's buffers (no copy of the hairs).
+// hair: the line, polyline or tessellated curve; a tube's ring centres), each with a material of
+// its colour. Written atomically; the data streams from the frame's buffers (no copy of the hairs).
 #pragma once
 
 #include <array>
@@ -22,14 +22,14 @@ struct GlbCounts {
   std::array<std::int64_t, fur::kCoatCount> hairs{0, 0};
   std::array<std::int64_t, fur::kCoatCount> hairVertices{0, 0};
   std::array<std::int64_t, fur::kCoatCount> segments{0, 0};  // line segments (index pairs)
-  std::uint64_t bytes = 0;                                    // file size
+  std::uint64_t bytes = 0;                                   // file size
 };
 
 // The counts writeFrameGlb would write for `state`.
 GlbCounts glbCounts(const Model& model, const fur::FurParams& params, const FrameState& state);
 
-// Writes `state` (evaluated frame with CPU hairs) to `path`. InputError naming the file if it cannot
-// be written (unwritable directory, disk full) or would exceed glTF binary's 4 GiB limit.
+// Writes `state` (evaluated frame with CPU hairs) to `path`. InputError naming the file if it
+// cannot be written (unwritable directory, disk full) or would exceed glTF binary's 4 GiB limit.
 // `generator` goes into asset.generator.
 GlbCounts writeFrameGlb(const std::string& path, const Model& model, const fur::FurParams& params,
                         const FrameState& state, const std::string& generator = "pelage");

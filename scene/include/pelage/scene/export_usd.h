@@ -24,7 +24,7 @@ struct UsdExportOptions {
   double framesPerSecond = 30.0;  // timeCodesPerSecond; time code = frame number
   int firstFrame = 0;
   int lastFrame = 0;
-  std::string comment;            // the layer's doc string
+  std::string comment;  // the layer's doc string
 };
 
 // What the layer holds.
@@ -32,15 +32,17 @@ struct UsdExportCounts {
   int frames = 0;
   int skinVertices = 0;
   int skinTriangles = 0;
-  std::int64_t curves[fur::kCoatCount] = {0, 0};          // per coat
+  std::int64_t curves[fur::kCoatCount] = {0, 0};  // per coat
   int verticesPerCurve[fur::kCoatCount] = {0, 0};
 };
 
 class UsdaWriter {
  public:
   // Opens the spool files beside `path`; InputError naming `path` when its directory is not
-  // writable. `params` are the fur's (styles, materials, widths); they must stay valid until finish().
-  UsdaWriter(std::string path, const Model& model, const fur::FurParams& params, const UsdExportOptions& options);
+  // writable. `params` are the fur's (styles, materials, widths); they must stay valid until
+  // finish().
+  UsdaWriter(std::string path, const Model& model, const fur::FurParams& params,
+             const UsdExportOptions& options);
   ~UsdaWriter();  // removes the spool files (and writes nothing) if finish() was not reached
   UsdaWriter(const UsdaWriter&) = delete;
   UsdaWriter& operator=(const UsdaWriter&) = delete;

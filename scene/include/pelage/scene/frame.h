@@ -28,11 +28,13 @@ namespace pelage::scene {
 struct Fur {
   fur::FurParams params;
   fur::FurRoots roots;
-  std::uint64_t generation = 0;  // unique per growFur call: renderers re-upload roots when it changes
+  std::uint64_t generation =
+      0;  // unique per growFur call: renderers re-upload roots when it changes
 };
 
 // Validates `params` (InputError naming `source`, the field and the range) and grows the roots.
-Fur growFur(const Model& model, fur::FurParams params, const std::string& source = "fur parameters");
+Fur growFur(const Model& model, fur::FurParams params,
+            const std::string& source = "fur parameters");
 
 // True when going from `a` to `b` needs new roots (count, density, undercoat share or seed).
 bool rootsDiffer(const fur::FurParams& a, const fur::FurParams& b);
@@ -50,9 +52,9 @@ struct FrameState {
   // Fur (evaluateFur): culling for the camera, drawn hairs per coat, and the CPU model's buffers
   // when they were asked for.
   fur::FurView furView;
-  float cullFactor = 1.0f;                    // c of sec. 3.3
+  float cullFactor = 1.0f;  // c of sec. 3.3
   std::array<std::int64_t, fur::kCoatCount> drawnHairs{0, 0};
-  bool cpuFur = false;                        // `fur` holds this frame's hairs
+  bool cpuFur = false;  // `fur` holds this frame's hairs
   fur::FurWorkspace furWorkspace;
   fur::FurFrame fur;
   std::array<std::vector<std::int32_t>, fur::kCoatCount> drawnStartScratch;
@@ -69,7 +71,7 @@ void evaluateClipFrame(const Model& model, int clip, double seconds, FrameState&
 // The frame's fur for a camera at `cameraEye` (after evaluateFrame): distance culling (sec. 3.3)
 // and drawn counts; with `cpuHairs`, the hairs themselves by the CPU fur model (fur::generateFur).
 // Without it the counts are still exact (the GPU applies the same culling rule).
-void evaluateFur(const Model& model, const Fur& fur, const Eigen::Vector3f& cameraEye, bool cpuHairs,
-                 FrameState& frame);
+void evaluateFur(const Model& model, const Fur& fur, const Eigen::Vector3f& cameraEye,
+                 bool cpuHairs, FrameState& frame);
 
 }  // namespace pelage::scene

@@ -1,6 +1,6 @@
-// Loading a creature from what the user names: the built-in monkey, a creature JSON file, a glTF 2.0
-// creature (.gltf/.glb, with its animations as clips), or a static mesh (OBJ/PLY/OFF/STL). A Model
-// is constant during playback.
+// Loading a creature from what the user names: the built-in monkey, a creature JSON file, a
+// glTF 2.0 creature (.gltf/.glb, with its animations as clips), or a static mesh (OBJ/PLY/OFF/STL).
+// A Model is constant during playback.
 #pragma once
 
 #include <optional>
@@ -34,8 +34,10 @@ struct LoadOptions {
   int triangles = 0;
   // glTF only (InputError when given for another kind of model):
   float unitScale = 0.0f;  // metres per file unit; 0 = detect from the bounding box
-  std::optional<std::vector<std::string>> noFurRegions;  // region patterns without fur; nullopt = defaults
-  std::string segmentDirections;  // per-joint direction side file; "" = <model>.directions.json if present
+  std::optional<std::vector<std::string>>
+      noFurRegions;  // region patterns without fur; nullopt = defaults
+  std::string
+      segmentDirections;  // per-joint direction side file; "" = <model>.directions.json if present
 };
 
 // The built-in creature's name.

@@ -1,7 +1,8 @@
 // A small line-plot renderer for `pelage analyze --plot`: stacked panels sharing the x axis, each
 // with axes, ticks, grid, a y label and a legend; text from stb_easy_font, anti-aliased lines,
 // PNG through stb_image_write. Own code rather than a plotting library: Debian's C++ options
-// (PLplot, MathGL) bring large dependency trees (cairo, Qt, ...) for what is four hundred lines here.
+// (PLplot, MathGL) bring large dependency trees (cairo, Qt, ...) for what is four hundred lines
+// here.
 #pragma once
 
 #include <array>

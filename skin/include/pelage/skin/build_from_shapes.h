@@ -1,7 +1,7 @@
 // Building a creature's skin from its body shapes: the smooth union of the shapes' signed distance
-// fields is polygonised into one closed, manifold triangle mesh, cleaned with OpenMesh's tools, bound
-// to the segments (each vertex to its closest segment, sec. 3.4, blended smoothly near joints), and
-// given fur lengths and regions from the creature's fur-length regions (sec. 3.2).
+// fields is polygonised into one closed, manifold triangle mesh, cleaned with OpenMesh's tools,
+// bound to the segments (each vertex to its closest segment, sec. 3.4, blended smoothly near
+// joints), and given fur lengths and regions from the creature's fur-length regions (sec. 3.2).
 #pragma once
 
 #include <Eigen/Core>

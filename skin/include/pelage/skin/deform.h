@@ -14,10 +14,10 @@ namespace pelage::skin {
 
 // Per-frame skin state. Flat arrays, shape in the comment; sized on first use, then reused.
 struct DeformedSkin {
-  std::vector<Eigen::Vector3f> positions;   // nV: world positions
-  std::vector<Eigen::Vector3f> normals;     // nV: unit outward vertex normals
-  std::vector<Eigen::Vector3f> directions;  // nV: world segment direction vectors (unit, or 0)
-  std::vector<Eigen::Vector3f> faceNormals; // nT: area-weighted face normals (2 x area), scratch
+  std::vector<Eigen::Vector3f> positions;    // nV: world positions
+  std::vector<Eigen::Vector3f> normals;      // nV: unit outward vertex normals
+  std::vector<Eigen::Vector3f> directions;   // nV: world segment direction vectors (unit, or 0)
+  std::vector<Eigen::Vector3f> faceNormals;  // nT: area-weighted face normals (2 x area), scratch
 };
 
 // Deforms the skin for one body state: positions p = sum_i w_i S_i p_rest, segment directions

@@ -37,9 +37,10 @@ struct SkinMesh {
   TriMesh mesh;
   // Vertex properties (added by addSkinProperties).
   OpenMesh::VPropHandleT<Binding> binding;
-  OpenMesh::VPropHandleT<float> furLength;  // fur length at the vertex (metres), sec. 3.2
-  OpenMesh::VPropHandleT<std::int32_t> region;   // index into regionNames
-  OpenMesh::VPropHandleT<OpenMesh::Vec3f> segmentDirection;  // bind-pose segment direction (unit or 0)
+  OpenMesh::VPropHandleT<float> furLength;      // fur length at the vertex (metres), sec. 3.2
+  OpenMesh::VPropHandleT<std::int32_t> region;  // index into regionNames
+  OpenMesh::VPropHandleT<OpenMesh::Vec3f>
+      segmentDirection;  // bind-pose segment direction (unit or 0)
 
   std::vector<std::string> regionNames{"body"};  // region 0 is the default region
   Eigen::Vector3f color{0.45f, 0.32f, 0.26f};    // skin material diffuse colour

@@ -53,9 +53,9 @@ template <typename... Args>
 
 }  // namespace pelage
 
-#define PELAGE_CHECK(cond, ...)                                                             \
-  do {                                                                                      \
-    if (!(cond))                                                                            \
-      ::pelage::detail::checkFailed(__FILE__, __LINE__, #cond,                              \
+#define PELAGE_CHECK(cond, ...)                                                               \
+  do {                                                                                        \
+    if (!(cond))                                                                              \
+      ::pelage::detail::checkFailed(__FILE__, __LINE__, #cond,                                \
                                     ::pelage::detail::concat("" __VA_OPT__(, ) __VA_ARGS__)); \
   } while (0)

@@ -15,7 +15,8 @@ inline constexpr std::uint64_t mix64(std::uint64_t z) {
 }
 
 // 64 random bits for item `index` of `stream` under `seed`.
-inline constexpr std::uint64_t randomBits(std::uint64_t seed, std::uint64_t stream, std::uint64_t index) {
+inline constexpr std::uint64_t randomBits(std::uint64_t seed, std::uint64_t stream,
+                                          std::uint64_t index) {
   return mix64(mix64(seed ^ mix64(stream + 0x632be59bd9b4e019ull)) + index);
 }
 

@@ -2,7 +2,8 @@
 // interpolation at the root, weightless direction, gravity, each style's geometry; and sec. 3.3
 // distance culling) in compute shaders, reading the roots (uploaded once per root set) and the
 // deformed skin (uploaded each frame) from shader-storage buffers, writing the vertex buffers the
-// renderer draws. The shaders mirror fur/hair_math.h function for function (shaders/hair_math.glsl).
+// renderer draws. The shaders mirror fur/hair_math.h function for function
+// (shaders/hair_math.glsl).
 //
 // Random numbers: nothing random is computed on the GPU. Every random value of the CPU model is
 // already a per-root or per-table-entry constant there (CoatRoots::jitter: the hair-end offset and
@@ -42,11 +43,12 @@ struct GpuFurFrame {
   const skin::SkinMesh* skin = nullptr;
   const fur::FurRoots* roots = nullptr;
   const fur::FurParams* params = nullptr;
-  std::uint64_t rootsGeneration = 0;  // changes whenever `roots` are regrown (re-upload)
+  std::uint64_t rootsGeneration = 0;             // changes whenever `roots` are regrown (re-upload)
   const skin::DeformedSkin* deformed = nullptr;  // its directions are uploaded by beginFrame
-  GLuint skinPositions = 0;  // the deformed positions and normals already on the GPU (nV x 3 floats)
+  GLuint skinPositions =
+      0;  // the deformed positions and normals already on the GPU (nV x 3 floats)
   GLuint skinNormals = 0;
-  float cullFactor = 1.0f;   // c of sec. 3.3 (1: every hair)
+  float cullFactor = 1.0f;  // c of sec. 3.3 (1: every hair)
 };
 
 class GpuFur {

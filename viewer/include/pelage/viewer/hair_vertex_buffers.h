@@ -5,8 +5,8 @@
 //
 // The buffers are split into chunks of whole hairs, each at most maxShaderStorageBlockSize bytes
 // per array, because llvmpipe lets one shader-storage binding address only 128 MiB: the GPU pass
-// writes each chunk through its own bound range, and each chunk is drawn by its own indirect command
-// (baseVertex = the chunk's first point), so any hair count works on any driver.
+// writes each chunk through its own bound range, and each chunk is drawn by its own indirect
+// command (baseVertex = the chunk's first point), so any hair count works on any driver.
 #pragma once
 
 #include <cstdint>
@@ -51,7 +51,8 @@ class HairVertexBuffers {
   HairVertexBuffers& operator=(const HairVertexBuffers&) = delete;
 
   // Makes room for `hairs` hairs of `layout` (grows, never shrinks, unless the layout changes);
-  // `maxChunkBytes` caps one chunk's array size (0 = the context's GL_MAX_SHADER_STORAGE_BLOCK_SIZE).
+  // `maxChunkBytes` caps one chunk's array size (0 = the context's
+  // GL_MAX_SHADER_STORAGE_BLOCK_SIZE).
   void reserve(std::int64_t hairs, const HairLayout& layout, std::int64_t maxChunkBytes = 0);
   // Uploads `hairs` hairs from CPU arrays (hairs * P * 3 floats each) and sets the draw commands.
   void upload(const float* positions, const float* shading, std::int64_t hairs);
@@ -83,7 +84,8 @@ class HairVertexBuffers {
 // Unit tangents along each strand (Kajiya-Kay's T) of `hairs` hairs of `layout` from their points
 // (hairs * P * 3 floats): the direction of the segment leaving each point, the last point repeating
 // the one arriving. The GPU fur pass computes the same for its hairs.
-void strandTangents(const float* positions, std::int64_t hairs, const HairLayout& layout, std::vector<float>& out);
+void strandTangents(const float* positions, std::int64_t hairs, const HairLayout& layout,
+                    std::vector<float>& out);
 
 // The largest size in bytes one shader-storage binding may address on this context.
 std::int64_t maxShaderStorageBlockSize();

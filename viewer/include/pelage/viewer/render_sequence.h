@@ -1,5 +1,5 @@
-// Headless export of a clip as a frame sequence (`pelage render`): each frame is evaluated, drawn by
-// the shared renderer, read back and handed to PNG encoders on worker threads, which write
+// Headless export of a clip as a frame sequence (`pelage render`): each frame is evaluated, drawn
+// by the shared renderer, read back and handed to PNG encoders on worker threads, which write
 // DIR/frame_NNNNN.png atomically (temporary file + rename); optionally piped in order to ffmpeg for
 // an .mp4 or .gif. A frame's pixels depend only on the inputs and its frame number (its camera
 // framing is computed from clip time 0 and the frame itself, never from earlier frames), so frame
@@ -27,8 +27,8 @@
 
 namespace pelage::viewer {
 
-using scene::FrameRange;
 using scene::frameFileName;
+using scene::FrameRange;
 using scene::kMaxFrameNumber;
 using scene::parseFrameRange;
 
@@ -68,12 +68,12 @@ struct SequenceCamera {
 };
 
 struct SequenceOptions {
-  int clip = -1;          // index into model.clips; -1: the rest pose in every frame
+  int clip = -1;  // index into model.clips; -1: the rest pose in every frame
   FrameRange frames;
   double framesPerSecond = 30.0;  // frame f shows clip time f / fps
   int width = 1280;
   int height = 720;
-  int samples = -1;       // MSAA samples; -1 = 4 on a GPU, 0 on a software rasteriser
+  int samples = -1;  // MSAA samples; -1 = 4 on a GPU, 0 on a software rasteriser
   SequenceCamera camera;
   scene::HairSource hairSource = scene::HairSource::Gpu;
   scene::HairShading shading = scene::HairShading::Paper;
@@ -86,10 +86,10 @@ struct SequenceOptions {
   fur::DynamicsParams dynamicsParams;
   int preRollFrames = -1;
   Eigen::Vector3f background{0.80f, 0.82f, 0.86f};
-  std::string outDir;     // frames go to outDir/frame_NNNNN.png
-  bool resume = false;    // skip frames whose PNG is already complete
-  std::string video;      // "" or an .mp4/.gif path (ffmpeg)
-  int encoderThreads = 0; // PNG encoders; 0 = the worker thread count (util/parallel.h)
+  std::string outDir;      // frames go to outDir/frame_NNNNN.png
+  bool resume = false;     // skip frames whose PNG is already complete
+  std::string video;       // "" or an .mp4/.gif path (ffmpeg)
+  int encoderThreads = 0;  // PNG encoders; 0 = the worker thread count (util/parallel.h)
 };
 
 // Checks the options (sizes, fps, range, video extension); InputError naming the option.
@@ -98,7 +98,8 @@ void validateSequenceOptions(const SequenceOptions& options);
 // Renders single frames of a sequence. Needs a current OpenGL context for its whole life.
 class SequenceRenderer {
  public:
-  SequenceRenderer(const scene::Model& model, const scene::Fur& fur, const SequenceOptions& options);
+  SequenceRenderer(const scene::Model& model, const scene::Fur& fur,
+                   const SequenceOptions& options);
   ~SequenceRenderer();
   SequenceRenderer(const SequenceRenderer&) = delete;
   SequenceRenderer& operator=(const SequenceRenderer&) = delete;
@@ -115,10 +116,10 @@ class SequenceRenderer {
 
 // Progress after each written frame.
 struct SequenceProgress {
-  int done = 0;             // frames finished (written or skipped)
+  int done = 0;  // frames finished (written or skipped)
   int total = 0;
-  int skipped = 0;          // complete frames found by --resume
-  int frame = 0;            // the frame just finished
+  int skipped = 0;  // complete frames found by --resume
+  int frame = 0;    // the frame just finished
   double elapsedSeconds = 0.0;
   double framesPerSecond = 0.0;  // rendered frames per second of wall time so far
   double secondsLeft = 0.0;
@@ -127,7 +128,7 @@ struct SequenceProgress {
 struct SequenceReport {
   int rendered = 0;
   int skipped = 0;
-  double seconds = 0.0;      // wall time, context creation excluded
+  double seconds = 0.0;         // wall time, context creation excluded
   std::int64_t hairsDrawn = 0;  // in the last rendered frame
   int removedTemporaries = 0;   // stale temporary frames of killed runs removed (--resume)
 };
@@ -135,13 +136,15 @@ struct SequenceReport {
 using ProgressCallback = std::function<void(const SequenceProgress&)>;
 // Writes one finished file; the default writes atomically (util/atomic_file.h). Tests inject
 // failures (a full disk) here.
-using FileWriter = std::function<void(const std::string& path, const std::vector<std::uint8_t>& bytes)>;
+using FileWriter =
+    std::function<void(const std::string& path, const std::vector<std::uint8_t>& bytes)>;
 
 // Renders options.frames of `model` with `fur` (needs a current OpenGL context). Throws InputError
 // for bad options, an unwritable directory, a failed write or a failed ffmpeg; frames already
 // written stay complete, and no partial frame or video is left.
-SequenceReport renderSequence(const scene::Model& model, const scene::Fur& fur, const SequenceOptions& options,
-                              const ProgressCallback& progress = {}, const FileWriter& writer = {});
+SequenceReport renderSequence(const scene::Model& model, const scene::Fur& fur,
+                              const SequenceOptions& options, const ProgressCallback& progress = {},
+                              const FileWriter& writer = {});
 
 // The absolute path of `program` found on $PATH, or "" (used to find ffmpeg).
 std::string findOnPath(const std::string& program);

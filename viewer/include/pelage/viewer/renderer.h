@@ -1,7 +1,8 @@
 // The OpenGL 4.5 renderer shared by the interactive viewer and headless export: draws a
 // scene::DrawList (skin, fur coats, light, optional shadow map) into its own framebuffer
-// (multisampled when the driver allows, resolved with a blit), which is read back as RGBA8 or blitted
-// to a window. Requires a current context (EglContext or the GLFW window) for its whole life.
+// (multisampled when the driver allows, resolved with a blit), which is read back as RGBA8 or
+// blitted to a window. Requires a current context (EglContext or the GLFW window) for its whole
+// life.
 #pragma once
 
 #include <cstdint>

@@ -12,42 +12,13 @@
 #include "commands.h"
 #include "pelage/animation/clip_file.h"
 #include "pelage/scene/analyze.h"
+#include "pelage/scene/frame_range.h"
 #include "pelage/scene/plot.h"
 #include "pelage/util/atomic_file.h"
 #include "pelage/util/error.h"
 
 namespace pelage::app {
 namespace {
-
-// Index of clip `name` of the model (or a clip .json file, appended); InputError listing the clips.
-int findClipOrFile(scene::Model& model, const std::string& name) {
-  const int c = model.findClip(name);
-  if (c >= 0) return c;
-  if (std::filesystem::path(name).extension() == ".json") {
-    model.clips.push_back(animation::loadClip(model.body, name));
-    return static_cast<int>(model.clips.size()) - 1;
-  }
-  std::string names;
-  for (const animation::Clip& k : model.clips) names += (names.empty() ? "" : ", ") + k.name;
-  inputError("--clip: model '", model.name, "' has no clip '", name, "' (",
-             names.empty() ? std::string("it has no clips") : "its clips: " + names,
-             "; or give a clip .json file)");
-}
-
-// "A:B" (inclusive) or "A".
-void parseFrames(const std::string& text, int& first, int& last) {
-  const std::string form =
-      " is not a frame range A:B (whole numbers, 0 <= A <= B <= 10000000) or a frame A";
-  const std::size_t colon = text.find(':');
-  auto whole = [&](const std::string& s) {
-    if (s.empty() || s.size() > 8 || s.find_first_not_of("0123456789") != std::string::npos)
-      inputError("--frames '", text, "'", form);
-    return std::stoi(s);
-  };
-  first = whole(text.substr(0, colon));
-  last = colon == std::string::npos ? first : whole(text.substr(colon + 1));
-  if (last < first || last > 10000000) inputError("--frames '", text, "'", form);
-}
 
 std::vector<double> column(const scene::AnalysisResult& r,
                            double (*get)(const scene::FrameAnalysis&)) {
@@ -318,9 +289,13 @@ void addAnalyzeCommand(CLI::App& app) {
       inputError("--plot '", o->plot, "' must name a .png file");
     scene::SweepSpec sweep;
     if (!o->sweep.empty()) sweep = scene::parseSweep(o->sweep);
-    if (!o->frames.empty()) parseFrames(o->frames, opt.firstFrame, opt.lastFrame);
+    if (!o->frames.empty()) {
+      const scene::FrameRange range = scene::parseFrameRange(o->frames);
+      opt.firstFrame = range.first;
+      opt.lastFrame = range.last;
+    }
     scene::Model m = model->load();
-    opt.clip = findClipOrFile(m, o->clip);
+    opt.clip = scene::resolveClip(m, o->clip);
     const animation::Clip& clip = m.clips[static_cast<std::size_t>(opt.clip)];
     if (o->frames.empty())
       opt.lastFrame =

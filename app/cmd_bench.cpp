@@ -9,6 +9,7 @@
 #include "commands.h"
 #include "pelage/fur/generate.h"
 #include "pelage/fur/roots.h"
+#include "pelage/scene/playback.h"
 #include "pelage/skin/deform.h"
 #include "pelage/util/error.h"
 #include "pelage/util/parallel.h"
@@ -30,10 +31,17 @@ void addBenchCommand(CLI::App& app) {
     if (*frames < 1 || *frames > 100000)
       inputError("--frames ", *frames, " is out of range [1, 100000]");
     const fur::FurParams params = furArgs->resolve();
-    FurScene scene = loadFurScene(*model, *pose, params);
-    const scene::Model& m = scene.model;
-    const fur::FurRoots& roots = scene.roots;
-    skin::DeformedSkin& deformed = scene.deformed;
+    scene::Model m = model->load();
+    const scene::Fur fur = scene::growFur(m, params, "fur '" + params.name + "'");
+    const fur::FurRoots& roots = fur.roots;
+    scene::PlaybackOptions po;
+    po.stillPose = pose->resolve(m);
+    po.hairSource = scene::HairSource::Cpu;
+    scene::Playback playback(m, fur, po);
+    playback.poseFrame(0);
+    // What is timed: the skin deformation and fur::generateFur of the posed frame, every hair.
+    const anatomy::BodyState body = playback.state().body;
+    skin::DeformedSkin deformed = playback.state().skin;
     fur::FurWorkspace ws;
     fur::FurFrame frame;
     const fur::FurView view;  // culling off: every hair, every frame
@@ -42,7 +50,7 @@ void addBenchCommand(CLI::App& app) {
     std::vector<double> furMs, skinMs;
     for (int f = 0; f < *frames; ++f) {
       const auto t0 = Clock::now();
-      skin::deformSkin(m.skin, scene.state, deformed);
+      skin::deformSkin(m.skin, body, deformed);
       const auto t1 = Clock::now();
       fur::generateFur(m.skin, roots, params, deformed, view, ws, frame);
       const auto t2 = Clock::now();
@@ -56,8 +64,8 @@ void addBenchCommand(CLI::App& app) {
     std::printf(
         "model %s: %d triangles, %d vertices; fur %s: %lld overcoat %s + %lld undercoat %s hairs\n",
         m.name.c_str(), m.skin.numTriangles(), m.skin.numVertices(), params.name.c_str(),
-        static_cast<long long>(frame.coats[0].drawn), fur::styleName(frame.coats[0].style),
-        static_cast<long long>(frame.coats[1].drawn), fur::styleName(frame.coats[1].style));
+        static_cast<long long>(frame.coats[0].drawn), fur::styleName(frame.coats[0].layout.style),
+        static_cast<long long>(frame.coats[1].drawn), fur::styleName(frame.coats[1].layout.style));
     std::printf("threads %d, kernel %s, %d frames\n", threadCount(),
                 fur::kernelPathName(fur::activeKernelPath()), *frames);
     std::printf("fur:  %.3f ms/frame median (min %.3f, max %.3f), %.1f M hairs/s\n", median,

@@ -16,6 +16,7 @@
 #include "pelage/scene/export_usd.h"
 #include "pelage/scene/frame.h"
 #include "pelage/scene/frame_range.h"
+#include "pelage/scene/playback.h"
 #include "pelage/util/atomic_file.h"
 #include "pelage/util/error.h"
 
@@ -64,21 +65,6 @@ fur::FurParams FurSettings::apply(const fur::FurParams& params) const {
   return fur::parseFurPreset(doc.dump(), "--fur-set options");
 }
 
-int resolveClip(scene::Model& model, const std::string& clip) {
-  if (clip.empty()) return model.clips.empty() ? -1 : 0;
-  const int c = model.findClip(clip);
-  if (c >= 0) return c;
-  if (fs::path(clip).extension() == ".json") {
-    model.clips.push_back(animation::loadClip(model.body, clip));
-    return static_cast<int>(model.clips.size()) - 1;
-  }
-  std::string names;
-  for (const animation::Clip& k : model.clips) names += (names.empty() ? "" : ", ") + k.name;
-  inputError("--clip: model '", model.name, "' has no clip '", clip, "' (",
-             names.empty() ? std::string("it has no clips") : "its clips: " + names,
-             "; or give a clip .json file)");
-}
-
 namespace {
 
 struct ExportArgs {
@@ -113,7 +99,7 @@ void runExport(ExportArgs& a) {
   scene::DynamicsClock clock = a.dynamics.clock();
   clock.fps = a.range.fps;
   scene::Model model = a.model.load();
-  const int clip = resolveClip(model, a.range.clip);
+  const int clip = scene::resolveClip(model, a.range.clip);
   if (a.dynamics.enabled() && clip < 0)
     inputError("--dynamics on needs a clip (--clip): the rest pose does not move");
   const scene::Fur fur = scene::growFur(model, params, "fur '" + params.name + "'");
@@ -127,8 +113,6 @@ void runExport(ExportArgs& a) {
   std::fflush(stdout);
 
   const auto t0 = std::chrono::steady_clock::now();
-  scene::FrameState state;
-  const anatomy::Pose rest = anatomy::restPose(model.body);
   std::unique_ptr<scene::UsdaWriter> usd;
   if (a.format == "usda") {
     scene::UsdExportOptions uo;
@@ -141,27 +125,23 @@ void runExport(ExportArgs& a) {
             params.name, " (seed ", params.seed, "), ", fur.roots.total(), " hairs");
     usd = std::make_unique<scene::UsdaWriter>(a.out, model, fur.params, uo);
   }
-  fur::FurDynamicsState dynamicState;
-  if (a.dynamics.enabled()) {
-    // Frame `first` is reached as a whole run reaches it (scene/dynamic_fur.h).
-    scene::FrameState scratch;
-    scene::preRollDynamics(model, fur, dynamics, clip, first, clock, dynamicState, scratch);
-  }
+  scene::PlaybackOptions po;
+  po.clip = clip;
+  po.framesPerSecond = a.range.fps;
+  po.hairSource = scene::HairSource::Cpu;  // export writes the CPU fur model's hairs
+  po.dynamics = a.dynamics.enabled();
+  po.dynamicsParams = dynamics;
+  po.preRollFrames = clock.preRollFrames;
+  scene::Playback playback(model, fur, po);
+  const scene::FrameState& state = playback.state();
   for (int f = first; f <= last; ++f) {
-    if (clip >= 0)
-      scene::evaluateClipFrame(model, clip, static_cast<double>(f) / a.range.fps, state);
-    else
-      scene::evaluateFrame(model, rest, state);
-    if (a.dynamics.enabled())
-      scene::stepClipDynamics(model, fur, dynamics, clock, state.skinBounds.center(), true,
-                              dynamicState, state);
-    else
-      scene::evaluateFur(model, fur, state.skinBounds.center(), true, state);
+    playback.poseFrame(f);
+    playback.evaluateFur(state.skinBounds.center());  // culling is off: every hair
     if (usd) {
       usd->addFrame(f, state);
     } else if (a.format == "ply") {
       fur::writeHairPly(
-          (fs::path(a.out) / scene::frameFileName(f, ".ply")).string(), state.fur, fur.params,
+          (fs::path(a.out) / scene::frameFileName(f, ".ply")).string(), state.fur,
           str("model ", model.name, ", frame ", f, " (", static_cast<double>(f) / a.range.fps,
               " s), fur ", params.name, ", seed ", params.seed));
     } else {

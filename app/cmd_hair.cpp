@@ -12,6 +12,7 @@
 #include "pelage/fur/roots.h"
 #include "pelage/scene/dynamic_fur.h"
 #include "pelage/scene/frame.h"
+#include "pelage/scene/playback.h"
 #include "pelage/skin/deform.h"
 #include "pelage/util/error.h"
 
@@ -20,9 +21,9 @@ namespace {
 
 // Length of hair h (m): distance from its root to its end (tube: between the first and last ring
 // centres).
-double hairLength(const fur::HairBuffers& b, std::int64_t h, int sides) {
-  const int P = b.pointsPerHair;
-  const int ring = b.style == fur::HairStyle::Tube ? sides : 1;
+double hairLength(const fur::HairBuffers& b, std::int64_t h) {
+  const int P = b.layout.pointsPerHair();
+  const int ring = b.layout.ringSides;
   Eigen::Vector3d first = Eigen::Vector3d::Zero(), last = Eigen::Vector3d::Zero();
   for (int j = 0; j < ring; ++j) {
     first += Eigen::Map<const Eigen::Vector3f>(b.positions.data() + (h * P + j) * 3).cast<double>();
@@ -38,14 +39,13 @@ void summarise(const fur::FurFrame& frame, const fur::FurParams& params) {
     const fur::HairBuffers& b = frame.coats[static_cast<std::size_t>(c)];
     if (b.drawn == 0) continue;
     double lo = 1e30, hi = 0.0, sum = 0.0, drop = 0.0;
-    const int sides = params.coats[static_cast<std::size_t>(c)].tubeSides;
     const Eigen::Map<const Eigen::Vector3f> up(params.up.data());
     for (std::int64_t h = 0; h < b.drawn; ++h) {
-      const double L = hairLength(b, h, sides);
+      const double L = hairLength(b, h);
       lo = std::min(lo, L);
       hi = std::max(hi, L);
       sum += L;
-      const int P = b.pointsPerHair;
+      const int P = b.layout.pointsPerHair();
       const Eigen::Map<const Eigen::Vector3f> root(b.positions.data() + h * P * 3);
       const Eigen::Map<const Eigen::Vector3f> end(b.positions.data() + (h * P + P - 1) * 3);
       drop += static_cast<double>((end - root).dot(up));
@@ -54,8 +54,8 @@ void summarise(const fur::FurFrame& frame, const fur::FurParams& params) {
     std::printf(
         "%s: %lld %s hairs, %d points each; length %.2f to %.2f mm (mean %.2f); ends %.2f mm %s "
         "their roots on average\n",
-        c == 0 ? "overcoat" : "undercoat", static_cast<long long>(b.drawn), fur::styleName(b.style),
-        b.pointsPerHair, lo * 1e3, hi * 1e3, sum / static_cast<double>(b.drawn) * 1e3,
+        c == 0 ? "overcoat" : "undercoat", static_cast<long long>(b.drawn), fur::styleName(b.layout.style),
+        b.layout.pointsPerHair(), lo * 1e3, hi * 1e3, sum / static_cast<double>(b.drawn) * 1e3,
         std::abs(meanRise), meanRise < 0.0 ? "below" : "above");
   }
 }
@@ -100,14 +100,6 @@ fur::FurParams FurArgs::resolve() const {
   return p;
 }
 
-FurScene loadFurScene(const ModelArgs& model, const PoseArgs& pose, const fur::FurParams& params) {
-  FurScene s{model.load(), {}, {}, {}};
-  anatomy::forwardKinematics(s.model.body, pose.resolve(s.model), s.state);
-  skin::deformSkin(s.model.skin, s.state, s.deformed);
-  s.roots = fur::growRoots(s.model.skin, params);
-  return s;
-}
-
 void addHairCommand(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "hair",
@@ -131,46 +123,48 @@ void addHairCommand(CLI::App& app) {
     if (distanceOpt->count() > 0 && !(*distance >= 0.0 && *distance <= 1e4))
       inputError("--distance ", *distance, " is out of range [0, 10000] (metres)");
     const fur::FurParams params = furArgs->resolve();  // before the model: bad options fail fast
-    FurScene scene = loadFurScene(*model, *pose, params);
-    const scene::Model& m = scene.model;
-    const fur::FurRoots& roots = scene.roots;
-    skin::DeformedSkin& deformed = scene.deformed;
+    scene::Model m = model->load();
+    const scene::Fur fur = scene::growFur(m, params, "fur '" + params.name + "'");
+    const fur::FurRoots& roots = fur.roots;
     fur::FurView view;
     if (distanceOpt->count() > 0) {
       view.culling = params.culling.enabled;
       view.viewDistance = static_cast<float>(*distance);
       view.referenceDistance = fur::referenceDistance(m.skin, params.culling);
     }
-    fur::FurWorkspace ws;
-    fur::FurFrame frame;
+    // One frame played by the frame owner: the pose (or, with fur dynamics, the clip's frames from
+    // its start up to --time: scene/playback.h), then its hairs.
+    scene::PlaybackOptions po;
+    po.hairSource = scene::HairSource::Cpu;
+    int shown = 0;
     if (dynamics->enabled()) {
-      // Fur dynamics (issue 7): the clip's frames from its start up to --time, then this frame's
-      // hairs from the damped ends (scene/dynamic_fur.h).
-      const fur::DynamicsParams dyn = dynamics->resolve();
-      const int clip = m.findClip(pose->clip);
-      if (clip < 0)
-        inputError(
-            "--dynamics on needs --clip naming one of the model's clips (see `pelage info`)");
+      if (pose->clip.empty())
+        inputError("--dynamics on needs --clip naming one of the model's clips (see `pelage info`)");
       const scene::DynamicsClock clock = dynamics->clock();
-      const auto last = static_cast<int>(std::lround(pose->time * clock.fps));
-      const scene::Fur furModel{params, roots, 0};
-      scene::FrameState state;
-      fur::FurDynamicsState springs;
-      scene::preRollDynamics(m, furModel, dyn, clip, last, clock, springs, state);
-      scene::evaluateClipFrame(m, clip, last / clock.fps, state);
-      fur::generateDynamicFur(m.skin, roots, params, dyn, state.skin, 1.0 / clock.fps, view,
-                              springs, ws, frame);
+      po.clip = scene::resolveClip(m, pose->clip);
+      po.framesPerSecond = clock.fps;
+      po.preRollFrames = clock.preRollFrames;
+      po.dynamics = true;
+      po.dynamicsParams = dynamics->resolve();
+      shown = static_cast<int>(std::lround(pose->time * clock.fps));
+    } else {
+      po.stillPose = pose->resolve(m);
+    }
+    scene::Playback playback(m, fur, po);
+    playback.poseFrame(shown);
+    playback.evaluateFur(view);
+    const fur::FurFrame& frame = playback.state().fur;
+    if (dynamics->enabled()) {
+      const scene::DynamicsClock clock = dynamics->clock();
       std::printf(
           "dynamic fur: frame %d of clip %s at %g fps (time %.4f s), simulated from frame %d\n",
-          last, m.clips[static_cast<std::size_t>(clip)].name.c_str(), clock.fps, last / clock.fps,
-          scene::preRollStart(last, clock));
-    } else {
-      fur::generateFur(m.skin, roots, params, deformed, view, ws, frame);
+          shown, m.clips[static_cast<std::size_t>(po.clip)].name.c_str(), clock.fps,
+          shown / clock.fps, scene::preRollStart(shown, clock));
     }
     const std::string comment =
         str("model ", m.name, ", fur ", params.name, ", seed ", params.seed, ", ", frame.drawn(),
             " of ", roots.total(), " hairs (culling factor ", frame.cullingFactor, ")");
-    const fur::HairPlyCounts n = fur::writeHairPly(*out, frame, params, comment);
+    const fur::HairPlyCounts n = fur::writeHairPly(*out, frame, comment);
     std::printf("%s: %s on %s (%d triangles, %.4f m^2 furred)\n", out->c_str(), params.name.c_str(),
                 m.name.c_str(), m.skin.numTriangles(), roots.furredArea);
     if (view.culling)

@@ -17,6 +17,7 @@
 #include "pelage/util/parallel.h"
 #include "pelage/viewer/gl_context.h"
 #include "pelage/viewer/render_sequence.h"
+#include "pelage/viewer/video_encoder.h"
 
 namespace pelage::app {
 namespace {
@@ -96,7 +97,7 @@ void runRender(RenderArgs& a) {
   viewer::SequenceOptions o;
   parseSize(a.size, o.width, o.height);
   o.frames = scene::parseFrameRange(a.range.frames);
-  o.framesPerSecond = a.range.fps;
+  o.playback.framesPerSecond = a.range.fps;
   o.samples = a.samples;
   o.outDir = a.out;
   o.resume = a.resume;
@@ -105,14 +106,12 @@ void runRender(RenderArgs& a) {
   o.camera.fovYDegrees = static_cast<float>(a.fov);
   o.camera.track = a.track;
   if (!a.cameraFile.empty())
-    o.camera.path = viewer::loadCameraFile(a.cameraFile);
+    o.camera.path = scene::loadCameraFile(a.cameraFile);
   else
     o.camera.preset = scene::parseCameraPreset(a.camera);
-  if (a.hairSource != "gpu" && a.hairSource != "cpu")
-    inputError("--hair-source '", a.hairSource, "' (accepted: gpu, cpu)");
-  o.hairSource = a.hairSource == "cpu" ? scene::HairSource::Cpu : scene::HairSource::Gpu;
-  o.shading = scene::parseHairShading(a.shading);
-  o.hairWidth = a.ribbons ? scene::HairWidth::Ribbons : scene::HairWidth::Lines;
+  o.playback.hairSource = scene::parseHairSource(a.hairSource);
+  o.look.hairShading = scene::parseHairShading(a.shading);
+  o.look.hairWidth = a.ribbons ? scene::HairWidth::Ribbons : scene::HairWidth::Lines;
   o.shadows = a.shadows;
   viewer::validateSequenceOptions(o);  // before the model is built; dynamics once the clip is known
   const fur::DynamicsParams dynamics = a.dynamics.resolve();
@@ -124,23 +123,23 @@ void runRender(RenderArgs& a) {
   fur::FurParams params = a.furSet.apply(a.fur.resolve());
   if (a.noCulling) params.culling.enabled = false;
   scene::Model model = a.model.load();
-  o.clip = resolveClip(model, a.range.clip);
-  o.dynamics = a.dynamics.enabled();
-  o.dynamicsParams = dynamics;
-  o.preRollFrames = a.dynamics.preRoll;
+  o.playback.clip = scene::resolveClip(model, a.range.clip);
+  o.playback.dynamics = a.dynamics.enabled();
+  o.playback.dynamicsParams = dynamics;
+  o.playback.preRollFrames = a.dynamics.preRoll;
   viewer::validateSequenceOptions(o);
   const scene::Fur fur = scene::growFur(model, params, "fur '" + params.name + "'");
   auto context = viewer::createHeadlessContext();
   const viewer::ContextInfo& info = context->info();
+  const int clip = o.playback.clip;
   std::printf(
-      "render: %s (%d triangles), %s, fur %s: %lld hairs%s; frames %d..%d at %g fps, %dx%d -> "
-      "%s/\n",
+      "render: %s (%d triangles), %s, fur %s: %lld hairs%s; frames %d..%d at %g fps, %dx%d -> %s/\n",
       model.name.c_str(), model.skin.numTriangles(),
-      o.clip >= 0 ? ("clip " + model.clips[static_cast<std::size_t>(o.clip)].name).c_str()
-                  : "rest pose",
+      clip >= 0 ? ("clip " + model.clips[static_cast<std::size_t>(clip)].name).c_str()
+                : "rest pose",
       params.name.c_str(), static_cast<long long>(fur.roots.total()),
-      o.dynamics ? " (dynamic, CPU)" : "", o.frames.first, o.frames.last, o.framesPerSecond,
-      o.width, o.height, o.outDir.c_str());
+      o.playback.dynamics ? " (dynamic, CPU)" : "", o.frames.first, o.frames.last,
+      o.playback.framesPerSecond, o.width, o.height, o.outDir.c_str());
   std::printf("render: %s, %s (%s); %d worker threads\n", info.renderer.c_str(),
               info.version.c_str(), info.backend.c_str(), threadCount());
   std::fflush(stdout);

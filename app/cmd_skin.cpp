@@ -17,7 +17,7 @@ void addSkinCommand(CLI::App& app) {
   poseArgs->add(*cmd);
   cmd->add_option("--out", *out, "Output file (.obj or .ply)")->required();
   cmd->callback([args, poseArgs, out] {
-    const scene::Model m = args->load();
+    scene::Model m = args->load();
     const anatomy::Pose pose = poseArgs->resolve(m);
     anatomy::BodyState state;
     anatomy::forwardKinematics(m.body, pose, state);

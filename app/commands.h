@@ -36,7 +36,7 @@ struct PoseArgs {
   double time = 0.0;
   CLI::Option* timeOpt = nullptr;
   void add(CLI::App& cmd);
-  anatomy::Pose resolve(const scene::Model& model) const;
+  anatomy::Pose resolve(scene::Model& model) const;
 };
 
 // Options choosing the fur: a preset (built-in name or file) and overrides (cmd_hair.cpp).
@@ -57,15 +57,6 @@ struct FurArgs {
   void add(CLI::App& cmd);
   fur::FurParams resolve() const;  // validated; InputError naming the option on bad values
 };
-
-// A model posed for one frame with its fur roots grown (`pelage hair`, `pelage bench`).
-struct FurScene {
-  scene::Model model;
-  anatomy::BodyState state;
-  skin::DeformedSkin deformed;
-  fur::FurRoots roots;
-};
-FurScene loadFurScene(const ModelArgs& model, const PoseArgs& pose, const fur::FurParams& params);
 
 void addInfoCommand(CLI::App& app);
 void addSkinCommand(CLI::App& app);
@@ -108,10 +99,6 @@ struct ClipFramesArgs {
   double fps = 30.0;
   void add(CLI::App& cmd);
 };
-
-// The clip of `model` named `clip` (or a clip .json file, appended to model.clips); "" = the
-// model's first clip, or -1 (the rest pose) when it has none. InputError listing the clips.
-int resolveClip(scene::Model& model, const std::string& clip);
 
 // `pelage render` (only with PELAGE_BUILD_VIEWER) and `pelage export` (cmd_render.cpp,
 // cmd_export.cpp).

@@ -50,30 +50,18 @@ void PoseArgs::add(CLI::App& cmd) {
                            "Time in the clip, seconds [0, 1000000] (default 0; loops wrap)");
 }
 
-anatomy::Pose PoseArgs::resolve(const scene::Model& model) const {
+anatomy::Pose PoseArgs::resolve(scene::Model& model) const {
   if (clip.empty()) {
     if (timeOpt && timeOpt->count() > 0) inputError("--time needs --clip");
-    return posePath.empty() ? anatomy::restPose(model.body)
-                            : anatomy::loadPose(model.body, posePath);
+    return posePath.empty() ? anatomy::restPose(model.body) : anatomy::loadPose(model.body, posePath);
   }
   if (!posePath.empty()) inputError("--pose and --clip cannot be used together");
   if (!(time >= 0.0 && time <= 1e6))
     inputError("--time ", time, " is out of range [0, 1000000] seconds");
   anatomy::Pose pose;
-  const int c = model.findClip(clip);
-  if (c >= 0) {
-    animation::sampleClip(model.clips[static_cast<std::size_t>(c)], model.body, time, pose);
-    return pose;
-  }
-  if (std::filesystem::path(clip).extension() == ".json") {
-    animation::sampleClip(animation::loadClip(model.body, clip), model.body, time, pose);
-    return pose;
-  }
-  std::string names;
-  for (const animation::Clip& k : model.clips) names += (names.empty() ? "" : ", ") + k.name;
-  inputError("--clip: model '", model.name, "' has no clip '", clip, "' (",
-             names.empty() ? std::string("it has no clips") : "its clips: " + names,
-             "; or give a clip .json file)");
+  const int c = scene::resolveClip(model, clip);
+  animation::sampleClip(model.clips[static_cast<std::size_t>(c)], model.body, time, pose);
+  return pose;
 }
 
 }  // namespace pelage::app

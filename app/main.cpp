@@ -5,6 +5,7 @@
 #include <new>
 
 #include "commands.h"
+#include "options.h"
 #include "pelage/util/error.h"
 #include "pelage/util/parallel.h"
 
@@ -31,7 +32,7 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
   } catch (const pelage::InputError& e) {
-    std::fprintf(stderr, "pelage: error: %s\n", e.what());
+    std::fprintf(stderr, "pelage: error: %s\n", pelage::app::describe(e).c_str());
     return 2;
   } catch (const pelage::InternalError& e) {
     std::fprintf(stderr, "pelage: %s\n", e.what());

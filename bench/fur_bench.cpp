@@ -68,8 +68,8 @@ void BM_FurFrame(benchmark::State& st) {
   st.counters["threads"] = threads;
   st.counters["hairs/s"] = benchmark::Counter(n, benchmark::Counter::kIsIterationInvariantRate);
   st.counters["MB/frame"] =
-      static_cast<double>(frame.coats[0].drawn * frame.coats[0].pointsPerHair +
-                          frame.coats[1].drawn * frame.coats[1].pointsPerHair) *
+      static_cast<double>(frame.coats[0].drawn * frame.coats[0].layout.pointsPerHair() +
+                          frame.coats[1].drawn * frame.coats[1].layout.pointsPerHair()) *
       24.0 / 1e6;
   st.SetLabel(std::string(fur::styleName(style)) + " " +
               fur::kernelPathName(fur::activeKernelPath()));

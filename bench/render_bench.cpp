@@ -46,7 +46,7 @@ viewer::GlContext& context() {
 
 viewer::SequenceOptions options() {
   viewer::SequenceOptions o;
-  o.clip = monkey().findClip("walk");
+  o.playback.clip = monkey().findClip("walk");
   o.frames = {0, 1000};
   o.width = 1920;
   o.height = 1080;
@@ -92,7 +92,7 @@ void BM_ExportPlyFrame(benchmark::State& st) {
   for (auto _ : st) {
     scene::evaluateClipFrame(m, clip, (frame++ % 60) / 30.0, state);
     scene::evaluateFur(m, fur, state.skinBounds.center(), true, state);
-    fur::writeHairPly(path, state.fur, fur.params);
+    fur::writeHairPly(path, state.fur);
   }
   std::remove(path.c_str());
   st.counters["hairs/s"] = benchmark::Counter(static_cast<double>(fur.roots.total()),

@@ -39,26 +39,6 @@ void checkCoat(const std::string& source, const std::string& name, const CoatPar
 
 }  // namespace
 
-const char* styleName(HairStyle style) {
-  switch (style) {
-    case HairStyle::Line:
-      return "line";
-    case HairStyle::Polyline:
-      return "polyline";
-    case HairStyle::Curve:
-      return "curve";
-    case HairStyle::Tube:
-      return "tube";
-  }
-  return "?";
-}
-
-HairStyle parseStyle(std::string_view name, const std::string& where) {
-  for (HairStyle s : {HairStyle::Line, HairStyle::Polyline, HairStyle::Curve, HairStyle::Tube})
-    if (name == styleName(s)) return s;
-  inputError(where, ": unknown hair style '", name, "' (accepted: line, polyline, curve, tube)");
-}
-
 void validateFurParams(FurParams& p, const std::string& source) {
   checkRange(source, "hairs", p.hairs, 0.0, std::numeric_limits<double>::max());
   checkRange(source, "density", p.densityPerM2, 0.0, 1e10);

@@ -50,25 +50,11 @@ void FloatBuffer::resize(std::size_t n) {
   size_ = n;
 }
 
-int pointsPerHair(const CoatParams& coat) {
-  switch (coat.style) {
-    case HairStyle::Line:
-      return 2;
-    case HairStyle::Polyline:
-      return kPolylinePoints;
-    case HairStyle::Curve:
-      return coat.curvePoints;
-    case HairStyle::Tube:
-      return coat.curvePoints * coat.tubeSides;
-  }
-  return 0;
-}
-
 CoatShape makeCoatShape(const FurParams& params, int coat) {
   const CoatParams& cp = params.coats[static_cast<std::size_t>(coat)];
   CoatShape c;
   c.style = cp.style;
-  c.points = pointsPerHair(cp);
+  c.points = hairLayout(cp).pointsPerHair();
   c.lengthMul = params.lengthScale * cp.lengthFactor;
   c.segmentWeight = cp.segmentDirectionWeight;
   c.endRandomize = cp.hairEndRandomize;
@@ -163,10 +149,9 @@ void prepareFurFrame(const FurRoots& roots, const FurParams& params, FurFrame& f
   for (int c = 0; c < kCoatCount; ++c) {
     HairBuffers& hb = frame.coats[static_cast<std::size_t>(c)];
     const std::int64_t n = roots.coats[static_cast<std::size_t>(c)].size();
-    hb.style = params.coats[static_cast<std::size_t>(c)].style;
-    hb.pointsPerHair = pointsPerHair(params.coats[static_cast<std::size_t>(c)]);
+    hb.layout = hairLayout(params.coats[static_cast<std::size_t>(c)]);
     const std::size_t floats =
-        static_cast<std::size_t>(n) * static_cast<std::size_t>(hb.pointsPerHair) * 3;
+        static_cast<std::size_t>(n) * static_cast<std::size_t>(hb.layout.pointsPerHair()) * 3;
     hb.positions.resize(floats);
     hb.normals.resize(floats);
     if (hb.hairIds.size() != static_cast<std::size_t>(n))
@@ -210,13 +195,13 @@ namespace {
 void packVertices(const skin::SkinMesh& skin, const skin::DeformedSkin& d,
                   std::vector<float>& out) {
   const std::int64_t nV = skin.numVertices();
-  if (out.size() != static_cast<std::size_t>(nV * detail::kVertexRecordFloats))
-    out.resize(static_cast<std::size_t>(nV * detail::kVertexRecordFloats));
+  if (out.size() != static_cast<std::size_t>(nV * kVertexRecordFloats))
+    out.resize(static_cast<std::size_t>(nV * kVertexRecordFloats));
   const float* len = skin.furLengths();
   float* o = out.data();
   parallelForChunks(nV, 8192, [&](std::int64_t b, std::int64_t e) {
     for (std::int64_t v = b; v < e; ++v) {
-      float* r = o + v * detail::kVertexRecordFloats;
+      float* r = o + v * kVertexRecordFloats;
       const auto sv = static_cast<std::size_t>(v);
       r[0] = d.positions[sv].x();
       r[1] = d.positions[sv].y();
@@ -266,7 +251,7 @@ void detail::generateFurWithDynamics(
   for (int c = 0; c < kCoatCount; ++c) {
     const HairBuffers& hb = frame.coats[static_cast<std::size_t>(c)];
     const auto& cp = params.coats[static_cast<std::size_t>(c)];
-    sized = sized && hb.style == cp.style && hb.pointsPerHair == pointsPerHair(cp) &&
+    sized = sized && hb.layout == hairLayout(cp) &&
             hb.hairIds.size() ==
                 static_cast<std::size_t>(roots.coats[static_cast<std::size_t>(c)].size());
   }
@@ -337,37 +322,36 @@ struct VectorSink {
 };
 }  // namespace
 
+HairInput<float> rootInput(const skin::SkinMesh& skin, const FurRoots& roots,
+                           const skin::DeformedSkin& deformed, int coat, std::int64_t rootIndex) {
+  const CoatRoots& cr = roots.coats[static_cast<std::size_t>(coat)];
+  PELAGE_CHECK(rootIndex >= 0 && rootIndex < cr.size(), "root ", rootIndex, " of ", cr.size());
+  const auto r = static_cast<std::size_t>(rootIndex);
+  const std::int32_t* tv = skin.triangles.data() + 3 * static_cast<std::int64_t>(cr.triangle[r]);
+  const float* len = skin.furLengths();
+  float records[3][kVertexRecordFloats];
+  for (int k = 0; k < 3; ++k) {
+    const auto v = static_cast<std::size_t>(tv[k]);
+    const Eigen::Vector3f& p = deformed.positions[v];
+    const Eigen::Vector3f& n = deformed.normals[v];
+    const Eigen::Vector3f& s = deformed.directions[v];
+    float* rec = records[k];
+    rec[0] = p.x(), rec[1] = p.y(), rec[2] = p.z(), rec[3] = len[v];
+    rec[4] = n.x(), rec[5] = n.y(), rec[6] = n.z(), rec[7] = 0.0f;
+    rec[8] = s.x(), rec[9] = s.y(), rec[10] = s.z(), rec[11] = 0.0f;
+  }
+  return interpolateRoot(roots.barycentric.data() + 4 * cr.tableIndex[r], records[0], records[1],
+                         records[2], cr.jitter.data() + 4 * r);
+}
+
 void referenceHair(const skin::SkinMesh& skin, const FurRoots& roots, const FurParams& params,
                    const skin::DeformedSkin& deformed, int coat, std::int64_t rootIndex,
                    std::vector<float>& positions, std::vector<float>& normals) {
   const auto ci = static_cast<std::size_t>(coat);
   const CoatRoots& cr = roots.coats[ci];
-  PELAGE_CHECK(rootIndex >= 0 && rootIndex < cr.size(), "root ", rootIndex, " of ", cr.size());
   const CoatShape shape = makeCoatShape(params, coat);
+  const HairInput<float> in = rootInput(skin, roots, deformed, coat, rootIndex);
   const auto r = static_cast<std::size_t>(rootIndex);
-  const std::int32_t t = cr.triangle[r];
-  const float* b = roots.barycentric.data() + 4 * cr.tableIndex[r];
-  HairInput<float> in{};
-  auto mix = [&](auto get) {
-    const std::int32_t* tv = skin.triangles.data() + 3 * static_cast<std::int64_t>(t);
-    return barycentricMix(b[0], b[1], b[2], get(tv[0]), get(tv[1]), get(tv[2]));
-  };
-  const float* len = skin.furLengths();
-  for (int k = 0; k < 3; ++k) {
-    const float rk =
-        mix([&](std::int32_t v) { return deformed.positions[static_cast<std::size_t>(v)][k]; });
-    const float nk =
-        mix([&](std::int32_t v) { return deformed.normals[static_cast<std::size_t>(v)][k]; });
-    const float sk =
-        mix([&](std::int32_t v) { return deformed.directions[static_cast<std::size_t>(v)][k]; });
-    (k == 0 ? in.root.x : k == 1 ? in.root.y : in.root.z) = rk;
-    (k == 0 ? in.normalSum.x : k == 1 ? in.normalSum.y : in.normalSum.z) = nk;
-    (k == 0 ? in.directionSum.x : k == 1 ? in.directionSum.y : in.directionSum.z) = sk;
-  }
-  in.length = mix([&](std::int32_t v) { return len[v]; });
-  const float* j = cr.jitter.data() + 4 * r;
-  in.xi = {j[0], j[1], j[2]};
-  in.phase = j[3];
   HairTwist<float> twist{};
   if (shape.twist) {
     std::vector<float> table;
@@ -381,19 +365,6 @@ void referenceHair(const skin::SkinMesh& skin, const FurRoots& roots, const FurP
   normals.assign(static_cast<std::size_t>(3 * shape.points), 0.0f);
   VectorSink sink{positions, normals};
   buildHair(shape, in, twist, sink);
-}
-
-std::vector<std::int32_t> tubeTriangles(int curvePoints, int tubeSides) {
-  std::vector<std::int32_t> tri;
-  const int K = curvePoints, M = tubeSides;
-  tri.reserve(static_cast<std::size_t>((K - 1) * M * 6));
-  for (int k = 0; k + 1 < K; ++k)
-    for (int j = 0; j < M; ++j) {
-      const int a = k * M + j, b = k * M + (j + 1) % M;
-      const int c = (k + 1) * M + j, d = (k + 1) * M + (j + 1) % M;
-      tri.insert(tri.end(), {a, c, d, a, d, b});
-    }
-  return tri;
 }
 
 }  // namespace pelage::fur

@@ -38,34 +38,30 @@ class Chunked {
 
 }  // namespace
 
-HairPlyCounts hairPlyCounts(const FurFrame& frame, const FurParams& params) {
+HairPlyCounts hairPlyCounts(const FurFrame& frame) {
   HairPlyCounts n;
-  for (int c = 0; c < kCoatCount; ++c) {
-    const HairBuffers& hb = frame.coats[static_cast<std::size_t>(c)];
-    const std::int64_t P = hb.pointsPerHair;
-    n.vertices += hb.drawn * P;
-    if (hb.style == HairStyle::Tube) {
-      const CoatParams& cp = params.coats[static_cast<std::size_t>(c)];
-      n.faces += hb.drawn * (cp.curvePoints - 1) * cp.tubeSides * 2;
-    } else {
-      n.edges += hb.drawn * (P - 1);
-    }
+  for (const HairBuffers& hb : frame.coats) {
+    n.vertices += hb.drawn * hb.layout.pointsPerHair();
+    n.edges += hb.drawn * hb.layout.segmentsPerHair();
+    n.faces += hb.drawn * hb.layout.trianglesPerHair();
   }
   return n;
 }
 
-HairPlyCounts writeHairPly(const std::string& path, const FurFrame& frame, const FurParams& params,
+HairPlyCounts writeHairPly(const std::string& path, const FurFrame& frame,
                            const std::string& comment) {
   static_assert(std::numeric_limits<float>::is_iec559 && sizeof(float) == 4);
   static_assert(std::endian::native == std::endian::little,
                 "PLY writer assumes a little-endian host");
-  const HairPlyCounts n = hairPlyCounts(frame, params);
+  const HairPlyCounts n = hairPlyCounts(frame);
   if (n.vertices > std::numeric_limits<std::int32_t>::max())
     inputError(path, ": ", n.vertices,
                " hair points exceed the PLY int index range (at most 2147483647)");
-  bool anyTube = false, anyStrand = false;
+  // Edges join the points of strand hairs, faces are the triangles of ring (tube) hairs; a frame
+  // with no hairs still has an edge element.
+  bool anyRings = false, anyStrand = false;
   for (const HairBuffers& hb : frame.coats)
-    if (hb.drawn > 0) (hb.style == HairStyle::Tube ? anyTube : anyStrand) = true;
+    if (hb.drawn > 0) (hb.layout.topology == HairTopology::Rings ? anyRings : anyStrand) = true;
   std::ostringstream h;
   h << "ply\nformat binary_little_endian 1.0\ncomment pelage hairs (Van Gelder & Wilhelms 1997 "
        "fur)\n";
@@ -74,9 +70,9 @@ HairPlyCounts writeHairPly(const std::string& path, const FurFrame& frame, const
   h << "element vertex " << n.vertices << "\nproperty float x\nproperty float y\nproperty float z\n"
     << "property float nx\nproperty float ny\nproperty float nz\nproperty int hair\nproperty uchar "
        "coat\n";
-  if (anyStrand || !anyTube)
+  if (anyStrand || !anyRings)
     h << "element edge " << n.edges << "\nproperty int vertex1\nproperty int vertex2\n";
-  if (anyTube) h << "element face " << n.faces << "\nproperty list uchar int vertex_indices\n";
+  if (anyRings) h << "element face " << n.faces << "\nproperty list uchar int vertex_indices\n";
   h << "end_header\n";
 
   AtomicFileWriter w(path);
@@ -84,7 +80,7 @@ HairPlyCounts writeHairPly(const std::string& path, const FurFrame& frame, const
   Chunked out(w);
   for (int c = 0; c < kCoatCount; ++c) {
     const HairBuffers& hb = frame.coats[static_cast<std::size_t>(c)];
-    const std::int64_t P = hb.pointsPerHair;
+    const std::int64_t P = hb.layout.pointsPerHair();
     const auto coat = static_cast<std::uint8_t>(c);
     for (std::int64_t i = 0; i < hb.drawn; ++i)
       for (std::int64_t k = 0; k < P; ++k) {
@@ -98,8 +94,8 @@ HairPlyCounts writeHairPly(const std::string& path, const FurFrame& frame, const
   }
   std::int32_t base = 0;
   for (const HairBuffers& hb : frame.coats) {  // edges
-    const auto P = static_cast<std::int32_t>(hb.pointsPerHair);
-    if (hb.style != HairStyle::Tube)
+    const auto P = static_cast<std::int32_t>(hb.layout.pointsPerHair());
+    if (hb.layout.segmentsPerHair() > 0)
       for (std::int64_t i = 0; i < hb.drawn; ++i)
         for (std::int32_t k = 0; k + 1 < P; ++k) {
           const std::int32_t v = base + static_cast<std::int32_t>(i) * P + k;
@@ -109,19 +105,15 @@ HairPlyCounts writeHairPly(const std::string& path, const FurFrame& frame, const
     base += static_cast<std::int32_t>(hb.drawn * P);
   }
   base = 0;
-  for (int c = 0; c < kCoatCount; ++c) {  // faces
-    const HairBuffers& hb = frame.coats[static_cast<std::size_t>(c)];
-    const auto P = static_cast<std::int32_t>(hb.pointsPerHair);
-    if (hb.style == HairStyle::Tube) {
-      const CoatParams& cp = params.coats[static_cast<std::size_t>(c)];
-      const std::vector<std::int32_t> pattern = tubeTriangles(cp.curvePoints, cp.tubeSides);
-      for (std::int64_t i = 0; i < hb.drawn; ++i)
-        for (std::size_t t = 0; t < pattern.size(); t += 3) {
-          out.put(std::uint8_t{3});
-          for (std::size_t k = 0; k < 3; ++k)
-            out.put(static_cast<std::int32_t>(base + i * P + pattern[t + k]));
-        }
-    }
+  for (const HairBuffers& hb : frame.coats) {  // faces
+    const auto P = static_cast<std::int32_t>(hb.layout.pointsPerHair());
+    const std::vector<std::int32_t> pattern = hairTriangles(hb.layout);
+    for (std::int64_t i = 0; i < hb.drawn && !pattern.empty(); ++i)
+      for (std::size_t t = 0; t < pattern.size(); t += 3) {
+        out.put(std::uint8_t{3});
+        for (std::size_t k = 0; k < 3; ++k)
+          out.put(static_cast<std::int32_t>(base + i * P + pattern[t + k]));
+      }
     base += static_cast<std::int32_t>(hb.drawn * P);
   }
   out.flush();

@@ -10,8 +10,6 @@
 
 namespace pelage::fur::detail {
 
-// Floats per packed vertex record: position xyz, fur length; normal xyz, 0; direction xyz, 0.
-inline constexpr int kVertexRecordFloats = 12;
 // Hairs per SIMD block of the emission phase (every build) and of the generic build's other phases.
 inline constexpr int kLanes = 8;
 

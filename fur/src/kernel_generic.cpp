@@ -20,25 +20,23 @@ struct GenericBackend {
       const std::int32_t r = roots[l];
       const float* v[3];
       triangleRecords(a, tris[l], v);
-      const float* b = a.barycentric + 4 * static_cast<std::int64_t>(a.tableIndex[r]);
-      float mixed[12];
-      for (int k = 0; k < 12; ++k)
-        mixed[k] = barycentricMix(b[0], b[1], b[2], v[0][k], v[1][k], v[2][k]);
-      in.root.x.v[l] = mixed[0];
-      in.root.y.v[l] = mixed[1];
-      in.root.z.v[l] = mixed[2];
-      in.length.v[l] = mixed[3];
-      in.normalSum.x.v[l] = mixed[4];
-      in.normalSum.y.v[l] = mixed[5];
-      in.normalSum.z.v[l] = mixed[6];
-      in.directionSum.x.v[l] = mixed[8];
-      in.directionSum.y.v[l] = mixed[9];
-      in.directionSum.z.v[l] = mixed[10];
-      const float* j = a.jitter + 4 * static_cast<std::int64_t>(r);
-      in.xi.x.v[l] = j[0];
-      in.xi.y.v[l] = j[1];
-      in.xi.z.v[l] = j[2];
-      in.phase.v[l] = j[3];
+      const HairInput<float> h =
+          interpolateRoot(a.barycentric + 4 * static_cast<std::int64_t>(a.tableIndex[r]), v[0],
+                          v[1], v[2], a.jitter + 4 * static_cast<std::int64_t>(r));
+      in.root.x.v[l] = h.root.x;
+      in.root.y.v[l] = h.root.y;
+      in.root.z.v[l] = h.root.z;
+      in.length.v[l] = h.length;
+      in.normalSum.x.v[l] = h.normalSum.x;
+      in.normalSum.y.v[l] = h.normalSum.y;
+      in.normalSum.z.v[l] = h.normalSum.z;
+      in.directionSum.x.v[l] = h.directionSum.x;
+      in.directionSum.y.v[l] = h.directionSum.y;
+      in.directionSum.z.v[l] = h.directionSum.z;
+      in.xi.x.v[l] = h.xi.x;
+      in.xi.y.v[l] = h.xi.y;
+      in.xi.z.v[l] = h.xi.z;
+      in.phase.v[l] = h.phase;
     }
   }
 

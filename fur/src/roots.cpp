@@ -1,11 +1,13 @@
 #include "pelage/fur/roots.h"
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 
-#include "pelage/fur/generate.h"
+#include "pelage/fur/hair_layout.h"
 #include "pelage/util/error.h"
 #include "pelage/util/parallel.h"
 #include "pelage/util/random.h"
@@ -28,12 +30,11 @@ std::string humanBytes(double bytes) {
   return buf;
 }
 
-// Bytes one root of a coat keeps: triangle, table index, jitter; plus its drawn slot: P points of
-// position and normal, and the hair id.
+// Bytes one root of a coat keeps: triangle, table index, jitter; plus its drawn slot in the frame
+// buffers (the style's layout).
 double bytesPerHair(const CoatParams& coat) {
   const double rootBytes = sizeof(std::int32_t) + sizeof(std::uint16_t) + 4 * sizeof(float);
-  return rootBytes + static_cast<double>(pointsPerHair(coat)) * 6 * sizeof(float) +
-         sizeof(std::int32_t);
+  return rootBytes + hairLayout(coat).frameBytesPerHair();
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 #include "pelage/fur/hair_math.h"
 #include "pelage/util/error.h"
 #include "pelage/util/parallel.h"
+#include "pelage/scene/playback.h"
 
 namespace pelage::scene {
 namespace {
@@ -29,8 +30,6 @@ struct HairSite {
   std::int32_t coat = 0;
   std::int32_t v[3] = {0, 0, 0};
   float b[3] = {0.0f, 0.0f, 0.0f};
-  float xi[3] = {0.0f, 0.0f, 0.0f};
-  float phase = 0.0f;
   std::int32_t root = 0;   // index in the coat
   std::int32_t group = 0;  // index into the analysis' groups
 };
@@ -99,11 +98,6 @@ void makeSites(const Model& model, const Fur& fur, AnalysisGroups groups,
         h.b[k] = b[k];
         if (b[k] > b[nearest]) nearest = k;
       }
-      const float* j = cr.jitter.data() + 4 * ru;
-      h.xi[0] = j[0];
-      h.xi[1] = j[1];
-      h.xi[2] = j[2];
-      h.phase = j[3];
       const std::int32_t v = h.v[nearest];
       h.group = groups == AnalysisGroups::Region ? regions[v] : bindings[v].segment[0];
       h.group = std::clamp<std::int32_t>(h.group, 0, static_cast<std::int32_t>(groupCount) - 1);
@@ -138,14 +132,14 @@ struct Run {
   std::vector<float> previousEnds;    // sites x 6: quasi-static and dynamic ending points (m)
   std::vector<float> stopDirections;  // sites x 3: unit E_dyn - E_qs at the stop (0 if none)
   std::vector<std::vector<double>> partial;
-  fur::FurDynamicsState state;
-  FrameState frame;
+  const Playback& playback;  // the frame owner: the posed skin and the dynamic springs
   int orientationSegment = 0;
   bool first = true;
   double pitch = 0.0, roll = 0.0;
 
-  Run(const Model& m, const Fur& f, const AnalysisOptions& o, std::vector<std::string>& names)
-      : model(m), fur(f), options(o) {
+  Run(const Model& m, const Fur& f, const AnalysisOptions& o, std::vector<std::string>& names,
+      const Playback& p)
+      : model(m), fur(f), options(o), playback(p) {
     makeSites(model, fur, options.groups, sites, names);
     // Segment 0 (the root) when hairs are bound to it, else the segment carrying the most hairs
     // (a glTF armature's root node often carries no skin).
@@ -194,6 +188,8 @@ struct Run {
     out.seconds = frameNumber / options.clock.fps;
     out.held = held;
     // Body orientation: the orientation segment's rotation relative to its bind pose.
+    const FrameState& frame = playback.state();
+    const fur::FurDynamicsState& state = playback.dynamicsState();
     const auto seg = static_cast<std::size_t>(orientationSegment);
     const Eigen::Matrix3f rel =
         frame.body.world[seg].linear() * model.body.inverseBind[seg].linear();
@@ -208,7 +204,6 @@ struct Run {
     out.rollDeg = roll;
     out.tiltDeg = angleDeg(up.dot(U));
 
-    const float* lengths = model.skin.furLengths();
     const skin::DeformedSkin& d = frame.skin;
     const bool dynamic = options.dynamics;
     const bool hasPrevious = !first;
@@ -223,27 +218,9 @@ struct Run {
           for (std::int64_t i = b; i < e; ++i) {
             const HairSite& h = sites[static_cast<std::size_t>(i)];
             const fur::CoatShape& shape = shapes[static_cast<std::size_t>(h.coat)];
-            // Sec. 3.2: the hair's inputs interpolated at its root, then sec. 3.4-3.5
-            // (hair_math.h).
-            fur::HairInput<float> in{};
-            auto mix = [&](auto get) {
-              return fur::barycentricMix(h.b[0], h.b[1], h.b[2], get(h.v[0]), get(h.v[1]),
-                                         get(h.v[2]));
-            };
-            in.root = {mix([&](int v) { return d.positions[static_cast<std::size_t>(v)].x(); }),
-                       mix([&](int v) { return d.positions[static_cast<std::size_t>(v)].y(); }),
-                       mix([&](int v) { return d.positions[static_cast<std::size_t>(v)].z(); })};
-            in.normalSum = {mix([&](int v) { return d.normals[static_cast<std::size_t>(v)].x(); }),
-                            mix([&](int v) { return d.normals[static_cast<std::size_t>(v)].y(); }),
-                            mix([&](int v) { return d.normals[static_cast<std::size_t>(v)].z(); })};
-            in.directionSum = {
-                mix([&](int v) { return d.directions[static_cast<std::size_t>(v)].x(); }),
-                mix([&](int v) { return d.directions[static_cast<std::size_t>(v)].y(); }),
-                mix([&](int v) { return d.directions[static_cast<std::size_t>(v)].z(); })};
-            in.length = mix([&](int v) { return lengths[v]; });
-            in.xi = {h.xi[0], h.xi[1], h.xi[2]};
-            in.phase = h.phase;
-            fur::HairFrame<float> f;
+            // Sec. 3.2: the hair's inputs interpolated at its root, then sec. 3.4-3.5 (hair_math.h).
+        const fur::HairInput<float> in = fur::rootInput(model.skin, fur.roots, d, h.coat, h.root);
+        fur::HairFrame<float> f;
             fur::hairFrame(shape, in, f);
             if (!(f.length > 0.0f)) continue;
             const Eigen::Vector3f R(f.root.x, f.root.y, f.root.z);
@@ -360,12 +337,12 @@ SettlingAnalysis settle(const AnalysisResult& r, const AnalysisOptions& o, doubl
 void checkOptions(const Model& model, const AnalysisOptions& o) {
   PELAGE_CHECK(o.clip >= 0 && o.clip < static_cast<int>(model.clips.size()), "clip ", o.clip);
   if (!(o.clock.fps >= 1.0 && o.clock.fps <= 1000.0))
-    inputError("--fps ", o.clock.fps, " is out of range [1, 1000]");
+    fieldError("fps", o.clock.fps, " is out of range [1, 1000]");
   if (o.firstFrame < 0 || o.lastFrame < o.firstFrame || o.lastFrame > 10000000)
-    inputError("--frames ", o.firstFrame, ":", o.lastFrame,
+    fieldError("frames", o.firstFrame, ":", o.lastFrame,
                " is not a range A:B with 0 <= A <= B <= 10000000");
   if (!(o.holdSeconds >= 0.0 && o.holdSeconds <= 1000.0))
-    inputError("--hold ", o.holdSeconds, " is out of range [0, 1000] seconds");
+    fieldError("hold", o.holdSeconds, " is out of range [0, 1000] seconds");
   if (!(o.settleTolerance > 0.0 && o.settleTolerance < 1.0))
     inputError("settle tolerance ", o.settleTolerance, " is out of range (0, 1)");
   if (o.dynamics) fur::validateDynamicsParams(o.dynamicsParams, "dynamics");
@@ -401,12 +378,12 @@ void appendEndRow(std::string& row, const EndStats& e) {
   for (const DroopStats& g : e.groups) row += "," + number(g.droopStdDeg);
 }
 
-double parseNumber(const std::string& text, const std::string& option, const std::string& spec) {
+double parseNumber(const std::string& text, const std::string& field, const std::string& spec) {
   double v = 0.0;
   const char* end = text.data() + text.size();
   const auto [ptr, ec] = std::from_chars(text.data(), end, v);
   if (text.empty() || ec != std::errc() || ptr != end || !std::isfinite(v))
-    inputError(option, " '", spec, "': '", text,
+    fieldError(field, "'", spec, "': '", text,
                "' is not a number (expected NAME=A:B:N, e.g. stiffness=0.2:1.0:5)");
   return v;
 }
@@ -419,27 +396,26 @@ AnalysisResult analyzeClip(const Model& model, const Fur& fur, const AnalysisOpt
   result.clipName = model.clips[static_cast<std::size_t>(options.clip)].name;
   result.fps = options.clock.fps;
   result.dynamics = options.dynamics;
-  Run run(model, fur, options, result.groupNames);
+  PlaybackOptions po;
+  po.clip = options.clip;
+  po.framesPerSecond = options.clock.fps;
+  po.preRollFrames = options.clock.preRollFrames;
+  po.dynamics = options.dynamics;
+  po.dynamicsParams = options.dynamicsParams;
+  po.hairSource = HairSource::Cpu;
+  Playback playback(model, fur, po);
+  Run run(model, fur, options, result.groupNames, playback);
   result.orientationSegment =
       model.body.segments[static_cast<std::size_t>(run.orientationSegment)].name;
-  if (options.dynamics)
-    preRollDynamics(model, fur, options.dynamicsParams, options.clip, options.firstFrame,
-                    options.clock, run.state, run.frame);
-  const Eigen::Vector3f camera = Eigen::Vector3f::Zero();
-  for (int f = options.firstFrame; f <= options.lastFrame; ++f) {
-    evaluateClipFrame(model, options.clip, f / options.clock.fps, run.frame);
-    if (options.dynamics)
-      stepClipDynamics(model, fur, options.dynamicsParams, options.clock, camera, false, run.state,
-                       run.frame);
-    const auto holdFrames = static_cast<int>(std::lround(options.holdSeconds * options.clock.fps));
-    result.frames.push_back(
-        run.measure(f, false, f == options.lastFrame && holdFrames > 0 ? 1 : 0));
-  }
   const auto holdFrames = static_cast<int>(std::lround(options.holdSeconds * options.clock.fps));
-  for (int k = 1; k <= holdFrames; ++k) {  // the last pose, still: the skin in run.frame stays
-    if (options.dynamics)
-      stepClipDynamics(model, fur, options.dynamicsParams, options.clock, camera, false, run.state,
-                       run.frame);
+  for (int f = options.firstFrame; f <= options.lastFrame; ++f) {
+    playback.poseFrame(f);
+    if (options.dynamics) playback.stepDynamics();
+    result.frames.push_back(run.measure(f, false, f == options.lastFrame && holdFrames > 0 ? 1 : 0));
+  }
+  for (int k = 1; k <= holdFrames; ++k) {  // the last pose, still: the springs go on
+    playback.holdFrame();
+    if (options.dynamics) playback.stepDynamics();
     result.frames.push_back(run.measure(options.lastFrame + k, true, 2));
   }
   result.settling = settle(result, options, run.meanOvercoatLength());
@@ -476,24 +452,24 @@ std::vector<double> SweepSpec::values() const {
   return v;
 }
 
-SweepSpec parseSweep(const std::string& text, const std::string& option) {
+SweepSpec parseSweep(const std::string& text, const std::string& field) {
   SweepSpec s;
   const std::size_t eq = text.find('=');
   const std::string form =
       " (expected NAME=A:B:N with NAME stiffness [0, 1], frequency (0, 100] Hz or damping [0, 10], "
       "N in [1, 100])";
-  if (eq == std::string::npos) inputError(option, " '", text, "' has no '='", form);
+  if (eq == std::string::npos) fieldError(field, "'", text, "' has no '='", form);
   s.parameter = text.substr(0, eq);
   const std::string rest = text.substr(eq + 1);
   const std::size_t c1 = rest.find(':');
   const std::size_t c2 = c1 == std::string::npos ? std::string::npos : rest.find(':', c1 + 1);
   if (c2 == std::string::npos || rest.find(':', c2 + 1) != std::string::npos)
-    inputError(option, " '", text, "' is not of the form NAME=A:B:N", form);
-  s.from = parseNumber(rest.substr(0, c1), option, text);
-  s.to = parseNumber(rest.substr(c1 + 1, c2 - c1 - 1), option, text);
-  const double n = parseNumber(rest.substr(c2 + 1), option, text);
+    fieldError(field, "'", text, "' is not of the form NAME=A:B:N", form);
+  s.from = parseNumber(rest.substr(0, c1), field, text);
+  s.to = parseNumber(rest.substr(c1 + 1, c2 - c1 - 1), field, text);
+  const double n = parseNumber(rest.substr(c2 + 1), field, text);
   if (!(n >= 1 && n <= 100 && n == std::floor(n)))
-    inputError(option, " '", text, "': N = ", n, " is not a whole number in [1, 100]");
+    fieldError(field, "'", text, "': N = ", n, " is not a whole number in [1, 100]");
   s.count = static_cast<int>(n);
   double lo = 0.0, hi = 0.0;
   bool openLow = false;
@@ -505,11 +481,11 @@ SweepSpec parseSweep(const std::string& text, const std::string& option) {
   } else if (s.parameter == "damping") {
     hi = 10.0;
   } else {
-    inputError(option, " '", text, "': unknown parameter '", s.parameter, "'", form);
+    fieldError(field, "'", text, "': unknown parameter '", s.parameter, "'", form);
   }
   for (double v : {s.from, s.to})
     if (v > hi || (openLow ? v <= lo : v < lo))
-      inputError(option, " '", text, "': ", s.parameter, " ", v, " is out of range ",
+      fieldError(field, "'", text, "': ", s.parameter, " ", v, " is out of range ",
                  openLow ? "(" : "[", lo, ", ", hi, "]");
   return s;
 }
@@ -529,7 +505,7 @@ SweepResult sweepClip(const Model& model, const Fur& fur, const AnalysisOptions&
       if (spec.parameter == "damping")
         o.dynamicsParams.coats[ci].dampingRatio = static_cast<float>(v);
     }
-    fur::validateFurParams(varied.params, "--sweep " + spec.parameter);
+    fur::validateFurParams(varied.params, "sweep " + spec.parameter);
     out.runs.push_back(analyzeClip(model, varied, o));
   }
   return out;

@@ -25,13 +25,21 @@ void preRollDynamics(const Model& model, const Fur& fur, const fur::DynamicsPara
 void stepClipDynamics(const Model& model, const Fur& fur, const fur::DynamicsParams& dynamics,
                       const DynamicsClock& clock, const Eigen::Vector3f& cameraEye, bool cpuHairs,
                       fur::FurDynamicsState& state, FrameState& frame) {
+  const fur::FurView view =
+      cpuHairs ? fur::makeFurView(model.skin, fur.params, frame.skin, cameraEye) : fur::FurView{};
+  stepClipDynamics(model, fur, dynamics, clock, cpuHairs ? &view : nullptr, state, frame);
+}
+
+void stepClipDynamics(const Model& model, const Fur& fur, const fur::DynamicsParams& dynamics,
+                      const DynamicsClock& clock, const fur::FurView* view,
+                      fur::FurDynamicsState& state, FrameState& frame) {
   const double dt = 1.0 / clock.fps;
-  if (!cpuHairs) {
+  if (!view) {
     fur::stepFurDynamics(model.skin, fur.roots, fur.params, dynamics, frame.skin, dt, state,
                          frame.furWorkspace);
     return;
   }
-  frame.furView = fur::makeFurView(model.skin, fur.params, frame.skin, cameraEye);
+  frame.furView = *view;
   frame.cullFactor = fur::cullingFactor(frame.furView);
   fur::generateDynamicFur(model.skin, fur.roots, fur.params, dynamics, frame.skin, dt,
                           frame.furView, state, frame.furWorkspace, frame.fur);

@@ -20,7 +20,7 @@ constexpr int kModeLines = 1, kModeTriangles = 4;
 
 struct CoatPart {
   int coat = 0;
-  detail::CurveLayout layout;
+  fur::HairLayout layout;
   std::int64_t hairs = 0;
   std::int64_t vertices = 0;  // hairs * K
   std::int64_t segments = 0;  // hairs * (K - 1)
@@ -34,10 +34,10 @@ std::vector<CoatPart> coatParts(const fur::FurParams& params, const FrameState& 
     if (b.drawn == 0) continue;
     CoatPart p;
     p.coat = c;
-    p.layout = detail::curveLayout(params.coats[static_cast<std::size_t>(c)]);
+    p.layout = fur::hairLayout(params.coats[static_cast<std::size_t>(c)]);
     p.hairs = b.drawn;
-    p.vertices = b.drawn * p.layout.centerPoints;
-    p.segments = b.drawn * (p.layout.centerPoints - 1);
+    p.vertices = b.drawn * p.layout.strandPoints;
+    p.segments = b.drawn * (p.layout.strandPoints - 1);
     parts.push_back(p);
   }
   return parts;
@@ -149,11 +149,11 @@ GlbCounts writeFrameGlb(const std::string& path, const Model& model, const fur::
   for (const CoatPart& p : parts) {
     const fur::HairBuffers& b = state.fur.coats[static_cast<std::size_t>(p.coat)];
     const fur::CoatParams& cp = params.coats[static_cast<std::size_t>(p.coat)];
-    const int K = p.layout.centerPoints;
+    const int K = p.layout.strandPoints;
     line.resize(static_cast<std::size_t>(K) * 3);
     Eigen::AlignedBox3f box;
     for (std::int64_t h = 0; h < p.hairs; ++h) {
-      detail::hairCenterLine(b, p.layout, h, line.data());
+      detail::hairCenterLine(b, h, line.data());
       for (int k = 0; k < K; ++k)
         box.extend(Eigen::Vector3f(line[static_cast<std::size_t>(k) * 3],
                                    line[static_cast<std::size_t>(k) * 3 + 1],
@@ -195,8 +195,7 @@ GlbCounts writeFrameGlb(const std::string& path, const Model& model, const fur::
   const std::uint64_t total = 12 + 8 + json.size() + 8 + binBytes;
   if (total > std::numeric_limits<std::uint32_t>::max())
     inputError(path, ": the frame needs ", total,
-               " bytes, over glTF binary's 4 GiB limit (fewer hairs, or "
-               "--format usda/ply)");
+               " bytes, over glTF binary's 4 GiB limit (export fewer hairs, or as USD or PLY)");
   counts.bytes = total;
 
   AtomicFileWriter w(path);
@@ -215,13 +214,13 @@ GlbCounts writeFrameGlb(const std::string& path, const Model& model, const fur::
   std::vector<std::uint32_t> idx;
   for (const CoatPart& p : parts) {
     const fur::HairBuffers& b = state.fur.coats[static_cast<std::size_t>(p.coat)];
-    const int K = p.layout.centerPoints;
+    const int K = p.layout.strandPoints;
     if (p.layout.ringSides == 1) {
       bin.put(b.positions.data(), static_cast<std::size_t>(p.vertices) * 12);
     } else {
       line.resize(static_cast<std::size_t>(K) * 3);
       for (std::int64_t h = 0; h < p.hairs; ++h) {
-        detail::hairCenterLine(b, p.layout, h, line.data());
+        detail::hairCenterLine(b, h, line.data());
         bin.put(line.data(), line.size() * 4);
       }
     }

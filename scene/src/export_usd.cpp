@@ -146,7 +146,7 @@ void extentSample(Text& t, int frame, const Eigen::AlignedBox3f& box) {
 struct CoatOut {
   int coat = 0;
   std::string name;
-  detail::CurveLayout layout;
+  fur::HairLayout layout;
   fur::CoatShape shape;
   std::int64_t curves = 0;
   std::unique_ptr<Spool> points, extent;
@@ -212,7 +212,7 @@ void UsdaWriter::addFrame(int frame, const FrameState& state) {
       CoatOut co;
       co.coat = c;
       co.name = c == fur::kOvercoat ? "overcoat" : "undercoat";
-      co.layout = detail::curveLayout(m.params->coats[static_cast<std::size_t>(c)]);
+      co.layout = fur::hairLayout(m.params->coats[static_cast<std::size_t>(c)]);
       co.shape = fur::makeCoatShape(*m.params, c);
       co.curves = b.drawn;
       co.points = std::make_unique<Spool>(m.path, co.name + "-points");
@@ -252,14 +252,14 @@ void UsdaWriter::addFrame(int frame, const FrameState& state) {
     PELAGE_CHECK(b.drawn == co.curves, "coat ", co.name, " has ", b.drawn, " hairs in frame ",
                  frame, ", ", co.curves,
                  " in the first: export needs every hair in every frame (culling off)");
-    const int V = co.layout.curveVertices;
+    const int V = co.layout.curveVertices();
     m.curve.resize(static_cast<std::size_t>(V) * 3);
     Eigen::AlignedBox3f box;
     Text t(co.points.get());
     key(t);
     t << "[";
     for (std::int64_t h = 0; h < b.drawn; ++h) {
-      detail::hairCurve(b, co.layout, co.shape, h, m.scratch, m.curve.data());
+      detail::hairCurve(b, co.shape, h, m.scratch, m.curve.data());
       for (int v = 0; v < V; ++v) {
         const std::int64_t i = h * V + v;
         if (i > 0) t << ((i % 8) == 0 ? ",\n                " : ", ");
@@ -337,12 +337,16 @@ UsdExportCounts UsdaWriter::finish() {
   UsdExportCounts counts;
   for (CoatOut& co : m.coats) {
     const fur::CoatParams& cp = m.params->coats[static_cast<std::size_t>(co.coat)];
-    const int V = co.layout.curveVertices;
+    const int V = co.layout.curveVertices();
     t << "\n    def BasisCurves \"" << co.name << "\"\n    {\n";
-    if (co.layout.cubic)
-      t << "        uniform token basis = \"bezier\"\n        uniform token type = \"cubic\"\n";
-    else
-      t << "        uniform token type = \"linear\"\n";
+    switch (co.layout.basis) {
+      case fur::CurveBasis::Bezier:
+        t << "        uniform token basis = \"bezier\"\n        uniform token type = \"cubic\"\n";
+        break;
+      case fur::CurveBasis::Linear:
+        t << "        uniform token type = \"linear\"\n";
+        break;
+    }
     t << "        uniform token wrap = \"nonperiodic\"\n        int[] curveVertexCounts = [";
     for (std::int64_t h = 0; h < co.curves; ++h) {
       if (h > 0) t << ((h % 32) == 0 ? ",\n            " : ", ");
@@ -351,7 +355,7 @@ UsdExportCounts UsdaWriter::finish() {
     }
     t << "]\n        color3f[] primvars:displayColor = [" << vec3Text(cp.material.diffuse)
       << "] (\n            interpolation = \"constant\"\n        )\n";
-    if (co.layout.style == fur::HairStyle::Tube) {
+    if (co.layout.topology == fur::HairTopology::Rings) {
       // The tube's diameter at each segment end ("varying"): 2 r_k, tapering to the tip.
       const int ends = (V - 1) / 3 + 1;
       t << "        float[] widths = [";

@@ -59,7 +59,15 @@ void evaluateFur(const Model& model, const Fur& fur, const Eigen::Vector3f& came
                  bool cpuHairs, FrameState& frame) {
   PELAGE_CHECK(frame.skin.positions.size() == static_cast<std::size_t>(model.skin.numVertices()),
                "evaluateFur before evaluateFrame");
-  frame.furView = fur::makeFurView(model.skin, fur.params, frame.skin, cameraEye);
+  evaluateFur(model, fur, fur::makeFurView(model.skin, fur.params, frame.skin, cameraEye), cpuHairs,
+              frame);
+}
+
+void evaluateFur(const Model& model, const Fur& fur, const fur::FurView& view, bool cpuHairs,
+                 FrameState& frame) {
+  PELAGE_CHECK(frame.skin.positions.size() == static_cast<std::size_t>(model.skin.numVertices()),
+               "evaluateFur before evaluateFrame");
+  frame.furView = view;
   frame.cullFactor = fur::cullingFactor(frame.furView);
   if (cpuHairs) {
     // Van Gelder & Wilhelms 1997, sec. 3.2 to 3.8 on the CPU (fur::generateFur).

@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <cstdio>
+#include <string>
 
 #include "pelage/util/error.h"
 
@@ -14,19 +15,19 @@ bool parseInt(std::string_view s, int& out) {
 }
 }  // namespace
 
-FrameRange parseFrameRange(std::string_view text, std::string_view option) {
+FrameRange parseFrameRange(std::string_view text, std::string_view field) {
   FrameRange r;
   const std::size_t colon = text.find(':');
-  const bool ok =
+  const bool parsed =
       colon == std::string_view::npos
           ? parseInt(text, r.first) && ((r.last = r.first), true)
           : parseInt(text.substr(0, colon), r.first) && parseInt(text.substr(colon + 1), r.last);
-  if (!ok)
-    inputError(option, " '", text,
+  if (!parsed)
+    fieldError(std::string(field), "'", text,
                "' is not a frame range FIRST:LAST (inclusive frame numbers, e.g. 0:99) or a single "
                "frame number");
   if (r.first < 0 || r.last > kMaxFrameNumber || r.first > r.last)
-    inputError(option, " ", r.first, ":", r.last,
+    fieldError(std::string(field), r.first, ":", r.last,
                " is out of range: need 0 <= FIRST <= LAST <= ", kMaxFrameNumber);
   return r;
 }

@@ -6,34 +6,9 @@
 
 namespace pelage::scene::detail {
 
-CurveLayout curveLayout(const fur::CoatParams& coat) {
-  CurveLayout l;
-  l.style = coat.style;
-  switch (coat.style) {
-    case fur::HairStyle::Line:
-      l.centerPoints = 2;
-      break;
-    case fur::HairStyle::Polyline:
-      l.centerPoints = fur::kPolylinePoints;
-      break;
-    case fur::HairStyle::Curve:
-    case fur::HairStyle::Tube:
-      l.cubic = true;
-      l.centerPoints = coat.curvePoints;
-      l.ringSides = coat.style == fur::HairStyle::Tube ? coat.tubeSides : 1;
-      l.curl = coat.curlRadius > 0.0f;
-      break;
-  }
-  l.curveVertices = !l.cubic ? l.centerPoints : (l.curl ? 3 * (l.centerPoints - 1) + 1 : 4);
-  return l;
-}
-
-void hairCenterLine(const fur::HairBuffers& b, const CurveLayout& layout, std::int64_t h,
-                    float* out) {
-  const int K = layout.centerPoints, M = layout.ringSides;
-  PELAGE_CHECK(b.pointsPerHair == K * M, "hair buffers of ", b.pointsPerHair, " points, layout ", K,
-               " x ", M);
-  const float* p = b.positions.data() + h * b.pointsPerHair * 3;
+void hairCenterLine(const fur::HairBuffers& b, std::int64_t h, float* out) {
+  const int K = b.layout.strandPoints, M = b.layout.ringSides;
+  const float* p = b.positions.data() + h * b.layout.pointsPerHair() * 3;
   if (M == 1) {
     std::copy(p, p + K * 3, out);
     return;
@@ -88,18 +63,22 @@ void bezierThroughPoints(const float* points, int K, float* control) {
   }
 }
 
-void hairCurve(const fur::HairBuffers& b, const CurveLayout& layout, const fur::CoatShape& shape,
-               std::int64_t h, std::vector<float>& centerScratch, float* out) {
-  if (!layout.cubic) {
-    hairCenterLine(b, layout, h, out);
-    return;
+void hairCurve(const fur::HairBuffers& b, const fur::CoatShape& shape, std::int64_t h,
+               std::vector<float>& centerScratch, float* out) {
+  const fur::HairLayout& layout = b.layout;
+  switch (layout.basis) {
+    case fur::CurveBasis::Linear:
+      hairCenterLine(b, h, out);
+      return;
+    case fur::CurveBasis::Bezier:
+      centerScratch.resize(static_cast<std::size_t>(layout.strandPoints) * 3);
+      hairCenterLine(b, h, centerScratch.data());
+      if (layout.curl)
+        bezierThroughPoints(centerScratch.data(), layout.strandPoints, out);
+      else
+        bezierFromTessellation(shape, centerScratch.data(), out);
+      return;
   }
-  centerScratch.resize(static_cast<std::size_t>(layout.centerPoints) * 3);
-  hairCenterLine(b, layout, h, centerScratch.data());
-  if (layout.curl)
-    bezierThroughPoints(centerScratch.data(), layout.centerPoints, out);
-  else
-    bezierFromTessellation(shape, centerScratch.data(), out);
 }
 
 }  // namespace pelage::scene::detail

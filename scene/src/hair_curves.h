@@ -10,21 +10,9 @@
 
 namespace pelage::scene::detail {
 
-// How one coat's hairs are written as curves.
-struct CurveLayout {
-  fur::HairStyle style = fur::HairStyle::Polyline;
-  bool cubic = false;     // cubic Bezier control points (curve, tube) or a linear polyline
-  int centerPoints = 0;   // K: points of a hair's centre line (line 2, polyline 8, curve/tube K)
-  int ringSides = 1;      // M for tubes, else 1
-  int curveVertices = 0;  // vertices written per curve
-  bool curl = false;      // the curve has a helix: piecewise Bezier through the K points
-};
-
-CurveLayout curveLayout(const fur::CoatParams& coat);
-
-// Centre line of hair h of `b`: layout.centerPoints x 3 floats into `out` (tube: ring centres).
-void hairCenterLine(const fur::HairBuffers& b, const CurveLayout& layout, std::int64_t h,
-                    float* out);
+// Centre line of hair h of `b`: b.layout.strandPoints x 3 floats into `out` (the strand points, or
+// the centres of a tube's rings).
+void hairCenterLine(const fur::HairBuffers& b, std::int64_t h, float* out);
 
 // Van Gelder & Wilhelms 1997, sec. 3.8: the hair curve is the cubic Bezier P0 = R,
 // P1 = R + (L/3) n_p, P2 = R + (2/3)(E - R), P3 = E, tessellated at t_k = k / (K - 1) as
@@ -37,8 +25,9 @@ void bezierFromTessellation(const fur::CoatShape& shape, const float* points, fl
 // which a single cubic cannot follow.
 void bezierThroughPoints(const float* points, int K, float* control);
 
-// Control points of hair h as the exporters write it: curveVertices x 3 floats.
-void hairCurve(const fur::HairBuffers& b, const CurveLayout& layout, const fur::CoatShape& shape,
-               std::int64_t h, std::vector<float>& centerScratch, float* out);
+// Control points of hair h as the exporters write it (b.layout's basis): b.layout.curveVertices()
+// x 3 floats.
+void hairCurve(const fur::HairBuffers& b, const fur::CoatShape& shape, std::int64_t h,
+               std::vector<float>& centerScratch, float* out);
 
 }  // namespace pelage::scene::detail

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <filesystem>
 
+#include "pelage/animation/clip_file.h"
 #include "pelage/animation/gltf_import.h"
 #include "pelage/animation/procedural.h"
 #include "pelage/models/builtin.h"
@@ -60,12 +61,13 @@ anatomy::Creature builtinCreature(const std::string& name) {
 
 Model loadModel(const std::string& spec, const LoadOptions& options) {
   if (options.triangles != 0 && (options.triangles < 2000 || options.triangles > 2000000))
-    inputError("--triangles ", options.triangles, " is out of range [2000, 2000000]");
+    fieldError("triangles", options.triangles, " is out of range [2000, 2000000]");
   const std::string ext = lowerExtension(spec);
   const bool gltf = ext == ".gltf" || ext == ".glb";
   if (!gltf &&
       (options.unitScale != 0.0f || options.noFurRegions || !options.segmentDirections.empty()))
-    inputError("--unit-scale, --no-fur and --directions apply to glTF models (.gltf/.glb) only");
+    inputError(spec, ": the unit scale, no-fur regions and segment directions apply to glTF models "
+               "(.gltf/.glb) only");
   if (gltf) return fromGltf(spec, options);
   if (spec.empty() || spec == kDefaultModel)
     return fromCreature(builtinCreature(kDefaultModel), options);
@@ -84,6 +86,21 @@ Model loadModel(const std::string& spec, const LoadOptions& options) {
     inputError(spec, ": no such file, and not a built-in model (built-in: monkey)");
   inputError(spec, ": unsupported model format '", ext,
              "' (accepted: monkey, .json creature, .gltf/.glb, .obj .ply .off .stl mesh)");
+}
+
+int resolveClip(Model& model, const std::string& spec) {
+  if (spec.empty()) return model.clips.empty() ? -1 : 0;
+  const int c = model.findClip(spec);
+  if (c >= 0) return c;
+  if (lowerExtension(spec) == ".json") {
+    model.clips.push_back(animation::loadClip(model.body, spec));
+    return static_cast<int>(model.clips.size()) - 1;
+  }
+  std::string names;
+  for (const animation::Clip& k : model.clips) names += (names.empty() ? "" : ", ") + k.name;
+  fieldError("clip", ": model '", model.name, "' has no clip '", spec, "' (",
+             names.empty() ? std::string("it has no clips") : "its clips: " + names,
+             "; or give a clip .json file)");
 }
 
 }  // namespace pelage::scene

@@ -41,7 +41,7 @@ TEST(AnalyzeCommand, BadOptionsAreClearErrors) {
       {"--clip tumble --sweep stiffness=0:2:3",
        "--sweep 'stiffness=0:2:3': stiffness 2 is out of range [0, 1]"},
       {"--clip tumble --sweep mass=1:2:3", "unknown parameter 'mass'"},
-      {"--clip tumble --frames 9:3", "--frames '9:3' is not a frame range"},
+      {"--clip tumble --frames 9:3", "--frames 9:3 is out of range"},
       {"--clip tumble --hold -1", "--hold -1 is out of range [0, 1000]"},
       {"--clip tumble --dynamics on --frequency 0",
        "dynamics frequency 0 Hz is out of range (0, 100]"},

@@ -192,7 +192,7 @@ TEST(FurDynamics, StartsOnAndAStillBodyConvergesToTheQuasiStaticHairs) {
     const FurFrame still = test::furFrame(plate.skin, plate.roots, plate.params, plate.rest);
     ASSERT_EQ(frame.coats[0].drawn, still.coats[0].drawn);
     const std::size_t floats =
-        static_cast<std::size_t>(frame.coats[0].drawn * frame.coats[0].pointsPerHair * 3);
+        static_cast<std::size_t>(frame.coats[0].drawn * frame.coats[0].layout.pointsPerHair() * 3);
     double worst = 0.0;
     for (std::size_t i = 0; i < floats; ++i)
       worst = std::max(worst, double(std::abs(frame.coats[0].positions.data()[i] -
@@ -404,7 +404,7 @@ TEST(FurDynamics, CullingDrawsASubsetOfTheSameHairsAndAdvancesEveryHair) {
   const HairBuffers& b = some.coats[0];
   ASSERT_GT(b.drawn, 0);
   ASSERT_LT(b.drawn, a.drawn / 2);
-  const int P = a.pointsPerHair;
+  const int P = a.layout.pointsPerHair();
   for (std::int64_t h = 0; h < b.drawn; ++h) {
     const std::int32_t id = b.hairIds[static_cast<std::size_t>(h)];
     ASSERT_EQ(a.hairIds[static_cast<std::size_t>(id)], id);

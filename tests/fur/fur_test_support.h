@@ -122,8 +122,8 @@ inline bool sameHairs(const fur::FurFrame& a, const fur::FurFrame& b) {
   for (int c = 0; c < fur::kCoatCount; ++c) {
     const auto& x = a.coats[static_cast<std::size_t>(c)];
     const auto& y = b.coats[static_cast<std::size_t>(c)];
-    if (x.drawn != y.drawn || x.pointsPerHair != y.pointsPerHair) return false;
-    const std::size_t floats = static_cast<std::size_t>(x.drawn * x.pointsPerHair * 3);
+    if (x.drawn != y.drawn || x.layout.pointsPerHair() != y.layout.pointsPerHair()) return false;
+    const std::size_t floats = static_cast<std::size_t>(x.drawn * x.layout.pointsPerHair() * 3);
     if (floats == 0) continue;  // empty buffers may have no storage at all
     if (std::memcmp(x.positions.data(), y.positions.data(), floats * sizeof(float)) != 0)
       return false;
@@ -136,10 +136,10 @@ inline bool sameHairs(const fur::FurFrame& a, const fur::FurFrame& b) {
 }
 
 inline Eigen::Vector3f point(const fur::HairBuffers& b, std::int64_t hair, int k) {
-  return Eigen::Map<const Eigen::Vector3f>(b.positions.data() + (hair * b.pointsPerHair + k) * 3);
+  return Eigen::Map<const Eigen::Vector3f>(b.positions.data() + (hair * b.layout.pointsPerHair() + k) * 3);
 }
 inline Eigen::Vector3f normal(const fur::HairBuffers& b, std::int64_t hair, int k) {
-  return Eigen::Map<const Eigen::Vector3f>(b.normals.data() + (hair * b.pointsPerHair + k) * 3);
+  return Eigen::Map<const Eigen::Vector3f>(b.normals.data() + (hair * b.layout.pointsPerHair() + k) * 3);
 }
 
 // A UV sphere of radius r (rings x segments), fur lengths from 2 mm at the bottom to 12 mm at the
@@ -200,14 +200,14 @@ inline void checkStylesAgainstReference(const skin::SkinMesh& s, const skin::Def
     for (int c = 0; c < kCoatCount; ++c) {
       const HairBuffers& hb = f.coats[static_cast<std::size_t>(c)];
       ASSERT_EQ(hb.drawn, r.coats[static_cast<std::size_t>(c)].size());
-      ASSERT_EQ(hb.pointsPerHair, pointsPerHair(p.coats[static_cast<std::size_t>(c)]));
-      const std::size_t n = static_cast<std::size_t>(hb.pointsPerHair) * 3;
+      ASSERT_EQ(hb.layout.pointsPerHair(), pointsPerHair(p.coats[static_cast<std::size_t>(c)]));
+      const std::size_t n = static_cast<std::size_t>(hb.layout.pointsPerHair()) * 3;
       for (std::size_t k = 0; k < static_cast<std::size_t>(hb.drawn) * n; ++k) {
         ASSERT_TRUE(std::isfinite(hb.positions.data()[k]));
         ASSERT_TRUE(std::isfinite(hb.normals.data()[k]));
       }
       for (std::int64_t h = 0; h < hb.drawn; ++h) {
-        for (int k = 0; k < hb.pointsPerHair; ++k)
+        for (int k = 0; k < hb.layout.pointsPerHair(); ++k)
           ASSERT_NEAR(normal(hb, h, k).norm(), 1.0f, 2e-5f);
         if (h % 5 != 0) continue;
         ASSERT_EQ(hb.hairIds[static_cast<std::size_t>(h)], h);

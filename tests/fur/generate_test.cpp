@@ -45,7 +45,7 @@ TEST(Generate, DegenerateHairPlanesMatchTheReferenceOnEveryPath) {
       const FurFrame f = test::furFrame(s, rf.roots, p, rf.rest);
       const HairBuffers& hb = f.coats[0];
       ASSERT_GT(hb.drawn, 2500);
-      const std::size_t n = static_cast<std::size_t>(hb.pointsPerHair) * 3;
+      const std::size_t n = static_cast<std::size_t>(hb.layout.pointsPerHair()) * 3;
       std::vector<float> pos, nrm;
       degenerate = 0;
       for (std::int64_t h = 0; h < hb.drawn; ++h) {
@@ -57,7 +57,7 @@ TEST(Generate, DegenerateHairPlanesMatchTheReferenceOnEveryPath) {
                                  n * sizeof(float)))
             << "hair " << h;
         const Eigen::Vector3f chord =
-            test::point(hb, h, hb.pointsPerHair - 1) - test::point(hb, h, 0);
+            test::point(hb, h, hb.layout.pointsPerHair() - 1) - test::point(hb, h, 0);
         if (chord.x() == 0.0f && chord.y() == 0.0f) ++degenerate;
       }
     }

@@ -56,7 +56,7 @@ TEST(HairPly, VerticesAndEdgesOfBothCoats) {
   const skin::DeformedSkin& d = rf.rest;
   const FurFrame f = test::furFrame(s, r, p, d);
   test::TempDir dir;
-  const HairPlyCounts n = writeHairPly(dir.file("h.ply"), f, p, "fur: test");
+  const HairPlyCounts n = writeHairPly(dir.file("h.ply"), f, "fur: test");
   const std::int64_t over = f.coats[0].drawn, under = f.coats[1].drawn;
   EXPECT_EQ(n.vertices, over * 8 + under * 2);
   EXPECT_EQ(n.edges, over * 7 + under * 1);
@@ -78,7 +78,7 @@ TEST(HairPly, VerticesAndEdgesOfBothCoats) {
   for (int c = 0; c < 2; ++c) {
     const HairBuffers& hb = f.coats[static_cast<std::size_t>(c)];
     for (std::int64_t h = 0; h < hb.drawn; ++h)
-      for (int k = 0; k < hb.pointsPerHair; ++k, ++v) {
+      for (int k = 0; k < hb.layout.pointsPerHair(); ++k, ++v) {
         const auto o = static_cast<std::size_t>(v * 29);
         for (int q = 0; q < 3; ++q) {
           ASSERT_EQ(at<float>(ply.body, o + 4 * static_cast<std::size_t>(q)),
@@ -95,7 +95,7 @@ TEST(HairPly, VerticesAndEdgesOfBothCoats) {
   std::int64_t e = 0;
   std::int32_t base = 0;
   for (int c = 0; c < 2; ++c) {
-    const int P = f.coats[static_cast<std::size_t>(c)].pointsPerHair;
+    const int P = f.coats[static_cast<std::size_t>(c)].layout.pointsPerHair();
     for (std::int64_t h = 0; h < f.coats[static_cast<std::size_t>(c)].drawn; ++h, base += P)
       for (int k = 0; k + 1 < P; ++k, ++e) {
         ASSERT_EQ(at<std::int32_t>(ply.body, e0 + static_cast<std::size_t>(8 * e)), base + k);
@@ -115,7 +115,7 @@ TEST(HairPly, TubesWriteFaces) {
   const skin::DeformedSkin& d = rf.rest;
   const FurFrame f = test::furFrame(s, r, p, d);
   test::TempDir dir;
-  const HairPlyCounts n = writeHairPly(dir.file("t.ply"), f, p);
+  const HairPlyCounts n = writeHairPly(dir.file("t.ply"), f);
   const std::int64_t hairs = f.coats[0].drawn;
   EXPECT_EQ(n.vertices, hairs * 12);
   EXPECT_EQ(n.faces, hairs * 3 * 3 * 2);
@@ -145,7 +145,7 @@ TEST(HairPly, UnwritableDestinationLeavesNoFile) {
   const FurRoots& r = rf.roots;
   const skin::DeformedSkin& d = rf.rest;
   const FurFrame f = test::furFrame(s, r, p, d);
-  EXPECT_THROW(writeHairPly("/nonexistent-dir/h.ply", f, p), InputError);
+  EXPECT_THROW(writeHairPly("/nonexistent-dir/h.ply", f), InputError);
   EXPECT_FALSE(std::filesystem::exists("/nonexistent-dir/h.ply"));
 }
 

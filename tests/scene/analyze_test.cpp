@@ -320,7 +320,7 @@ TEST(Analyze, BadRangesAndSweepsAreInputErrors) {
         "stiffness=a:1:3", "stiffness=0.2:1:2.5", "length=0.2:1:3", "frequency=0:4:3",
         "damping=-1:1:3", "stiffness=0.2:1:3:4"}) {
     try {
-      parseSweep(bad);
+      parseSweep(bad, "--sweep");
       ADD_FAILURE() << bad;
     } catch (const InputError& e) {
       EXPECT_NE(std::string(e.what()).find("--sweep"), std::string::npos) << e.what();

@@ -214,8 +214,8 @@ TEST(BuildDrawList, SkinAndOneItemPerCoat) {
   for (int c = 0; c < 2; ++c) {
     const FurDrawItem& item = list.fur[static_cast<std::size_t>(c)];
     EXPECT_EQ(item.coat, c);
-    EXPECT_EQ(item.style, fur.params.coats[static_cast<std::size_t>(c)].style);
-    EXPECT_EQ(item.pointsPerHair(), f.fur.coats[static_cast<std::size_t>(c)].pointsPerHair);
+    EXPECT_EQ(item.layout.style, fur.params.coats[static_cast<std::size_t>(c)].style);
+    EXPECT_EQ(item.pointsPerHair(), f.fur.coats[static_cast<std::size_t>(c)].layout.pointsPerHair());
     EXPECT_EQ(item.rootCount, fur.roots.coats[static_cast<std::size_t>(c)].size());
     EXPECT_EQ(item.drawnHairs, f.fur.coats[static_cast<std::size_t>(c)].drawn);
     EXPECT_EQ(item.positions, f.fur.coats[static_cast<std::size_t>(c)].positions.data());
@@ -226,7 +226,7 @@ TEST(BuildDrawList, SkinAndOneItemPerCoat) {
   EXPECT_EQ(list.drawnHairs(), f.drawnHairs[0] + f.drawnHairs[1]);
   // The bounds hold every hair point.
   for (const fur::HairBuffers& hb : f.fur.coats)
-    for (std::int64_t i = 0; i < hb.drawn * hb.pointsPerHair; ++i)
+    for (std::int64_t i = 0; i < hb.drawn * hb.layout.pointsPerHair(); ++i)
       ASSERT_TRUE(list.bounds.contains(Eigen::Vector3f(hb.positions.data()[3 * i],
                                                        hb.positions.data()[3 * i + 1],
                                                        hb.positions.data()[3 * i + 2])));

@@ -84,7 +84,7 @@ void checkFrame(fur::HairStyle style) {
     EXPECT_EQ(p.mode, TINYGLTF_MODE_LINE);
     const fur::HairBuffers& b = state.fur.coats[static_cast<std::size_t>(c)];
     const fur::CoatParams& cp = fur.params.coats[static_cast<std::size_t>(c)];
-    const int K = style == fur::HairStyle::Tube ? cp.curvePoints : b.pointsPerHair;
+    const int K = style == fur::HairStyle::Tube ? cp.curvePoints : b.layout.pointsPerHair();
     const int M = style == fur::HairStyle::Tube ? cp.tubeSides : 1;
     const std::vector<float> hp = read<float>(g, p.attributes.at("POSITION"));
     ASSERT_EQ(static_cast<std::int64_t>(hp.size()), b.drawn * K * 3);

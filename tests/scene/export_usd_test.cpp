@@ -148,7 +148,7 @@ TEST(ExportUsd, CurveStyleIsTheCubicBezierOfSection38) {
   const auto samples = usdTimeSamples(curves, "point3f[] points");
   ASSERT_EQ(samples.size(), 1u);
   const fur::HairBuffers& b = frames[0].fur.coats[0];
-  const int K = b.pointsPerHair;
+  const int K = b.layout.pointsPerHair();
   ASSERT_EQ(K, fur.params.coats[0].curvePoints);
   double worst = 0.0;
   for (std::int64_t h = 0; h < b.drawn; ++h) {

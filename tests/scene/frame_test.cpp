@@ -135,7 +135,7 @@ TEST(EvaluateFur, EveryHairLiesWithinTheLongestHairOfItsRoot) {
   float seen = 0.0f;
   for (const fur::HairBuffers& hb : f.fur.coats) {
     ASSERT_GT(hb.drawn, 0);
-    const int P = hb.pointsPerHair;
+    const int P = hb.layout.pointsPerHair();
     for (std::int64_t h = 0; h < hb.drawn; ++h) {
       const float* q = hb.positions.data() + h * P * 3;
       const Eigen::Vector3f root(q[0], q[1], q[2]);

@@ -92,7 +92,7 @@ TEST_F(FurRenderTest, FurPixelsHaveTheCoatColour) {
     const Shot bare = render(nullptr, cam);
     EXPECT_EQ(hairy.drawn, fur.roots.total());
     // Fur pixels: where the hairy image differs from the bare one.
-    const fur::Material& mat = fur.params.coats[0].material;
+    const Material& mat = fur.params.coats[0].material;
     const scene::Light light;
     const float loR = mat.ambient.x() * light.ambient.x() * 255.0f;
     const float hiR = (mat.ambient.x() * light.ambient.x() + mat.diffuse.x()) * 255.0f;

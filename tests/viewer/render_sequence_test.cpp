@@ -1,6 +1,7 @@
 // Frame sequences (issue 6): complete PNG frames, frames that depend only on their number,
 // --resume after a killed run, write failures, video through ffmpeg, cameras.
 #include "pelage/viewer/render_sequence.h"
+#include "pelage/viewer/video_encoder.h"
 
 #include <gtest/gtest.h>
 
@@ -21,9 +22,9 @@ class RenderSequenceTest : public GlTest {
  protected:
   viewer::SequenceOptions options(const TempDir& dir, int first = 0, int last = 5) const {
     viewer::SequenceOptions o;
-    o.clip = 0;
+    o.playback.clip = 0;
     o.frames = {first, last};
-    o.framesPerSecond = 12.0;
+    o.playback.framesPerSecond = 12.0;
     o.width = 96;
     o.height = 72;
     o.samples = 0;
@@ -32,7 +33,7 @@ class RenderSequenceTest : public GlTest {
     return o;
   }
   static std::string frame(const TempDir& dir, int f) {
-    return dir.file(viewer::frameFileName(f, ".png"));
+    return dir.file(scene::frameFileName(f, ".png"));
   }
   static const float* background() {
     static const float bg[3] = {0.80f, 0.82f, 0.86f};
@@ -89,9 +90,9 @@ TEST_F(RenderSequenceTest, AFrameDependsOnlyOnItsNumber) {
 TEST_F(RenderSequenceTest, DynamicFurFramesDependOnlyOnTheirNumber) {
   TempDir dir;
   viewer::SequenceOptions o = options(dir);
-  o.dynamics = true;
-  o.dynamicsParams.coats[0] = {2.0f, 0.05f};
-  o.dynamicsParams.coats[1] = {2.0f, 0.05f};
+  o.playback.dynamics = true;
+  o.playback.dynamicsParams.coats[0] = {2.0f, 0.05f};
+  o.playback.dynamicsParams.coats[1] = {2.0f, 0.05f};
   viewer::Image afterOthers, alone, quasiStatic;
   {
     viewer::SequenceRenderer s(wagCritter(), wagFur(), o);
@@ -105,7 +106,7 @@ TEST_F(RenderSequenceTest, DynamicFurFramesDependOnlyOnTheirNumber) {
   }
   {
     viewer::SequenceOptions q = options(dir);
-    q.hairSource = scene::HairSource::Cpu;
+    q.playback.hairSource = scene::HairSource::Cpu;
     viewer::SequenceRenderer s(wagCritter(), wagFur(), q);
     s.render(4, quasiStatic);
   }
@@ -113,7 +114,7 @@ TEST_F(RenderSequenceTest, DynamicFurFramesDependOnlyOnTheirNumber) {
   EXPECT_TRUE(afterOthers.rgba == alone.rgba);
   EXPECT_FALSE(alone.rgba == quasiStatic.rgba);
   // Without a clip there is no motion to simulate.
-  o.clip = -1;
+  o.playback.clip = -1;
   EXPECT_THROW(viewer::validateSequenceOptions(o), InputError);
 }
 
@@ -182,7 +183,7 @@ TEST_F(RenderSequenceTest, UnwritableOutputAndBadOptionsAreInputErrors) {
   o.video = dir.file("clip.avi");
   EXPECT_THROW(viewer::renderSequence(wagCritter(), wagFur(), o), InputError);
   o = options(dir);
-  o.framesPerSecond = 0.0;
+  o.playback.framesPerSecond = 0.0;
   EXPECT_THROW(viewer::renderSequence(wagCritter(), wagFur(), o), InputError);
   o = options(dir);
   o.width = 8;
@@ -269,21 +270,21 @@ TEST(CameraFile, KeysInterpolateAndHoldAtTheEnds) {
   writeText(dir.file("cam.json"), R"({ "track": true, "keys": [
       { "frame": 10, "eye": [1, 0, 0.5], "target": [0, 0, 0.3], "fovYDegrees": 30 },
       { "frame": 20, "eye": [0, 1, 0.5], "target": [0, 0, 0.5], "fovYDegrees": 50 } ] })");
-  const viewer::CameraPath path = viewer::loadCameraFile(dir.file("cam.json"));
+  const scene::CameraPath path = scene::loadCameraFile(dir.file("cam.json"));
   EXPECT_TRUE(path.track);
   ASSERT_EQ(path.keys.size(), 2u);
-  const scene::Camera before = viewer::cameraOnPath(path, 0, 64, 48);
+  const scene::Camera before = scene::cameraOnPath(path, 0, 64, 48);
   EXPECT_TRUE(before.eye.isApprox(Eigen::Vector3f(1, 0, 0.5f)));
   EXPECT_EQ(before.width, 64);
-  const scene::Camera mid = viewer::cameraOnPath(path, 15, 64, 48);
+  const scene::Camera mid = scene::cameraOnPath(path, 15, 64, 48);
   EXPECT_TRUE(mid.eye.isApprox(Eigen::Vector3f(0.5f, 0.5f, 0.5f)));
   EXPECT_TRUE(mid.target.isApprox(Eigen::Vector3f(0, 0, 0.4f)));
   EXPECT_FLOAT_EQ(mid.fovYDegrees, 40.0f);
-  EXPECT_TRUE(viewer::cameraOnPath(path, 99, 64, 48).eye.isApprox(Eigen::Vector3f(0, 1, 0.5f)));
+  EXPECT_TRUE(scene::cameraOnPath(path, 99, 64, 48).eye.isApprox(Eigen::Vector3f(0, 1, 0.5f)));
   writeText(dir.file("one.json"), R"({ "eye": [2, 0, 1], "target": [0, 0, 0] })");
-  const viewer::CameraPath one = viewer::loadCameraFile(dir.file("one.json"));
+  const scene::CameraPath one = scene::loadCameraFile(dir.file("one.json"));
   EXPECT_FALSE(one.track);
-  EXPECT_TRUE(viewer::cameraOnPath(one, 1234, 64, 48).up.isApprox(Eigen::Vector3f::UnitZ()));
+  EXPECT_TRUE(scene::cameraOnPath(one, 1234, 64, 48).up.isApprox(Eigen::Vector3f::UnitZ()));
 }
 
 TEST(CameraFile, MalformedFilesNameTheFileAndField) {
@@ -304,7 +305,7 @@ TEST(CameraFile, MalformedFilesNameTheFileAndField) {
   for (const auto& [text, expect] : bad) {
     writeText(dir.file("cam.json"), text);
     try {
-      viewer::loadCameraFile(dir.file("cam.json"));
+      scene::loadCameraFile(dir.file("cam.json"));
       ADD_FAILURE() << "accepted " << text;
     } catch (const InputError& e) {
       EXPECT_NE(std::string(e.what()).find(expect), std::string::npos) << e.what();

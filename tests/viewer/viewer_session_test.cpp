@@ -65,7 +65,7 @@ TEST_F(ViewerSessionTest, EditsApplyOnTheNextFrame) {
   EXPECT_EQ(s.fur().params.coats[0].style, fur::HairStyle::Curve);
   EXPECT_EQ(s.fur().params.lengthScale, 2.0f);
   ASSERT_FALSE(s.drawList().fur.empty());
-  EXPECT_EQ(s.drawList().fur[0].strandPoints, 5);
+  EXPECT_EQ(s.drawList().fur[0].layout.strandPoints, 5);
   // An invalid value is reported and not applied.
   s.edit.coats[1].stiffness = 3.0f;
   s.frame(0.0, 96, 64);
@@ -85,9 +85,9 @@ TEST_F(ViewerSessionTest, EditsApplyOnTheNextFrame) {
 // hairs, lag behind them while the head turns, and settle back onto them once the body is still.
 TEST_F(ViewerSessionTest, DynamicFurStartsLagsAndSettles) {
   ViewerOptions o = smallOptions();
-  o.hairSource = "cpu";
+  o.hairSource = scene::HairSource::Cpu;
   ViewerSession quasi(o, critterWithClips());
-  o.hairSource = "gpu";
+  o.hairSource = scene::HairSource::Gpu;
   o.dynamics = true;
   o.dynamicsParams.coats[0] = {20.0f, 0.7f};
   o.dynamicsParams.coats[1] = {20.0f, 0.7f};
@@ -99,7 +99,7 @@ TEST_F(ViewerSessionTest, DynamicFurStartsLagsAndSettles) {
     EXPECT_EQ(a.drawn, b.drawn);
     EXPECT_GT(a.drawn, 0);
     float gap = 0.0f;
-    for (std::size_t i = 0; i < static_cast<std::size_t>(a.drawn * a.pointsPerHair * 3); ++i)
+    for (std::size_t i = 0; i < static_cast<std::size_t>(a.drawn * a.layout.pointsPerHair() * 3); ++i)
       gap = std::max(gap, std::abs(a.positions.data()[i] - b.positions.data()[i]));
     return gap;
   };
@@ -158,7 +158,7 @@ TEST_F(ViewerSessionTest, ANewHairCountRegrowsTheRootsWithoutStalling) {
 
 TEST_F(ViewerSessionTest, PlaybackPlaysScrubsLoopsAndCrossFades) {
   ViewerOptions o = smallOptions();
-  o.clip = "look";
+  o.clip = 0;  // "look"
   o.time = 0.5;
   ViewerSession s(o, critterWithClips());
   EXPECT_EQ(s.clip(), 0);

@@ -4,6 +4,7 @@
 #include <array>
 #include <cstddef>
 #include <cstring>
+#include <string>
 
 #include "gl_program.h"
 #include "pelage/fur/generate.h"
@@ -20,96 +21,70 @@ using detail::uniform;
 
 namespace {
 
-// fur::CoatShape packed as the std430 block CoatShapeBlock of hair_math.glsl: only 4-byte scalars
-// and arrays of them, so std430 puts every member at its C++ offset (checked against the linked
-// program in checkShapeLayout).
-struct GpuCoatShape {
-  std::int32_t style, points, curvePoints, tubeSides;
-  std::int32_t twist, curl, regionShape, pad0;
-  float lengthMul, segmentWeight, endRandomize, floppiness;
-  float up[3];
-  float fallbackTangent[3];
-  float regionCenter[3];
-  float regionRadius2;
-  float regionMin[3];
-  float regionMax[3];
-  float regionScale;
-  float curlRadius;
-  float polyA[fur::kPolylinePoints], polyB[fur::kPolylinePoints];
-  float polyAlpha[fur::kPolylinePoints], polyBeta[fur::kPolylinePoints];
-  float curveC1[fur::kMaxCurvePoints], curveC2[fur::kMaxCurvePoints];
-  float curveDc1[fur::kMaxCurvePoints], curveDc2[fur::kMaxCurvePoints];
-  float curlEnvelope[fur::kMaxCurvePoints], curlCos[fur::kMaxCurvePoints],
-      curlSin[fur::kMaxCurvePoints];
-  float tubeRadius[fur::kMaxCurvePoints];
-  float ringCos[fur::kMaxTubeSides], ringSin[fur::kMaxTubeSides];
-};
-
-GpuCoatShape pack(const fur::CoatShape& c) {
-  GpuCoatShape g{};
-  g.style = static_cast<std::int32_t>(c.style);
-  g.points = c.points;
-  g.curvePoints = c.curvePoints;
-  g.tubeSides = c.tubeSides;
-  g.twist = c.twist ? 1 : 0;
-  g.curl = c.curl ? 1 : 0;
-  g.regionShape = static_cast<std::int32_t>(c.regionShape);
-  g.lengthMul = c.lengthMul;
-  g.segmentWeight = c.segmentWeight;
-  g.endRandomize = c.endRandomize;
-  g.floppiness = c.floppiness;
-  std::memcpy(g.up, c.up, sizeof g.up);
-  std::memcpy(g.fallbackTangent, c.fallbackTangent, sizeof g.fallbackTangent);
-  std::memcpy(g.regionCenter, c.regionCenter, sizeof g.regionCenter);
-  g.regionRadius2 = c.regionRadius2;
-  std::memcpy(g.regionMin, c.regionMin, sizeof g.regionMin);
-  std::memcpy(g.regionMax, c.regionMax, sizeof g.regionMax);
-  g.regionScale = c.regionScale;
-  g.curlRadius = c.curlRadius;
-  std::memcpy(g.polyA, c.polyA, sizeof g.polyA);
-  std::memcpy(g.polyB, c.polyB, sizeof g.polyB);
-  std::memcpy(g.polyAlpha, c.polyAlpha, sizeof g.polyAlpha);
-  std::memcpy(g.polyBeta, c.polyBeta, sizeof g.polyBeta);
-  std::memcpy(g.curveC1, c.curveC1, sizeof g.curveC1);
-  std::memcpy(g.curveC2, c.curveC2, sizeof g.curveC2);
-  std::memcpy(g.curveDc1, c.curveDc1, sizeof g.curveDc1);
-  std::memcpy(g.curveDc2, c.curveDc2, sizeof g.curveDc2);
-  std::memcpy(g.curlEnvelope, c.curlEnvelope, sizeof g.curlEnvelope);
-  std::memcpy(g.curlCos, c.curlCos, sizeof g.curlCos);
-  std::memcpy(g.curlSin, c.curlSin, sizeof g.curlSin);
-  std::memcpy(g.tubeRadius, c.tubeRadius, sizeof g.tubeRadius);
-  std::memcpy(g.ringCos, c.ringCos, sizeof g.ringCos);
-  std::memcpy(g.ringSin, c.ringSin, sizeof g.ringSin);
-  return g;
+// The GLSL side of fur::CoatShape, generated from its member list (PELAGE_COAT_SHAPE_MEMBERS in
+// hair_math.h): the style and region constants, the array sizes and the std430 block `cs` that
+// hair_math.glsl reads. Every member is a 4-byte scalar or an array of them, so std430 puts each at
+// its C++ offset (checked against the linked program by checkShapeLayout) and the struct is
+// uploaded as it is.
+std::string coatShapeGlsl() {
+  std::string s = "// Generated from fur::CoatShape (fur/hair_math.h) by gpu_fur.cpp.\n";
+  auto define = [&s](const char* name, int value) {
+    s += "#define " + std::string(name) + " " + std::to_string(value) + "\n";
+  };
+  define("STYLE_LINE", static_cast<int>(fur::HairStyle::Line));
+  define("STYLE_POLYLINE", static_cast<int>(fur::HairStyle::Polyline));
+  define("STYLE_CURVE", static_cast<int>(fur::HairStyle::Curve));
+  define("STYLE_TUBE", static_cast<int>(fur::HairStyle::Tube));
+  define("REGION_NONE", static_cast<int>(fur::RegionShape::None));
+  define("REGION_SPHERE", static_cast<int>(fur::RegionShape::Sphere));
+  define("REGION_BOX", static_cast<int>(fur::RegionShape::Box));
+  define("POLYLINE_POINTS", fur::kPolylinePoints);
+  define("MAX_CURVE_POINTS", fur::kMaxCurvePoints);
+  define("MAX_TUBE_SIDES", fur::kMaxTubeSides);
+  s += "layout(std430, binding = 0) readonly buffer CoatShapeBlock {\n";
+#define PELAGE_GLSL_SCALAR(cpp, glsl, name) s += "  " #glsl " " #name ";\n";
+#define PELAGE_GLSL_ARRAY(cpp, glsl, name, size) \
+  s += "  " #glsl " " #name "[" + std::to_string(size) + "];\n";
+  PELAGE_COAT_SHAPE_MEMBERS(PELAGE_GLSL_SCALAR, PELAGE_GLSL_ARRAY)
+#undef PELAGE_GLSL_SCALAR
+#undef PELAGE_GLSL_ARRAY
+  s += "} cs;\n";
+  return s;
 }
 
-// The std430 offsets the driver gave CoatShapeBlock must be the C++ offsets of GpuCoatShape.
+// Every member of the linked program's CoatShapeBlock must sit at its fur::CoatShape offset, with
+// arrays of 4-byte stride, and the block must be as large as the struct.
 void checkShapeLayout(GLuint program) {
-  struct Member {
-    const char* name;
-    std::size_t offset;
+  auto property = [program](GLenum interface, GLuint index, GLenum prop) {
+    GLint v = -1;
+    glGetProgramResourceiv(program, interface, index, 1, &prop, 1, nullptr, &v);
+    return v;
   };
-  const Member members[] = {
-      {"CoatShapeBlock.style", offsetof(GpuCoatShape, style)},
-      {"CoatShapeBlock.lengthMul", offsetof(GpuCoatShape, lengthMul)},
-      {"CoatShapeBlock.up[0]", offsetof(GpuCoatShape, up)},
-      {"CoatShapeBlock.regionRadius2", offsetof(GpuCoatShape, regionRadius2)},
-      {"CoatShapeBlock.curlRadius", offsetof(GpuCoatShape, curlRadius)},
-      {"CoatShapeBlock.polyA[0]", offsetof(GpuCoatShape, polyA)},
-      {"CoatShapeBlock.polyBeta[0]", offsetof(GpuCoatShape, polyBeta)},
-      {"CoatShapeBlock.curveC1[0]", offsetof(GpuCoatShape, curveC1)},
-      {"CoatShapeBlock.tubeRadius[0]", offsetof(GpuCoatShape, tubeRadius)},
-      {"CoatShapeBlock.ringSin[0]", offsetof(GpuCoatShape, ringSin)},
+  auto check = [&](const std::string& name, std::size_t offset, bool array) {
+    const GLuint index = glGetProgramResourceIndex(program, GL_BUFFER_VARIABLE, name.c_str());
+    if (index == GL_INVALID_INDEX) return;  // not used by this program: optimised away
+    const GLint at = property(GL_BUFFER_VARIABLE, index, GL_OFFSET);
+    PELAGE_CHECK(at == static_cast<GLint>(offset), "GLSL ", name, " at offset ", at, ", C++ at ",
+                 offset);
+    if (array) {
+      const GLint stride = property(GL_BUFFER_VARIABLE, index, GL_ARRAY_STRIDE);
+      PELAGE_CHECK(stride == 4, "GLSL ", name, " has an array stride of ", stride, " bytes");
+    }
   };
-  for (const Member& m : members) {
-    const GLuint index = glGetProgramResourceIndex(program, GL_BUFFER_VARIABLE, m.name);
-    if (index == GL_INVALID_INDEX) continue;  // not used by this program: optimised away
-    const GLenum prop = GL_OFFSET;
-    GLint offset = -1;
-    glGetProgramResourceiv(program, GL_BUFFER_VARIABLE, index, 1, &prop, 1, nullptr, &offset);
-    PELAGE_CHECK(offset == static_cast<GLint>(m.offset), "GLSL ", m.name, " at offset ", offset,
-                 ", C++ at ", m.offset);
-  }
+#define PELAGE_CHECK_SCALAR(cpp, glsl, name) \
+  check("CoatShapeBlock." #name, offsetof(fur::CoatShape, name), false);
+#define PELAGE_CHECK_ARRAY(cpp, glsl, name, size) \
+  check("CoatShapeBlock." #name "[0]", offsetof(fur::CoatShape, name), true);
+  PELAGE_COAT_SHAPE_MEMBERS(PELAGE_CHECK_SCALAR, PELAGE_CHECK_ARRAY)
+#undef PELAGE_CHECK_SCALAR
+#undef PELAGE_CHECK_ARRAY
+  const GLuint block = glGetProgramResourceIndex(program, GL_SHADER_STORAGE_BLOCK, "CoatShapeBlock");
+  PELAGE_CHECK(block != GL_INVALID_INDEX, "the fur program has no CoatShapeBlock");
+  // Drivers may round the block's size up (llvmpipe: to 16 bytes); nothing may be missing.
+  const GLint size = property(GL_SHADER_STORAGE_BLOCK, block, GL_BUFFER_DATA_SIZE);
+  const auto bytes = static_cast<GLint>(sizeof(fur::CoatShape));
+  PELAGE_CHECK(size >= bytes && size <= (bytes + 15) / 16 * 16, "GLSL CoatShapeBlock is ", size,
+               " bytes, fur::CoatShape ", bytes);
 }
 
 Buffer makeBuffer(GLsizeiptr bytes, const void* data) {
@@ -165,7 +140,8 @@ struct GpuFur::Impl {
     glGetIntegerv(GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT, &alignment);
     using detail::ShaderStage;
     hairProgram.reset(detail::buildProgram(
-        "fur hair", {ShaderStage{GL_COMPUTE_SHADER, {"hair_math.glsl", "fur_hair.comp"}}}));
+        "fur hair", {ShaderStage{GL_COMPUTE_SHADER, {"hair_math.glsl", "fur_hair.comp"}}},
+        coatShapeGlsl()));
     checkShapeLayout(hairProgram.get());
     cullProgram.reset(
         detail::buildProgram("fur cull", {ShaderStage{GL_COMPUTE_SHADER, {"fur_cull.comp"}}}));
@@ -175,7 +151,6 @@ struct GpuFur::Impl {
         "fur scan 2", {ShaderStage{GL_COMPUTE_SHADER, {"fur_scan.comp"}}}, "#define PASS 2"));
     commandsProgram.reset(detail::buildProgram(
         "fur commands", {ShaderStage{GL_COMPUTE_SHADER, {"fur_commands.comp"}}}));
-    static_assert(sizeof(GpuCoatShape) % 4 == 0);
   }
 
   void uploadSkin(const skin::SkinMesh& s) {
@@ -216,7 +191,7 @@ struct GpuFur::Impl {
       g.cullU = makeBuffer(static_cast<GLsizeiptr>(u.size() * 4), u.data());
       g.blockSums =
           makeBuffer(static_cast<GLsizeiptr>((triangleCount + 255) / 256 + 1) * 4, nullptr);
-      g.shape = makeBuffer(sizeof(GpuCoatShape), nullptr);
+      g.shape = makeBuffer(sizeof(fur::CoatShape), nullptr);
       g.twistAmount = -1.0f;
     }
   }
@@ -259,17 +234,16 @@ void GpuFur::beginFrame(const GpuFurFrame& f) {
                        f.deformed->directions.data());
 }
 
-void GpuFur::generate(int coat, const HairLayout& layout, bool tangents, HairVertexBuffers& out) {
+void GpuFur::generate(int coat, const fur::HairLayout& layout, bool tangents,
+                      HairVertexBuffers& out) {
   Impl& m = *impl_;
   PELAGE_CHECK(coat >= 0 && coat < fur::kCoatCount && m.params, "generate before beginFrame");
   Impl::Coat& g = m.coats[static_cast<std::size_t>(coat)];
   const fur::CoatShape shape = fur::makeCoatShape(*m.params, coat);
-  PELAGE_CHECK(layout.pointsPerHair() == shape.points &&
-                   layout.triangles == (shape.style == fur::HairStyle::Tube),
-               "layout of ", layout.pointsPerHair(), " points for a coat of ", shape.points);
+  PELAGE_CHECK(layout == fur::hairLayout(m.params->coats[static_cast<std::size_t>(coat)]),
+               "a layout of ", layout.pointsPerHair(), " points for a coat of ", shape.points);
   out.reserve(g.rootCount, layout, m.maxBinding);
-  const GpuCoatShape packed = pack(shape);
-  glNamedBufferSubData(g.shape.get(), 0, sizeof packed, &packed);
+  glNamedBufferSubData(g.shape.get(), 0, sizeof shape, &shape);
   if (shape.twist) m.ensureTwist(coat);
   lastDispatches_ = 0;
 
@@ -316,7 +290,7 @@ void GpuFur::generate(int coat, const HairLayout& layout, bool tangents, HairVer
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 10, m.directions.get());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 11, m.lengths.get());
   glUniform1i(uniform(hp, "uTangents"), tangents ? 1 : 0);
-  glUniform1i(uniform(hp, "uStrandStride"), layout.strandStride);
+  glUniform1i(uniform(hp, "uStrandStride"), layout.ringSides);
   const std::int64_t P = layout.pointsPerHair();
   const std::int64_t pointBytes = P * 3 * static_cast<std::int64_t>(sizeof(float));
   // Roots per window: the jitter (16 bytes per root) is the widest root-indexed input.

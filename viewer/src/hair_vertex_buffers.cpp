@@ -22,11 +22,6 @@ void deleteAll(GLuint& a, GLuint& b, GLuint& c, GLuint& d) {
 
 }  // namespace
 
-int HairLayout::indicesPerHair() const {
-  if (triangles) return (strandPoints - 1) * strandStride * 6;
-  return pointsPerHair() + 1;
-}
-
 std::int64_t maxShaderStorageBlockSize() {
   GLint64 v = 0;
   glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &v);
@@ -44,7 +39,7 @@ HairVertexBuffers::~HairVertexBuffers() {
 
 void HairVertexBuffers::reserve(std::int64_t hairs, const HairLayout& layout,
                                 std::int64_t maxChunkBytes) {
-  PELAGE_CHECK(hairs >= 0 && layout.strandPoints >= 2 && layout.strandStride >= 1);
+  PELAGE_CHECK(hairs >= 0 && layout.strandPoints >= 2 && layout.ringSides >= 1);
   if (maxChunkBytes <= 0) maxChunkBytes = maxShaderStorageBlockSize();
   const bool layoutChanged = !(layout == layout_) || maxChunkBytes != maxChunkBytes_;
   if (!layoutChanged && hairs <= capacity_ && positions_ != 0) return;
@@ -78,23 +73,7 @@ void HairVertexBuffers::reserve(std::int64_t hairs, const HairLayout& layout,
   // baseVertex, so the indices stay below 2^32 whatever the total hair count.
   indexCapacity_ = chunks_.front().capacity;
   const int perHair = layout.indicesPerHair();
-  std::vector<std::uint32_t> pattern(static_cast<std::size_t>(perHair));
-  if (layout.triangles) {
-    const int K = layout.strandPoints, M = layout.strandStride;
-    std::size_t n = 0;
-    for (int k = 0; k + 1 < K; ++k)
-      for (int m = 0; m < M; ++m) {
-        const auto a = static_cast<std::uint32_t>(k * M + m);
-        const auto b = static_cast<std::uint32_t>(k * M + (m + 1) % M);
-        const auto c = static_cast<std::uint32_t>((k + 1) * M + m);
-        const auto d = static_cast<std::uint32_t>((k + 1) * M + (m + 1) % M);
-        for (std::uint32_t i : {a, b, d, a, d, c}) pattern[n++] = i;
-      }
-  } else {
-    for (int i = 0; i < P; ++i)
-      pattern[static_cast<std::size_t>(i)] = static_cast<std::uint32_t>(i);
-    pattern.back() = kRestart;
-  }
+  const std::vector<std::uint32_t> pattern = fur::hairIndexPattern(layout, kRestart);
   std::vector<std::uint32_t> indices(static_cast<std::size_t>(indexCapacity_ * perHair));
   for (std::int64_t h = 0; h < indexCapacity_; ++h)
     for (int i = 0; i < perHair; ++i) {
@@ -175,7 +154,7 @@ void HairVertexBuffers::readBack(std::vector<float>& positions, std::vector<floa
 
 void strandTangents(const float* positions, std::int64_t hairs, const HairLayout& layout,
                     std::vector<float>& out) {
-  const int K = layout.strandPoints, M = layout.strandStride, P = layout.pointsPerHair();
+  const int K = layout.strandPoints, M = layout.ringSides, P = layout.pointsPerHair();
   out.resize(static_cast<std::size_t>(hairs * P * 3));
   for (std::int64_t h = 0; h < hairs; ++h) {
     const float* p = positions + h * P * 3;

@@ -4,6 +4,7 @@
 #include <stb_image_write.h>
 
 #include <cstring>
+#include <fstream>
 
 #include "pelage/util/atomic_file.h"
 #include "pelage/util/error.h"
@@ -44,6 +45,20 @@ Image readPng(const std::string& path) {
   img.rgba.assign(data, data + static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 4);
   stbi_image_free(data);
   return img;
+}
+
+bool isCompletePng(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return false;
+  unsigned char head[16] = {};
+  if (!in.read(reinterpret_cast<char*>(head), 16)) return false;
+  static const unsigned char sig[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  if (std::memcmp(head, sig, 8) != 0 || std::memcmp(head + 12, "IHDR", 4) != 0) return false;
+  in.seekg(-12, std::ios::end);
+  unsigned char tail[12] = {};
+  if (!in.read(reinterpret_cast<char*>(tail), 12)) return false;
+  static const unsigned char iend[12] = {0, 0, 0, 0, 'I', 'E', 'N', 'D', 0xae, 0x42, 0x60, 0x82};
+  return std::memcmp(tail, iend, 12) == 0;
 }
 
 }  // namespace pelage::viewer

@@ -6,6 +6,7 @@
 
 #include "gl_program.h"
 #include "pelage/util/error.h"
+#include "pelage/viewer/gl_context.h"
 #include "pelage/viewer/gpu_fur.h"
 #include "pelage/viewer/hair_vertex_buffers.h"
 
@@ -44,19 +45,22 @@ void setInt(GLuint program, const char* name, int v) {
   glProgramUniform1i(program, uniform(program, name), v);
 }
 
-void setMaterial(GLuint program, const scene::Material& m) {
+void setMaterial(GLuint program, const Material& m) {
   setVec3(program, "uKa", m.ambient);
   setVec3(program, "uKd", m.diffuse);
   setVec3(program, "uKs", m.specular);
   setFloat(program, "uShininess", std::max(m.shininess, 1.0f));
 }
 
-HairLayout layoutOf(const scene::FurDrawItem& item) {
-  HairLayout l;
-  l.strandPoints = item.strandPoints;
-  l.strandStride = item.strandStride;
-  l.triangles = item.triangles;
-  return l;
+// How a layout's index pattern is drawn (fur::hairIndexPattern).
+GLenum primitive(const fur::HairLayout& layout) {
+  switch (layout.topology) {
+    case fur::HairTopology::Strand:
+      return GL_LINE_STRIP;
+    case fur::HairTopology::Rings:
+      return GL_TRIANGLES;
+  }
+  return GL_LINE_STRIP;
 }
 
 }  // namespace
@@ -87,7 +91,13 @@ struct Renderer::Impl {
   explicit Impl(const RendererOptions& o) : options(o) {
     GLint maxSamples = 0;
     glGetIntegerv(GL_MAX_SAMPLES, &maxSamples);
-    samples = options.samples > 1 ? std::min(options.samples, static_cast<int>(maxSamples)) : 0;
+    int asked = options.samples;
+    if (asked < 0) {
+      ContextInfo info;
+      queryContextInfo(info);
+      asked = info.software ? 0 : 4;
+    }
+    samples = asked > 1 ? std::min(asked, static_cast<int>(maxSamples)) : 0;
     if (samples < 2) samples = 0;
 
     using detail::ShaderStage;
@@ -222,7 +232,7 @@ struct Renderer::Impl {
 
   void uploadCpuHairs(const scene::FurDrawItem& f, scene::HairShading shading) {
     HairVertexBuffers& b = coats[static_cast<std::size_t>(f.coat)];
-    const HairLayout layout = layoutOf(f);
+    const fur::HairLayout& layout = f.layout;
     b.reserve(f.drawnHairs, layout);
     const float* shade = f.normals;
     if (shading == scene::HairShading::KajiyaKay) {
@@ -243,10 +253,10 @@ struct Renderer::Impl {
     if (b.capacity() == 0) return;
     glUseProgram(program);
     setInt(program, "uPointsPerStrand", b.layout().strandPoints);
-    setInt(program, "uStrandStride", b.layout().strandStride);
+    setInt(program, "uStrandStride", b.layout().ringSides);
     glBindVertexArray(b.vertexArray());
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, b.commands());
-    glMultiDrawElementsIndirect(b.layout().triangles ? GL_TRIANGLES : GL_LINE_STRIP,
+    glMultiDrawElementsIndirect(primitive(b.layout()),
                                 GL_UNSIGNED_INT, nullptr, static_cast<GLsizei>(b.chunks().size()),
                                 sizeof(DrawCommand));
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
@@ -310,7 +320,7 @@ struct Renderer::Impl {
           gpuFur->beginFrame(g);
           gpuBegun = true;
         }
-        gpuFur->generate(f.coat, layoutOf(f), tangents, coats[static_cast<std::size_t>(f.coat)]);
+        gpuFur->generate(f.coat, f.layout, tangents, coats[static_cast<std::size_t>(f.coat)]);
       }
       drawCoat[static_cast<std::size_t>(f.coat)] = true;
       stats.hairsDrawn += f.drawnHairs;
@@ -366,7 +376,8 @@ struct Renderer::Impl {
     const bool ribbons = list.hairWidth == scene::HairWidth::Ribbons;
     for (const scene::FurDrawItem& f : list.fur) {
       const HairVertexBuffers& b = coats[static_cast<std::size_t>(f.coat)];
-      const GLuint p = (ribbons && !b.layout().triangles) ? ribbonProgram.get() : hairProgram.get();
+      const bool strand = b.layout().topology == fur::HairTopology::Strand;
+      const GLuint p = ribbons && strand ? ribbonProgram.get() : hairProgram.get();
       setLighting(p, list, lightViewProj, bias * 2.0f);
       setMaterial(p, f.material);
       setInt(p, "uKajiyaKay", list.hairShading == scene::HairShading::KajiyaKay ? 1 : 0);

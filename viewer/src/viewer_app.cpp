@@ -34,26 +34,6 @@ double msSince(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
 }
 
-void checkOptions(const ViewerOptions& o) {
-  if (o.width < 16 || o.width > 16384 || o.height < 16 || o.height > 16384)
-    inputError("--size ", o.width, "x", o.height, " is out of range [16, 16384] per side");
-  if (o.frames < 0 || o.frames > 10000000)
-    inputError("--frames ", o.frames, " is out of range [0, 10000000]");
-  if (o.samples < -1 || o.samples > 64)
-    inputError("--samples ", o.samples, " is out of range [-1, 64]");
-  if (o.benchmarkFrames < 1 || o.benchmarkFrames > 100000)
-    inputError("--benchmark-frames ", o.benchmarkFrames, " is out of range [1, 100000]");
-  if (!o.screenshot.empty()) {
-    const std::filesystem::path parent = std::filesystem::path(o.screenshot).parent_path();
-    if (!parent.empty() && !std::filesystem::is_directory(parent))
-      inputError("--screenshot ", o.screenshot, ": the directory ", parent.string(),
-                 " does not exist");
-  }
-  for (double h : o.benchmarkHairs)
-    if (!(h >= 0.0 && h <= fur::kMaxHairs))
-      inputError("--benchmark-hairs ", h, " is out of range [0, ", fur::kMaxHairs, "]");
-}
-
 // Throws (a failure, exit 3) when the debug log recorded GL errors.
 void failOnGlErrors(const GlDebugLog* log) {
   if (!log) return;
@@ -237,8 +217,28 @@ int runHeadless(const ViewerOptions& o, scene::Model model) {
 
 }  // namespace
 
+void validateViewerOptions(const ViewerOptions& o) {
+  if (o.width < 16 || o.width > 16384 || o.height < 16 || o.height > 16384)
+    fieldError("size", o.width, "x", o.height, " is out of range [16, 16384] per side");
+  if (o.frames < 0 || o.frames > 10000000)
+    fieldError("frames", o.frames, " is out of range [0, 10000000]");
+  if (o.samples < -1 || o.samples > 64) fieldError("samples", o.samples, " is out of range [-1, 64]");
+  if (!(o.time >= 0.0 && o.time <= 1e6))
+    fieldError("time", o.time, " is out of range [0, 1000000] s");
+  if (o.benchmarkFrames < 1 || o.benchmarkFrames > 100000)
+    fieldError("benchmark frames", o.benchmarkFrames, " is out of range [1, 100000]");
+  if (!o.screenshot.empty()) {
+    const std::filesystem::path parent = std::filesystem::path(o.screenshot).parent_path();
+    if (!parent.empty() && !std::filesystem::is_directory(parent))
+      fieldError("screenshot", o.screenshot, ": the directory ", parent.string(), " does not exist");
+  }
+  for (double h : o.benchmarkHairs)
+    if (!(h >= 0.0 && h <= fur::kMaxHairs))
+      fieldError("benchmark hairs", h, " is out of range [0, ", fur::kMaxHairs, "]");
+}
+
 int runViewer(const ViewerOptions& options, scene::Model model) {
-  checkOptions(options);
+  validateViewerOptions(options);
   if (options.benchmark) return detail::runBenchmark(options, model);
   if (options.headless) return runHeadless(options, std::move(model));
   return runWindow(options, std::move(model));

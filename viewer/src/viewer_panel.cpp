@@ -19,21 +19,24 @@ bool color(const char* label, Eigen::Vector3f& c) {
 void coatPanel(const char* title, fur::CoatParams& c, bool undercoat) {
   if (!ImGui::TreeNodeEx(title, ImGuiTreeNodeFlags_DefaultOpen)) return;
   ImGui::PushID(title);
-  const char* styles[] = {"line", "polyline", "curve", "tube"};
+  // The styles of fur/hair_layout.h, in enum order.
+  const char* styles[fur::kHairStyleCount];
+  for (int i = 0; i < fur::kHairStyleCount; ++i) styles[i] = fur::styleName(fur::kHairStyles[i]);
   int style = static_cast<int>(c.style);
-  if (ImGui::Combo("style", &style, styles, 4)) c.style = static_cast<fur::HairStyle>(style);
+  if (ImGui::Combo("style", &style, styles, fur::kHairStyleCount))
+    c.style = fur::kHairStyles[style];
   ImGui::SliderFloat("stiffness", &c.stiffness, 0.0f, 1.0f);
   ImGui::SliderFloat("normal randomize", &c.normalRandomize, 0.0f, 1.0f);
   ImGui::SliderFloat("hair end randomize", &c.hairEndRandomize, 0.0f, 2.0f);
   ImGui::SliderFloat("segment direction wt", &c.segmentDirectionWeight, 0.0f, 1.0f);
   ImGui::SliderFloat(undercoat ? "relative length" : "length factor", &c.lengthFactor, 0.0f, 10.0f,
                      "%.3f", ImGuiSliderFlags_Logarithmic);
-  if (c.style == fur::HairStyle::Curve || c.style == fur::HairStyle::Tube) {
+  if (fur::usesCurveParams(c.style)) {
     ImGui::SliderInt("curve points (K)", &c.curvePoints, 2, 64);
     ImGui::SliderFloat("curl radius", &c.curlRadius, 0.0f, 0.5f);
     ImGui::SliderFloat("curl turns", &c.curlTurns, 0.0f, 20.0f);
   }
-  if (c.style == fur::HairStyle::Tube) {
+  if (fur::usesTubeParams(c.style)) {
     ImGui::SliderInt("tube sides (M)", &c.tubeSides, 3, 32);
     ImGui::SliderFloat("tube radius (m)", &c.tubeRadiusMeters, 1e-6f, 0.01f, "%.6f",
                        ImGuiSliderFlags_Logarithmic);

@@ -23,63 +23,51 @@ fur::FurParams initialParams(const ViewerOptions& o) {
 
 ViewerSession::ViewerSession(const ViewerOptions& options, scene::Model model)
     : edit(initialParams(options)), model_(std::move(model)) {
-  stillPose_ = options.posePath.empty() ? anatomy::restPose(model_.body)
-                                        : anatomy::loadPose(model_.body, options.posePath);
-  if (!options.clip.empty() && !options.posePath.empty())
-    inputError("--pose and --clip cannot be used together");
   if (!(options.time >= 0.0 && options.time <= 1e6))
-    inputError("--time ", options.time, " is out of range [0, 1000000] s");
-  if (!options.clip.empty()) {
-    clip_ = model_.findClip(options.clip);
-    if (clip_ < 0) {
-      std::string names;
-      for (const animation::Clip& c : model_.clips) names += (names.empty() ? "" : ", ") + c.name;
-      inputError("--clip: model '", model_.name, "' has no clip '", options.clip, "' (",
-                 names.empty() ? std::string("it has no clips") : "its clips: " + names, ")");
-    }
-  } else if (options.posePath.empty() && !model_.clips.empty()) {
-    clip_ = 0;
-  }
+    fieldError("time", options.time, " is out of range [0, 1000000] s");
+  stillPose_ =
+      options.stillPose.local.empty() ? anatomy::restPose(model_.body) : options.stillPose;
+  PELAGE_CHECK(static_cast<int>(stillPose_.local.size()) == model_.body.size(), "still pose of ",
+               stillPose_.local.size(), " segments");
+  const int clips = static_cast<int>(model_.clips.size());
+  PELAGE_CHECK(options.clip >= -1 && (options.clip < clips || clips == 0), "clip ", options.clip,
+               " of ", clips);
+  clip_ = clips > 0 ? options.clip : -1;
   time_ = options.time;
   fur_ = scene::growFur(model_, edit, "fur '" + edit.name + "'");
   follow = options.follow;
-  hairSource = options.hairSource == "cpu" ? scene::HairSource::Cpu : scene::HairSource::Gpu;
-  if (options.hairSource != "cpu" && options.hairSource != "gpu")
-    inputError("--hair-source '", options.hairSource, "' (accepted: gpu, cpu)");
-  shading = scene::parseHairShading(options.shading);
+  hairSource = options.hairSource;
+  shading = options.shading;
   hairWidth = options.ribbons ? scene::HairWidth::Ribbons : scene::HairWidth::Lines;
   shadows = options.shadows;
   dynamics = options.dynamics;
   dynamicsParams = options.dynamicsParams;
-  fur::validateDynamicsParams(dynamicsParams, "--frequency/--damping");
+  fur::validateDynamicsParams(dynamicsParams, "dynamics");
+  appliedDynamics_ = dynamicsParams;
   skinColor = model_.skin.color;
-  if (!options.skinColor.empty()) {
-    if (options.skinColor.size() != 3)
-      inputError("--skin-color takes 3 values (R G B in [0, 1]), got ", options.skinColor.size());
+  if (options.skinColor) {
     for (int c = 0; c < 3; ++c) {
-      const float v = options.skinColor[static_cast<std::size_t>(c)];
+      const float v = (*options.skinColor)[c];
       if (!(v >= 0.0f && v <= 1.0f))
-        inputError("--skin-color ", "RGB"[c], " = ", v, " is out of range [0, 1]");
-      skinColor[c] = v;
+        fieldError("skin color", "RGB"[c], " = ", v, " is out of range [0, 1]");
     }
+    skinColor = *options.skinColor;
   }
   RendererOptions ro;
   ro.samples = options.samples;
-  if (ro.samples < 0) {
-    // MSAA costs ~2.3x on llvmpipe (../shared/docs/headless-gl.md): keep software rasterisers fast.
-    ContextInfo info;
-    queryContextInfo(info);
-    ro.samples = info.software ? 0 : 4;
-  }
   renderer_ = std::make_unique<Renderer>(ro);
+  scene::PlaybackOptions po;
+  po.stillPose = stillPose_;
+  po.hairSource = hairSource;
+  playback_ = std::make_unique<scene::Playback>(model_, fur_, po);
   // The first camera: the preset on the first frame.
-  posedFrame();
-  framing_ = scene::framingOf(model_, frame_, scene::maxHairLength(model_, fur_.params));
+  playback_->posePose(pose(), 0.0);
+  framing_ = playback_->framing();
   lastRoot_ = framing_.rootPosition;
   pivot_ = Eigen::Vector3f(framing_.center.x(), framing_.center.y(), 0.0f);
-  pendingPreset_ = scene::parseCameraPreset(options.camera);
-  orbit =
-      scene::orbitOf(scene::presetCamera(framing_, *pendingPreset_, options.width, options.height));
+  pendingPreset_ = options.camera;
+  orbit = scene::orbitOf(
+      scene::presetCamera(framing_, *pendingPreset_, options.width, options.height));
 }
 
 ViewerSession::~ViewerSession() {
@@ -183,13 +171,13 @@ void ViewerSession::selectClip(int index) {
     time_ = 0.0;
   }
   clip_ = index;
-  dynamicsRunning_ = false;
+  playback_->restartDynamics();
 }
 
 void ViewerSession::setTime(double seconds) {
   time_ = std::max(seconds, 0.0);
   fromClip_ = -1;  // scrubbing ends a cross-fade
-  dynamicsRunning_ = false;
+  playback_->restartDynamics();
 }
 
 double ViewerSession::clipDuration() const {
@@ -215,7 +203,7 @@ void ViewerSession::advance(double dtSeconds) {
   }
 }
 
-void ViewerSession::posedFrame() {
+const anatomy::Pose& ViewerSession::pose() {
   if (clip_ >= 0) {
     const animation::Clip& c = model_.clips[static_cast<std::size_t>(clip_)];
     if (fromClip_ >= 0) {
@@ -231,74 +219,55 @@ void ViewerSession::posedFrame() {
   if (turntableDegPerSecond != 0.0f) {
     // The root segment turned about the world +Z axis through the creature's first centre.
     const double deg = std::fmod(time_ * static_cast<double>(turntableDegPerSecond), 360.0);
-    const Eigen::Quaternionf q(Eigen::AngleAxisf(static_cast<float>(deg * 3.14159265358979 / 180.0),
-                                                 Eigen::Vector3f::UnitZ()));
+    const Eigen::Quaternionf q(Eigen::AngleAxisf(
+        static_cast<float>(deg * 3.14159265358979 / 180.0), Eigen::Vector3f::UnitZ()));
     anatomy::Transform& root = pose_.local[0];
     root.rotation = q * root.rotation;
     root.translation = q * (root.translation - pivot_) + pivot_;
   }
-  scene::evaluateFrame(model_, pose_, frame_);
+  return pose_;
 }
 
 void ViewerSession::frame(double dtSeconds, int width, int height) {
   applyEdits();
-  posedFrame();
-  framing_ = scene::framingOf(model_, frame_, scene::maxHairLength(model_, fur_.params));
+  // Dynamic fur (its springs step by the played time): parameters from the panel; invalid ones
+  // (mid-edit) keep the last valid set. Without fur drawn the springs stop, and restart with it.
+  if (dynamics && drawFur) {
+    try {
+      fur::validateDynamicsParams(dynamicsParams, "dynamics panel");
+      appliedDynamics_ = dynamicsParams;
+    } catch (const InputError& e) {
+      editError = e.what();
+    }
+  }
+  playback_->setDynamics(dynamics && drawFur, appliedDynamics_);
+  playback_->setHairSource(hairSource);
+  playback_->posePose(pose(), lastStep_);
+  framing_ = playback_->framing();
   if (follow) orbit.target += framing_.rootPosition - lastRoot_;
   lastRoot_ = framing_.rootPosition;
   if (pendingPreset_) {
-    orbit = scene::orbitOf(
-        scene::presetCamera(framing_, *pendingPreset_, std::max(width, 1), std::max(height, 1)));
+    orbit = scene::orbitOf(scene::presetCamera(framing_, *pendingPreset_, std::max(width, 1),
+                                               std::max(height, 1)));
     pendingPreset_.reset();
   }
   scene::Camera cam = scene::orbitCamera(orbit, std::max(width, 1), std::max(height, 1));
-  // Clip planes around the creature, so zooming far out or close in keeps it visible.
-  const float d = (cam.eye - framing_.center).norm();
-  cam.nearMeters = std::max((d - framing_.radius) * 0.5f, framing_.radius * 0.002f);
-  cam.farMeters = d + framing_.radius * 2.0f;
-  const bool cpu = hairSource == scene::HairSource::Cpu || dynamics;
-  if (drawFur && dynamics) {
-    dynamicFur(cam.eye, lastStep_);
-  } else {
-    dynamicsRunning_ = false;
-    if (drawFur) scene::evaluateFur(model_, fur_, cam.eye, cpu, frame_);
-  }
+  scene::fitClipPlanes(cam, framing_);
+  if (drawFur) playback_->evaluateFur(cam.eye);
   scene::Light light;
   light.direction = scene::lightDirection(lightAzimuth, lightElevation);
   light.shadows = shadows;
   scene::DrawOptions opt;
-  opt.hairSource = cpu ? scene::HairSource::Cpu : hairSource;
   opt.hairShading = shading;
   opt.hairWidth = hairWidth;
+  opt.ribbonRootWidthPixels = ribbonWidth;
   opt.drawSkin = drawSkin;
   opt.drawFur = drawFur;
-  scene::buildDrawList(model_, frame_, drawFur ? &fur_ : nullptr, cam, light, opt, list_);
-  list_.ribbonRootWidthPixels = ribbonWidth;
-  if (list_.skin.positions) list_.skin.material = scene::skinMaterial(skinColor);
-  const RenderStats stats = renderer_->render(list_);
+  const Material skin = scene::skinMaterial(skinColor);
+  list_ = &playback_->drawList(cam, light, opt, &skin);
+  const RenderStats stats = renderer_->render(*list_);
   hairsDrawn_ = stats.hairsDrawn;
   advance(dtSeconds);  // the first frame shows the start time exactly
-}
-
-void ViewerSession::dynamicFur(const Eigen::Vector3f& cameraEye, double stepSeconds) {
-  // The spring parameters come from the panel: invalid ones (mid-edit) keep the last valid set.
-  try {
-    fur::validateDynamicsParams(dynamicsParams, "dynamics panel");
-    appliedDynamics_ = dynamicsParams;
-  } catch (const InputError& e) {
-    editError = e.what();
-  }
-  if (!dynamicsRunning_ || dynamicsGeneration_ != fur_.generation) {
-    fur::resetFurDynamics(fur_.roots, dynamicsState_);
-    dynamicsGeneration_ = fur_.generation;
-    dynamicsRunning_ = true;
-  }
-  // The spring step is exact for any dt; dt is kept in [1 ms, 1 s] (fps [1, 1000]); the first
-  // frame's (0) is ignored after a reset.
-  scene::DynamicsClock clock;
-  clock.fps = 1.0 / std::clamp(stepSeconds, 1e-3, 1.0);
-  scene::stepClipDynamics(model_, fur_, appliedDynamics_, clock, cameraEye, true, dynamicsState_,
-                          frame_);
 }
 
 }  // namespace pelage::viewer::detail

@@ -14,6 +14,7 @@
 #include "pelage/scene/draw_list.h"
 #include "pelage/scene/dynamic_fur.h"
 #include "pelage/scene/frame.h"
+#include "pelage/scene/playback.h"
 #include "pelage/viewer/renderer.h"
 #include "pelage/viewer/viewer_app.h"
 
@@ -36,14 +37,15 @@ class ViewerSession {
   std::string message;    // last preset save/load result
   scene::Orbit orbit;
   bool follow = false;
-  scene::HairSource hairSource = scene::HairSource::Gpu;
+  scene::HairSource hairSource = scene::HairSource::Gpu;  // the CPU's hairs with dynamics on
   scene::HairShading shading = scene::HairShading::Paper;
   scene::HairWidth hairWidth = scene::HairWidth::Lines;
   float ribbonWidth = 2.5f;
   Eigen::Vector3f skinColor;  // the skin's diffuse colour (the model's, or --skin-color)
   bool drawSkin = true;
   bool drawFur = true;
-  float lightAzimuth = 35.0f, lightElevation = 50.0f;
+  float lightAzimuth = scene::kKeyLightAzimuthDegrees;
+  float lightElevation = scene::kKeyLightElevationDegrees;
   bool shadows = false;
   bool playing = true;
   float turntableDegPerSecond = 0.0f;  // without a clip: turn the creature about +Z (0 = still)
@@ -79,8 +81,8 @@ class ViewerSession {
   // ---- What the UI shows ---------------------------------------------------------------------
   const scene::Model& model() const { return model_; }
   const scene::Fur& fur() const { return fur_; }
-  const scene::FrameState& state() const { return frame_; }
-  const scene::DrawList& drawList() const { return list_; }
+  const scene::FrameState& state() const { return playback_->state(); }
+  const scene::DrawList& drawList() const { return *list_; }
   Renderer& renderer() { return *renderer_; }
   bool regrowing() const { return pending_.valid(); }
   double frameMs() const { return frameMs_; }
@@ -92,9 +94,8 @@ class ViewerSession {
  private:
   void applyEdits();
   void advance(double dtSeconds);
-  void posedFrame();  // evaluates the frame's pose (clip or still, then the turntable)
-  // This frame's hairs from the dynamic ends, `stepSeconds` of clip time after the previous one.
-  void dynamicFur(const Eigen::Vector3f& cameraEye, double stepSeconds);
+  // The frame's pose (clip or still, cross-fades, then the turntable).
+  const anatomy::Pose& pose();
 
   scene::Model model_;
   anatomy::Pose stillPose_;
@@ -107,8 +108,8 @@ class ViewerSession {
   Eigen::Vector3f pivot_ = Eigen::Vector3f::Zero();
   scene::Fur fur_;
   std::future<scene::Fur> pending_;
-  scene::FrameState frame_;
-  scene::DrawList list_;
+  std::unique_ptr<scene::Playback> playback_;  // the frame owner, playing model_ and fur_
+  const scene::DrawList* list_ = nullptr;
   std::unique_ptr<Renderer> renderer_;
   scene::Framing framing_;
   std::optional<scene::CameraPreset>
@@ -117,10 +118,7 @@ class ViewerSession {
   double time_ = 0.0;
   double frameMs_ = 0.0;
   std::int64_t hairsDrawn_ = 0;
-  fur::FurDynamicsState dynamicsState_;
-  std::uint64_t dynamicsGeneration_ = 0;  // the roots the state was sized to
-  bool dynamicsRunning_ = false;  // false: the next step restarts from the quasi-static hairs
-  double lastStep_ = 0.0;         // clip seconds played since the previous frame
+  double lastStep_ = 0.0;                // clip seconds played since the previous frame
   fur::DynamicsParams appliedDynamics_;  // the last valid dynamicsParams
 };
 

@@ -32,9 +32,7 @@ std::string lastGlfwError() {
 GlfwWindow::GlfwWindow(int width, int height, const std::string& title, bool debug) {
   glfwSetErrorCallback(onGlfwError);
   if (glfwInit() != GLFW_TRUE)
-    inputError("cannot open a window: ", lastGlfwError(),
-               ". Run on a desktop, under a virtual display (xvfb-run -a pelage view ...), or add "
-               "--headless to render offscreen through EGL");
+    fieldError("window", "cannot be opened: ", lastGlfwError());
   const int versions[][2] = {{4, 6}, {4, 5}, {4, 3}};
   std::string tried;
   for (const auto& v : versions) {

@@ -56,22 +56,12 @@ void main() {
   gOut = (slot - uChunkFirst) * cs.points * 3;
 
   // Sec. 3.2: interpolate at the root with the table's barycentric coordinates.
-  vec4 b = barycentric[r.y];
   int v1 = triangles[3 * t], v2 = triangles[3 * t + 1], v3 = triangles[3 * t + 2];
-  HairInput hin;
-  vec3 p1 = vertexArray3(0, v1), p2 = vertexArray3(0, v2), p3 = vertexArray3(0, v3);
-  vec3 n1 = vertexArray3(1, v1), n2 = vertexArray3(1, v2), n3 = vertexArray3(1, v3);
-  vec3 s1 = vertexArray3(2, v1), s2 = vertexArray3(2, v2), s3 = vertexArray3(2, v3);
-  hin.root = vec3(barycentricMix(b.x, b.y, b.z, p1.x, p2.x, p3.x), barycentricMix(b.x, b.y, b.z, p1.y, p2.y, p3.y),
-                  barycentricMix(b.x, b.y, b.z, p1.z, p2.z, p3.z));
-  hin.normalSum = vec3(barycentricMix(b.x, b.y, b.z, n1.x, n2.x, n3.x), barycentricMix(b.x, b.y, b.z, n1.y, n2.y, n3.y),
-                       barycentricMix(b.x, b.y, b.z, n1.z, n2.z, n3.z));
-  hin.directionSum = vec3(barycentricMix(b.x, b.y, b.z, s1.x, s2.x, s3.x), barycentricMix(b.x, b.y, b.z, s1.y, s2.y, s3.y),
-                          barycentricMix(b.x, b.y, b.z, s1.z, s2.z, s3.z));
-  hin.length = barycentricMix(b.x, b.y, b.z, lengths[v1], lengths[v2], lengths[v3]);
-  vec4 jit = jitter[local];
-  hin.xi = jit.xyz;
-  hin.phase = jit.w;
+  HairInput hin = interpolateRoot(barycentric[r.y].xyz, vertexArray3(0, v1), vertexArray3(0, v2),
+                                  vertexArray3(0, v3), lengths[v1], lengths[v2], lengths[v3],
+                                  vertexArray3(1, v1), vertexArray3(1, v2), vertexArray3(1, v3),
+                                  vertexArray3(2, v1), vertexArray3(2, v2), vertexArray3(2, v3),
+                                  jitter[local]);
   for (int i = 0; i < POLYLINE_POINTS; ++i) {
     vec2 cs2 = cs.twist != 0 ? twist[r.y * POLYLINE_POINTS + i] : vec2(1.0, 0.0);
     hin.twistCos[i] = cs2.x;

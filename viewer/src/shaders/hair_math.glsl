@@ -1,58 +1,12 @@
 // GLSL mirror of fur/include/pelage/fur/hair_math.h (lanes T = float, Vec3<T> = vec3, masks =
-// bool), function for function and line for line, so the GPU evaluates the same formulas as the
-// CPU fur model (Van Gelder & Wilhelms 1997, sec. 3.2 to 3.8). Keep the two in step: the parity
-// test (tests/viewer/gpu_fur_test.cpp) compares every style against the CPU within 1e-4.
+// bool), function for function and operation for operation, so the GPU evaluates the same formulas
+// as the CPU fur model (Van Gelder & Wilhelms 1997, sec. 3.2 to 3.8). Keep the two in step: the
+// parity test (tests/viewer/gpu_fur_test.cpp) compares every style, with random parameters, against
+// the CPU.
 //
-// The per-coat constants (fur::CoatShape) arrive as the std430 block `cs`, packed by gpu_fur.cpp
-// (GpuCoatShape) with the same members in the same order.
-
-#define STYLE_LINE 0
-#define STYLE_POLYLINE 1
-#define STYLE_CURVE 2
-#define STYLE_TUBE 3
-#define REGION_NONE 0
-#define REGION_SPHERE 1
-#define REGION_BOX 2
-#define POLYLINE_POINTS 8
-#define MAX_CURVE_POINTS 64
-#define MAX_TUBE_SIDES 32
-
-layout(std430, binding = 0) readonly buffer CoatShapeBlock {
-  int style;
-  int points;
-  int curvePoints;
-  int tubeSides;
-  int twist;
-  int curl;
-  int regionShape;
-  int pad0;
-  float lengthMul;
-  float segmentWeight;
-  float endRandomize;
-  float floppiness;
-  float up[3];
-  float fallbackTangent[3];
-  float regionCenter[3];
-  float regionRadius2;
-  float regionMin[3];
-  float regionMax[3];
-  float regionScale;
-  float curlRadius;
-  float polyA[POLYLINE_POINTS];
-  float polyB[POLYLINE_POINTS];
-  float polyAlpha[POLYLINE_POINTS];
-  float polyBeta[POLYLINE_POINTS];
-  float curveC1[MAX_CURVE_POINTS];
-  float curveC2[MAX_CURVE_POINTS];
-  float curveDc1[MAX_CURVE_POINTS];
-  float curveDc2[MAX_CURVE_POINTS];
-  float curlEnvelope[MAX_CURVE_POINTS];
-  float curlCos[MAX_CURVE_POINTS];
-  float curlSin[MAX_CURVE_POINTS];
-  float tubeRadius[MAX_CURVE_POINTS];
-  float ringCos[MAX_TUBE_SIDES];
-  float ringSin[MAX_TUBE_SIDES];
-} cs;
+// The per-coat constants (fur::CoatShape) arrive as the std430 block `cs`, whose declaration (and
+// the STYLE_*, REGION_* and array-size constants) gpu_fur.cpp generates from CoatShape's member list
+// and prepends to this file.
 
 vec3 csUp() { return vec3(cs.up[0], cs.up[1], cs.up[2]); }
 vec3 csFallbackTangent() { return vec3(cs.fallbackTangent[0], cs.fallbackTangent[1], cs.fallbackTangent[2]); }
@@ -108,6 +62,27 @@ struct HairInput {
 // Sec. 3.2: h = b1 v1 + b2 v2 + b3 v3.
 float barycentricMix(float b1, float b2, float b3, float v1, float v2, float v3) {
   return (b1 * v1 + b2 * v2) + b3 * v3;
+}
+
+// Sec. 3.2: one hair's inputs at its root, interpolated from its triangle's three vertices (deformed
+// position p, fur length len, normal n, segment direction sd) with the barycentric entry b, and the
+// root's jitter j = (xi, phase) (hair_math.h: interpolateRoot).
+HairInput interpolateRoot(vec3 b, vec3 p1, vec3 p2, vec3 p3, float len1, float len2, float len3,
+                          vec3 n1, vec3 n2, vec3 n3, vec3 sd1, vec3 sd2, vec3 sd3, vec4 j) {
+  HairInput hin;
+  hin.root = vec3(barycentricMix(b.x, b.y, b.z, p1.x, p2.x, p3.x),
+                  barycentricMix(b.x, b.y, b.z, p1.y, p2.y, p3.y),
+                  barycentricMix(b.x, b.y, b.z, p1.z, p2.z, p3.z));
+  hin.length = barycentricMix(b.x, b.y, b.z, len1, len2, len3);
+  hin.normalSum = vec3(barycentricMix(b.x, b.y, b.z, n1.x, n2.x, n3.x),
+                       barycentricMix(b.x, b.y, b.z, n1.y, n2.y, n3.y),
+                       barycentricMix(b.x, b.y, b.z, n1.z, n2.z, n3.z));
+  hin.directionSum = vec3(barycentricMix(b.x, b.y, b.z, sd1.x, sd2.x, sd3.x),
+                          barycentricMix(b.x, b.y, b.z, sd1.y, sd2.y, sd3.y),
+                          barycentricMix(b.x, b.y, b.z, sd1.z, sd2.z, sd3.z));
+  hin.xi = j.xyz;
+  hin.phase = j.w;
+  return hin;
 }
 
 // Sec. 3.2: the skin normal n = normalize(b1 n1 + b2 n2 + b3 n3) (U where it vanishes).
@@ -167,9 +142,13 @@ vec3 hairPlaneNormal(vec3 dTilde, vec3 e, vec3 n) {
 // Sec. 3.7: polyline control point i = R + a_i (W - R) + b_i (E - R).
 vec3 polylinePoint(int i, vec3 root, vec3 ld, vec3 le) { return (root + ld * cs.polyA[i]) + le * cs.polyB[i]; }
 
-// Sec. 3.7: the shading normal at point i, perpendicular to the segment ending there, in the plane.
-vec3 polylineNormal(int i, vec3 u1, vec3 u2) {
-  return normalizeOr(u1 * cs.polyAlpha[i] + u2 * cs.polyBeta[i], u1, 1e-20);
+// Sec. 3.7: the shading normal at point i, perpendicular to the segment ending there and in the
+// hair plane: N_i = (alpha_i u1 + beta_i u2) / |...|, with |alpha u1 + beta u2|^2 = alpha^2 +
+// beta^2 q + 2 alpha beta cosDE, q = 1 - (B.e)^2, cosDE = d~.e (hair_math.h: polylineNormal).
+vec3 polylineNormal(int i, vec3 u1, vec3 u2, float q, float cosDE) {
+  float len2 = (cs.polyAlpha2[i] + cs.polyBeta2[i] * q) + cs.polyTwoAlphaBeta[i] * cosDE;
+  float inv = 1.0 / sqrt(len2);
+  return u1 * (cs.polyAlpha[i] * inv) + u2 * (cs.polyBeta[i] * inv);
 }
 
 // Sec. 3.8: n_p = the skin normal projected into the hair plane, normalised.
@@ -215,12 +194,19 @@ void buildHair(HairInput hin) {
   }
   vec3 b = hairPlaneNormal(dTilde, e, n);
   if (cs.style == STYLE_POLYLINE) {
+    // Sec. 3.7 (hair_math.h: emitPolyline): point 0 is R and point 7 is E = R + L e exactly; point
+    // 0 takes the first segment's normal.
     vec3 ld = dTilde * L;
     vec3 u1 = cross(b, dTilde);
     vec3 u2 = cross(b, e);
+    float be = dot3(b, e);
+    float q = 1.0 - be * be;
+    float cosDE = dot3(dTilde, e);
+    vec3 first = polylineNormal(1, u1, u2, q, cosDE);
     for (int i = 0; i < POLYLINE_POINTS; ++i) {
-      vec3 p = polylinePoint(i, root, ld, le);
-      vec3 nrm = polylineNormal(i, u1, u2);
+      vec3 p = i == 0 ? root
+                      : (i == POLYLINE_POINTS - 1 ? root + le : polylinePoint(i, root, ld, le));
+      vec3 nrm = i <= 1 ? first : polylineNormal(i, u1, u2, q, cosDE);
       if (cs.twist != 0) nrm = nrm * hin.twistCos[i] + b * hin.twistSin[i];
       emitPoint(i, p, nrm);
     }

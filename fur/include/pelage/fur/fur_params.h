@@ -10,27 +10,16 @@
 #include <string>
 #include <string_view>
 
+#include "pelage/fur/hair_layout.h"
 #include "pelage/fur/hair_style.h"
+#include "pelage/util/material.h"
 
 namespace pelage::fur {
-
-// "line", "polyline", "curve", "tube".
-const char* styleName(HairStyle style);
-// Parses a style name; throws InputError naming `where` and the accepted names.
-HairStyle parseStyle(std::string_view name, const std::string& where);
-
-// Hair material (sec. 3.2: "ambient, diffuse, and specular reflectivity"), linear RGB in [0, 1].
-struct Material {
-  Eigen::Vector3f ambient{0.3f, 0.14f, 0.0f};
-  Eigen::Vector3f diffuse{0.3f, 0.14f, 0.0f};
-  Eigen::Vector3f specular{0.6f, 0.6f, 0.6f};
-  float shininess = 16.0f;  // Phong exponent [1, 1000]
-};
 
 // One coat (sec. 3.1): "different material characteristics, stiffness, randomness, and hair style".
 struct CoatParams {
   HairStyle style = HairStyle::Polyline;
-  Material material;
+  Material material;  // pelage::Material (sec. 3.2)
   float stiffness = 0.2f;               // [0, 1]; floppiness f = clamp(1 - stiffness, 0.02, 1)
   float normalRandomize = 0.0f;         // [0, 1]: polyline normals twist by up to r * pi
   float hairEndRandomize = 0.0f;        // [0, 2]: weightless end moves by up to r * length

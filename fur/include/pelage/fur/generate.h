@@ -13,6 +13,7 @@
 
 #include "pelage/fur/culling.h"
 #include "pelage/fur/fur_params.h"
+#include "pelage/fur/hair_layout.h"
 #include "pelage/fur/hair_math.h"
 #include "pelage/fur/roots.h"
 #include "pelage/skin/deform.h"
@@ -41,14 +42,14 @@ class FloatBuffer {
   std::size_t capacity_ = 0;
 };
 
-// One coat's hairs for one frame. Hair i (i < drawn) has P = pointsPerHair points, at
-// [i * P, (i + 1) * P) in `positions` and `normals`, each point 3 floats (x, y, z), world metres;
-// `hairIds[i]` is the hair's index into the coat's roots (CoatRoots). Point 0 is the root.
-// Shading normals: line and curve repeat the skin normal; polyline has one per point (sec. 3.7);
-// tube points are ring points with radial normals (point k * M + j: ring k, direction j).
+// One coat's hairs for one frame, laid out as `layout` says (hair_layout.h): hair i (i < drawn)
+// has P = layout.pointsPerHair() points, at [i * P, (i + 1) * P) in `positions` and `normals`, each
+// point 3 floats (x, y, z), world metres; `hairIds[i]` is the hair's index into the coat's roots
+// (CoatRoots). Point 0 is the root. Shading normals: line and curve repeat the skin normal;
+// polyline has one per point (sec. 3.7); tube points are ring points with radial normals (point
+// k * M + j: ring k, direction j).
 struct HairBuffers {
-  HairStyle style = HairStyle::Polyline;
-  int pointsPerHair = 0;
+  HairLayout layout;
   std::int64_t drawn = 0;
   FloatBuffer positions;              // (capacity * P) x 3
   FloatBuffer normals;                // (capacity * P) x 3
@@ -73,9 +74,6 @@ struct FurWorkspace {
   std::array<float, kCoatCount> twistAmount{-1.0f, -1.0f};
   std::array<std::uint64_t, kCoatCount> twistSeed{0, 0};
 };
-
-// Points per hair of a coat: line 2, polyline 8, curve K, tube K * M.
-int pointsPerHair(const CoatParams& coat);
 
 // The per-coat constants of hair_math.h for coat `coat` of `params`.
 CoatShape makeCoatShape(const FurParams& params, int coat);
@@ -105,14 +103,15 @@ bool setKernelPath(KernelPath path);
 KernelPath activeKernelPath();
 const char* kernelPathName(KernelPath path);
 
+// Sec. 3.2: the inputs of root `rootIndex` of coat `coat` interpolated on the deformed skin
+// (interpolateRoot of hair_math.h on its triangle's vertex records).
+HairInput<float> rootInput(const skin::SkinMesh& skin, const FurRoots& roots,
+                           const skin::DeformedSkin& deformed, int coat, std::int64_t rootIndex);
+
 // One hair computed with the scalar reference (hair_math.h with T = float), for tests and GPU
 // parity: root `rootIndex` of `coat`, P points into positions/normals (P x 3 each).
 void referenceHair(const skin::SkinMesh& skin, const FurRoots& roots, const FurParams& params,
                    const skin::DeformedSkin& deformed, int coat, std::int64_t rootIndex,
                    std::vector<float>& positions, std::vector<float>& normals);
-
-// The tube's triangles, the same for every hair: (K - 1) * M * 2 triangles as point indices within
-// a hair (add i * P for hair i), counter-clockwise seen from outside.
-std::vector<std::int32_t> tubeTriangles(int curvePoints, int tubeSides);
 
 }  // namespace pelage::fur

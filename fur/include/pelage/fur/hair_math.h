@@ -142,54 +142,83 @@ inline constexpr int kMaxTubeSides = 32;          // M
 inline constexpr float kTubeTipFraction = 0.05f;  // tube radius at the tip / at the root
 
 // Everything per-coat that the per-hair maths needs, precomputed from FurParams (makeCoatShape in
-// generate.h). Plain floats so that a GPU path can upload it as a uniform block.
+// generate.h). One description for the CPU and the GPU: the member list below declares the C++
+// struct, and viewer/gpu_fur.cpp generates the GLSL std430 block `cs` of hair_math.glsl from the
+// same list and checks every member's offset in the linked program. Members are 4-byte scalars or
+// arrays of them (enums are 32-bit, flags int32 0/1), so std430 places each at its C++ offset and
+// the struct is uploaded as it is.
+//
+// SCALAR(C++ type, GLSL type, name) and ARRAY(C++ type, GLSL type, name, size), in block order:
+//  style, points: the coat's style and P (hairLayout(coat).pointsPerHair());
+//  lengthMul: global length scale * coat length factor; segmentWeight w (sec. 3.4);
+//  endRandomize r, floppiness f (sec. 3.5); up U, fallbackTangent (unit, perpendicular to U);
+//  twist: polyline normal randomize > 0 (twist table in use);
+//  region*: the length region (sec. 3.2), tested at the root;
+//  poly*: the polyline template (sec. 3.7): P(t_i) = R + a_i (W - R) + b_i (E - R), t_i = i / 7,
+//    a(t) = 2 lambda t (1 - t), b(t) = t^2, lambda = 0.5; segment i (ending at i) has direction
+//    alpha_i (W - R) + beta_i (E - R), alpha_i = a_i - a_{i-1}, beta_i = b_i - b_{i-1} (point 0
+//    uses segment 1), with alpha_i^2, beta_i^2 and 2 alpha_i beta_i;
+//  curve*: the curve (sec. 3.8): C(t_k) = R + c1_k L n_p + c2_k L e with the Bernstein sums
+//    c1 = (1-t)^2 t, c2 = 2 (1-t) t^2 + t^3; tangent weights dc1 = (1-t)(1-3t), dc2 = 4t - 3t^2;
+//  curl*: the helix, radius curlRadius * L * sin(pi t_k), angle 2 pi (turns t_k + phase);
+//  tube*, ring*: M ring directions and the tube radius at each curve point.
+#define PELAGE_COAT_SHAPE_MEMBERS(SCALAR, ARRAY)                     \
+  SCALAR(HairStyle, int, style)                                      \
+  SCALAR(std::int32_t, int, points)                                  \
+  SCALAR(std::int32_t, int, curvePoints)                             \
+  SCALAR(std::int32_t, int, tubeSides)                               \
+  SCALAR(std::int32_t, int, twist)                                   \
+  SCALAR(std::int32_t, int, curl)                                    \
+  SCALAR(RegionShape, int, regionShape)                              \
+  SCALAR(float, float, lengthMul)                                    \
+  SCALAR(float, float, segmentWeight)                                \
+  SCALAR(float, float, endRandomize)                                 \
+  SCALAR(float, float, floppiness)                                   \
+  ARRAY(float, float, up, 3)                                         \
+  ARRAY(float, float, fallbackTangent, 3)                            \
+  ARRAY(float, float, regionCenter, 3)                               \
+  SCALAR(float, float, regionRadius2)                                \
+  ARRAY(float, float, regionMin, 3)                                  \
+  ARRAY(float, float, regionMax, 3)                                  \
+  SCALAR(float, float, regionScale)                                  \
+  SCALAR(float, float, curlRadius)                                   \
+  ARRAY(float, float, polyA, ::pelage::fur::kPolylinePoints)         \
+  ARRAY(float, float, polyB, ::pelage::fur::kPolylinePoints)         \
+  ARRAY(float, float, polyAlpha, ::pelage::fur::kPolylinePoints)     \
+  ARRAY(float, float, polyBeta, ::pelage::fur::kPolylinePoints)      \
+  ARRAY(float, float, polyAlpha2, ::pelage::fur::kPolylinePoints)    \
+  ARRAY(float, float, polyBeta2, ::pelage::fur::kPolylinePoints)     \
+  ARRAY(float, float, polyTwoAlphaBeta, ::pelage::fur::kPolylinePoints) \
+  ARRAY(float, float, curveC1, ::pelage::fur::kMaxCurvePoints)       \
+  ARRAY(float, float, curveC2, ::pelage::fur::kMaxCurvePoints)       \
+  ARRAY(float, float, curveDc1, ::pelage::fur::kMaxCurvePoints)      \
+  ARRAY(float, float, curveDc2, ::pelage::fur::kMaxCurvePoints)      \
+  ARRAY(float, float, curlEnvelope, ::pelage::fur::kMaxCurvePoints)  \
+  ARRAY(float, float, curlCos, ::pelage::fur::kMaxCurvePoints)       \
+  ARRAY(float, float, curlSin, ::pelage::fur::kMaxCurvePoints)       \
+  ARRAY(float, float, tubeRadius, ::pelage::fur::kMaxCurvePoints)    \
+  ARRAY(float, float, ringCos, ::pelage::fur::kMaxTubeSides)         \
+  ARRAY(float, float, ringSin, ::pelage::fur::kMaxTubeSides)
+
 struct CoatShape {
-  HairStyle style = HairStyle::Polyline;
-  int points = kPolylinePoints;      // P: points per hair (line 2, polyline 8, curve K, tube K * M)
-  float lengthMul = 1.0f;            // global length scale * coat length factor
-  float segmentWeight = 0.0f;        // w (sec. 3.4)
-  float endRandomize = 0.0f;         // r (sec. 3.5)
-  float floppiness = 0.8f;           // f (sec. 3.5)
-  float up[3] = {0.0f, 0.0f, 1.0f};  // U
-  float fallbackTangent[3] = {0.0f, 1.0f, 0.0f};  // unit, perpendicular to U
-  bool twist = false;  // polyline normal randomize > 0 (twist table in use)
-  // Length region (sec. 3.2), tested at the root.
-  RegionShape regionShape = RegionShape::None;
-  float regionCenter[3] = {0.0f, 0.0f, 0.0f};
-  float regionRadius2 = 0.0f;
-  float regionMin[3] = {0.0f, 0.0f, 0.0f};
-  float regionMax[3] = {0.0f, 0.0f, 0.0f};
-  float regionScale = 1.0f;
-  // Polyline template (sec. 3.7): P(t_i) = R + a_i (W - R) + b_i (E - R), t_i = i / 7,
-  // a(t) = 2 lambda t (1 - t), b(t) = t^2, lambda = 0.5; segment i (ending at i) has direction
-  // alpha_i (W - R) + beta_i (E - R), alpha_i = a_i - a_{i-1}, beta_i = b_i - b_{i-1}
-  // (point 0 uses segment 1).
-  float polyA[kPolylinePoints] = {};
-  float polyB[kPolylinePoints] = {};
-  float polyAlpha[kPolylinePoints] = {};
-  float polyBeta[kPolylinePoints] = {};
-  float polyAlpha2[kPolylinePoints] = {};        // alpha_i^2
-  float polyBeta2[kPolylinePoints] = {};         // beta_i^2
-  float polyTwoAlphaBeta[kPolylinePoints] = {};  // 2 alpha_i beta_i
-  // Curve (sec. 3.8): C(t_k) = R + c1_k L n_p + c2_k L e with the Bernstein sums
-  // c1 = (1-t)^2 t, c2 = 2 (1-t) t^2 + t^3; tangent weights dc1 = (1-t)(1-3t), dc2 = 4t - 3t^2.
-  int curvePoints = 8;
-  float curveC1[kMaxCurvePoints] = {};
-  float curveC2[kMaxCurvePoints] = {};
-  float curveDc1[kMaxCurvePoints] = {};
-  float curveDc2[kMaxCurvePoints] = {};
-  // Helix: radius curlRadius * L * sin(pi t_k), angle 2 pi (turns t_k + phase).
-  bool curl = false;
-  float curlRadius = 0.0f;
-  float curlEnvelope[kMaxCurvePoints] = {};
-  float curlCos[kMaxCurvePoints] = {};  // cos(2 pi turns t_k)
-  float curlSin[kMaxCurvePoints] = {};
-  // Tube: M ring directions and the radius at each curve point.
-  int tubeSides = 6;
-  float ringCos[kMaxTubeSides] = {};
-  float ringSin[kMaxTubeSides] = {};
-  float tubeRadius[kMaxCurvePoints] = {};
+#define PELAGE_SCALAR_MEMBER(cpp, glsl, name) cpp name{};
+#define PELAGE_ARRAY_MEMBER(cpp, glsl, name, size) cpp name[size]{};
+  PELAGE_COAT_SHAPE_MEMBERS(PELAGE_SCALAR_MEMBER, PELAGE_ARRAY_MEMBER)
+#undef PELAGE_SCALAR_MEMBER
+#undef PELAGE_ARRAY_MEMBER
 };
+
+// Every member is 4 bytes wide (so std430 adds no padding) and nothing sits between them.
+#define PELAGE_SCALAR_SIZE(cpp, glsl, name) +sizeof(cpp)
+#define PELAGE_ARRAY_SIZE(cpp, glsl, name, size) +sizeof(cpp) * (size)
+static_assert(sizeof(CoatShape) == 0 PELAGE_COAT_SHAPE_MEMBERS(PELAGE_SCALAR_SIZE, PELAGE_ARRAY_SIZE));
+#undef PELAGE_SCALAR_SIZE
+#undef PELAGE_ARRAY_SIZE
+#define PELAGE_SCALAR_IS_WORD(cpp, glsl, name) static_assert(sizeof(cpp) == 4, #name " is not 4 bytes");
+#define PELAGE_ARRAY_IS_WORD(cpp, glsl, name, size) static_assert(sizeof(cpp) == 4, #name " is not 4 bytes");
+PELAGE_COAT_SHAPE_MEMBERS(PELAGE_SCALAR_IS_WORD, PELAGE_ARRAY_IS_WORD)
+#undef PELAGE_SCALAR_IS_WORD
+#undef PELAGE_ARRAY_IS_WORD
 
 // Inputs of one hair, interpolated at its root from the triangle's vertices (sec. 3.2).
 template <class T>
@@ -227,6 +256,27 @@ template <class T>
 inline T barycentricMix(const T& b1, const T& b2, const T& b3, const T& v1, const T& v2,
                         const T& v3) {
   return (b1 * v1 + b2 * v2) + b3 * v3;
+}
+
+// Floats per packed vertex record: position xyz, fur length; normal xyz, 0; segment direction xyz,
+// 0 (what the kernels and the GPU read per skin vertex).
+inline constexpr int kVertexRecordFloats = 12;
+
+// Sec. 3.2: one hair's inputs at its root, interpolated from its triangle's three vertex records
+// (kVertexRecordFloats each) with the barycentric entry b = (b1, b2, b3), and the root's jitter
+// j = (xi x, y, z, helix phase). The scalar form of every kernel's gather (and of the GPU's
+// interpolateRoot in hair_math.glsl).
+inline HairInput<float> interpolateRoot(const float* b, const float* v1, const float* v2,
+                                        const float* v3, const float* j) {
+  const auto mix = [&](int k) { return barycentricMix(b[0], b[1], b[2], v1[k], v2[k], v3[k]); };
+  HairInput<float> in{};
+  in.root = {mix(0), mix(1), mix(2)};
+  in.length = mix(3);
+  in.normalSum = {mix(4), mix(5), mix(6)};
+  in.directionSum = {mix(8), mix(9), mix(10)};
+  in.xi = {j[0], j[1], j[2]};
+  in.phase = j[3];
+  return in;
 }
 
 // Sec. 3.2: the skin normal n = normalize(b1 n1 + b2 n2 + b3 n3) (U where it vanishes).

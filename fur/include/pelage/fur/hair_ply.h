@@ -1,8 +1,10 @@
 // One frame of hairs as a binary little-endian PLY file, written atomically:
 //   element vertex: float x, y, z, nx, ny, nz; int hair (index into the coat's roots);
 //                   uchar coat (0 overcoat, 1 undercoat)
-//   element edge:   int vertex1, vertex2 joining consecutive points of each line/polyline/curve
-//   hair element face:   list uchar int vertex_indices, the triangles of each tube hair
+//   element edge:   int vertex1, vertex2 joining consecutive points of each strand hair
+//                   (line, polyline, curve)
+//   element face:   list uchar int vertex_indices, the triangles of each ring hair (tube)
+// Which element a style uses is its layout's topology (hair_layout.h).
 // Hairs keep the FurFrame order: coat 0's hairs, then coat 1's, each hair's P points in a row.
 #pragma once
 
@@ -20,11 +22,11 @@ struct HairPlyCounts {
 };
 
 // The element counts writeHairPly writes for `frame`.
-HairPlyCounts hairPlyCounts(const FurFrame& frame, const FurParams& params);
+HairPlyCounts hairPlyCounts(const FurFrame& frame);
 
 // Writes `frame` to `path` (via a temporary file renamed on success; InputError naming the file on
 // any failure, leaving no partial file). `comment` lines go into the header.
-HairPlyCounts writeHairPly(const std::string& path, const FurFrame& frame, const FurParams& params,
+HairPlyCounts writeHairPly(const std::string& path, const FurFrame& frame,
                            const std::string& comment = "");
 
 }  // namespace pelage::fur

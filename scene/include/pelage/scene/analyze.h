@@ -125,8 +125,8 @@ struct SweepSpec {
   int count = 0;  // values from, from + (to - from) / (count - 1), ..., to; [1, 100]
   std::vector<double> values() const;
 };
-// Parses "NAME=A:B:N"; InputError naming `option` and the accepted form and ranges otherwise.
-SweepSpec parseSweep(const std::string& text, const std::string& option = "--sweep");
+// Parses "NAME=A:B:N"; InputError naming `field` and the accepted form and ranges otherwise.
+SweepSpec parseSweep(const std::string& text, const std::string& field = "sweep");
 
 struct SweepResult {
   SweepSpec spec;

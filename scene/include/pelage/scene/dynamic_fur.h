@@ -34,5 +34,9 @@ void preRollDynamics(const Model& model, const Fur& fur, const fur::DynamicsPara
 void stepClipDynamics(const Model& model, const Fur& fur, const fur::DynamicsParams& dynamics,
                       const DynamicsClock& clock, const Eigen::Vector3f& cameraEye, bool cpuHairs,
                       fur::FurDynamicsState& state, FrameState& frame);
+// The same with an explicit view (null: only the springs' step, no hairs).
+void stepClipDynamics(const Model& model, const Fur& fur, const fur::DynamicsParams& dynamics,
+                      const DynamicsClock& clock, const fur::FurView* view,
+                      fur::FurDynamicsState& state, FrameState& frame);
 
 }  // namespace pelage::scene

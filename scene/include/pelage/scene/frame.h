@@ -73,5 +73,8 @@ void evaluateClipFrame(const Model& model, int clip, double seconds, FrameState&
 // Without it the counts are still exact (the GPU applies the same culling rule).
 void evaluateFur(const Model& model, const Fur& fur, const Eigen::Vector3f& cameraEye,
                  bool cpuHairs, FrameState& frame);
+// The same for an explicit view (a viewing distance rather than a camera).
+void evaluateFur(const Model& model, const Fur& fur, const fur::FurView& view, bool cpuHairs,
+                 FrameState& frame);
 
 }  // namespace pelage::scene

@@ -1,4 +1,4 @@
-// Frame ranges and frame file names shared by `pelage render` and `pelage export`: frame f shows
+// Frame ranges and frame file names (render, export, analyze): frame f shows
 // clip time f / fps, and its files are named by f alone, so ranges split across processes (a render
 // farm) write the same files as one run.
 #pragma once
@@ -17,8 +17,8 @@ struct FrameRange {
 inline constexpr int kMaxFrameNumber = 9999999;
 
 // Parses "A:B" (inclusive, 0 <= A <= B <= kMaxFrameNumber) or "A" (one frame); InputError naming
-// `option` and the accepted form otherwise.
-FrameRange parseFrameRange(std::string_view text, std::string_view option = "--frames");
+// `field` and the accepted form otherwise. The one frame-range parser.
+FrameRange parseFrameRange(std::string_view text, std::string_view field = "frames");
 
 // "frame_00042.png" for (42, ".png"): at least 5 digits.
 std::string frameFileName(int frame, std::string_view extension);

@@ -48,6 +48,12 @@ inline constexpr const char* kDefaultModel = "monkey";
 // Throws InputError naming the file for anything missing or malformed.
 Model loadModel(const std::string& spec, const LoadOptions& options = {});
 
+// The clip `spec` names: one of model.clips by name, or a clip .json file (loaded for the model's
+// body and appended to model.clips); "" gives the model's first clip, or -1 (the still pose) when
+// it has none. InputError naming field "clip" and listing the model's clips otherwise. The one
+// place a clip is looked up from what a user typed.
+int resolveClip(Model& model, const std::string& spec);
+
 // The built-in creature description.
 anatomy::Creature builtinCreature(const std::string& name);
 

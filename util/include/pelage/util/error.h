@@ -10,10 +10,27 @@
 
 namespace pelage {
 
-// Bad user input: a clear message naming the file/field and the accepted range.
+// Bad user input: a clear message naming the file/field and the accepted range. Libraries name
+// fields and values ("fps 0 is out of range [1, 1000]"); an error about one named field carries
+// it, so an application can say it in its own words (app/ names the command-line option instead:
+// "--fps 0 is out of range [1, 1000]").
 class InputError : public std::runtime_error {
  public:
-  using std::runtime_error::runtime_error;
+  explicit InputError(const std::string& message) : std::runtime_error(message) {}
+  // An error about `field`: the message is "<field> <detail>" ("<field>: ..." when the detail
+  // starts with a colon).
+  InputError(const std::string& field, const std::string& detail)
+      : std::runtime_error(join(field, detail)), field_(field), detail_(detail) {}
+  // `name` (a field's, or an option's) followed by a detail as above.
+  static std::string join(const std::string& name, const std::string& detail) {
+    return detail.empty() || detail[0] == ':' ? name + detail : name + " " + detail;
+  }
+  // The field the error is about ("" when it names none), and the message after it.
+  const std::string& field() const { return field_; }
+  const std::string& detail() const { return detail_; }
+
+ private:
+  std::string field_, detail_;
 };
 
 // A broken invariant inside pelage (a bug, never the user's fault).
@@ -49,6 +66,13 @@ std::string str(const Args&... args) {
 template <typename... Args>
 [[noreturn]] void inputError(const Args&... args) {
   throw InputError(detail::concat(args...));
+}
+
+// Throws InputError about `field` ("fps", "frames", "size"...), the rest of the message
+// concatenated: fieldError("fps", 0, " is out of range [1, 1000]").
+template <typename... Args>
+[[noreturn]] void fieldError(const std::string& field, const Args&... args) {
+  throw InputError(field, detail::concat(args...));
 }
 
 }  // namespace pelage

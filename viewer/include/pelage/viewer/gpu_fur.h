@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "pelage/fur/fur_params.h"
+#include "pelage/fur/hair_layout.h"
 #include "pelage/fur/roots.h"
 #include "pelage/skin/deform.h"
 #include "pelage/skin/skin_mesh.h"
@@ -26,7 +27,6 @@
 namespace pelage::viewer {
 
 class HairVertexBuffers;
-struct HairLayout;
 
 struct GpuFurOptions {
   // Largest byte range bound to one shader-storage binding; 0 = GL_MAX_SHADER_STORAGE_BLOCK_SIZE
@@ -65,7 +65,7 @@ class GpuFur {
   // style's: scene::FurDrawItem's): the drawn hairs' points and shading vectors (the style's
   // normals, or unit tangents when `tangents`), and the indirect draw commands. No CPU-GPU
   // synchronisation.
-  void generate(int coat, const HairLayout& layout, bool tangents, HairVertexBuffers& out);
+  void generate(int coat, const fur::HairLayout& layout, bool tangents, HairVertexBuffers& out);
 
   // Dispatches of the last generate() call (windows x chunks, for tests of the splitting).
   int lastDispatches() const { return lastDispatches_; }

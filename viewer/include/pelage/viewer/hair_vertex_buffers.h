@@ -1,6 +1,7 @@
 // GPU buffers holding one coat's hair points for drawing: positions and shading vectors (3 floats
 // per point, tightly packed, hair i's points at [i*P, (i+1)*P) as the CPU fur model writes them), a
-// static index pattern (line strips with primitive restart, or tube triangles) and indirect draw
+// static index pattern (fur::hairIndexPattern: line strips with primitive restart, or the
+// triangles between rings) and indirect draw
 // commands. Filled either by uploading the CPU fur model's buffers or by the GPU fur pass.
 //
 // The buffers are split into chunks of whole hairs, each at most maxShaderStorageBlockSize bytes
@@ -12,21 +13,13 @@
 #include <cstdint>
 #include <vector>
 
+#include "pelage/fur/hair_layout.h"
 #include "pelage/viewer/gl.h"
 
 namespace pelage::viewer {
 
-// Layout of one hair's points: strandPoints points along the hair, each a ring of strandStride
-// points for tubes (strandStride = 1 otherwise). P = strandPoints * strandStride.
-struct HairLayout {
-  int strandPoints = 2;
-  int strandStride = 1;
-  bool triangles = false;  // tubes: triangles between consecutive rings; else a line strip
-  int pointsPerHair() const { return strandPoints * strandStride; }
-  // Indices per hair: P + 1 (strip + restart) or (K - 1) * M * 6 (tube triangles).
-  int indicesPerHair() const;
-  bool operator==(const HairLayout&) const = default;
-};
+// The layout of one hair's points (strand points, rings, topology) is fur::HairLayout.
+using fur::HairLayout;
 
 // One chunk: hairs [firstHair, firstHair + capacity) of the coat's slots.
 struct HairChunk {

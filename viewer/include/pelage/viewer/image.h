@@ -26,5 +26,8 @@ std::vector<std::uint8_t> encodePng(const Image& image);
 void writePng(const std::string& path, const Image& image);
 // Reads a PNG as RGBA8; throws InputError naming the file if it is missing or not a PNG.
 Image readPng(const std::string& path);
+// True when `path` is a complete PNG file: the signature, an IHDR chunk first and an IEND chunk at
+// the very end (what a run killed mid-write cannot leave under the final name anyway).
+bool isCompletePng(const std::string& path);
 
 }  // namespace pelage::viewer

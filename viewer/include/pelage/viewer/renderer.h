@@ -18,7 +18,9 @@ namespace pelage::viewer {
 class HairVertexBuffers;
 
 struct RendererOptions {
-  // MSAA samples for the renderer's framebuffer (0 or 1 = none); clamped to GL_MAX_SAMPLES.
+  // MSAA samples for the renderer's framebuffer (0 or 1 = none), clamped to GL_MAX_SAMPLES; -1:
+  // 4 on a GPU, none on a software rasteriser (MSAA costs about 2.3x on llvmpipe,
+  // ../shared/docs/headless-gl.md).
   int samples = 4;
   // Options of the GPU fur pass (binding sizes, dispatch shape).
   GpuFurOptions gpuFur;

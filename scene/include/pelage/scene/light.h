@@ -1,0 +1,31 @@
+// The light of every frame: one directional key light plus ambient (the paper's OpenGL lighting),
+// and the skin's material. GL-free.
+#pragma once
+
+#include <Eigen/Core>
+
+#include "pelage/util/material.h"
+
+namespace pelage::scene {
+
+// The direction towards a light at azimuth (about +Z from +X) and elevation (above the XY plane),
+// degrees.
+Eigen::Vector3f lightDirection(float azimuthDegrees, float elevationDegrees);
+
+// The key light's default place (the viewer's and every render's).
+inline constexpr float kKeyLightAzimuthDegrees = 35.0f;
+inline constexpr float kKeyLightElevationDegrees = 50.0f;
+
+struct Light {
+  // Towards the light (normalised by the renderer).
+  Eigen::Vector3f direction = lightDirection(kKeyLightAzimuthDegrees, kKeyLightElevationDegrees);
+  Eigen::Vector3f color{1.0f, 1.0f, 1.0f};
+  Eigen::Vector3f ambient{0.35f, 0.35f, 0.35f};  // ambient light intensity (the paper's GL model)
+  bool shadows = false;                           // shadow map: fur and skin shadow each other
+  int shadowMapSize = 2048;
+};
+
+// The skin's material for a diffuse colour (the same ambient, small specular terms).
+Material skinMaterial(const Eigen::Vector3f& color);
+
+}  // namespace pelage::scene

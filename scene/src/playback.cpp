@@ -1,0 +1,145 @@
+#include "pelage/scene/playback.h"
+
+#include <algorithm>
+
+#include "pelage/animation/clip.h"
+#include "pelage/util/error.h"
+
+namespace pelage::scene {
+
+void validatePlaybackOptions(const Model& model, const PlaybackOptions& o) {
+  PELAGE_CHECK(o.clip >= -1 && o.clip < static_cast<int>(model.clips.size()), "clip ", o.clip,
+               " of ", model.clips.size());
+  if (!(o.framesPerSecond >= 1.0 && o.framesPerSecond <= 1000.0))
+    fieldError("fps", o.framesPerSecond, " is out of range [1, 1000]");
+  if (o.preRollFrames < -1 || o.preRollFrames > 10000000)
+    fieldError("preroll", o.preRollFrames, " is out of range [0, 10000000] frames");
+  if (o.dynamics) {
+    if (o.clip < 0) fieldError("dynamics", "on needs a clip: the rest pose does not move");
+    fur::validateDynamicsParams(o.dynamicsParams, "dynamics");
+  }
+  if (o.clip < 0 && !o.stillPose.local.empty())
+    PELAGE_CHECK(static_cast<int>(o.stillPose.local.size()) == model.body.size(), "still pose of ",
+                 o.stillPose.local.size(), " segments, body ", model.body.size());
+}
+
+Playback::Playback(const Model& model, const Fur& fur, PlaybackOptions options)
+    : model_(&model), fur_(&fur), options_(std::move(options)) {
+  validatePlaybackOptions(model, options_);
+  stillPose_ = options_.stillPose.local.empty() ? anatomy::restPose(model.body) : options_.stillPose;
+  clock_.fps = options_.framesPerSecond;
+  clock_.preRollFrames = options_.preRollFrames;
+  generation_ = fur.generation;
+  evaluatePose(0, state_);
+  firstFraming_ = framing();
+}
+
+HairSource Playback::hairSource() const {
+  return options_.hairSource == HairSource::Cpu || options_.dynamics ? HairSource::Cpu
+                                                                     : HairSource::Gpu;
+}
+
+void Playback::setFur(const Fur& fur) {
+  fur_ = &fur;
+}
+
+void Playback::setDynamics(bool on, const fur::DynamicsParams& params) {
+  if (on && !options_.dynamics) running_ = false;
+  options_.dynamics = on;
+  options_.dynamicsParams = params;
+  if (!on) running_ = false;
+}
+
+void Playback::evaluatePose(int frame, FrameState& into) const {
+  if (options_.clip >= 0)
+    evaluateClipFrame(*model_, options_.clip, static_cast<double>(frame) / options_.framesPerSecond,
+                      into);
+  else
+    evaluateFrame(*model_, stillPose_, into);
+}
+
+void Playback::poseFrame(int frame) {
+  PELAGE_CHECK(frame >= 0, "frame ", frame);
+  if (options_.dynamics && frame != nextFrame_) {
+    // Reached out of order (the first frame, or one after skipped frames): pre-roll the springs
+    // through the frames before it, exactly as a whole run from frame 0 reaches it.
+    clock_.fps = options_.framesPerSecond;
+    clock_.preRollFrames = options_.preRollFrames;
+    preRollDynamics(*model_, *fur_, options_.dynamicsParams, options_.clip, frame, clock_,
+                    dynamics_, scratch_);
+    running_ = true;
+    generation_ = fur_->generation;
+    nextFrame_ = frame;
+  }
+  evaluatePose(frame, state_);
+  clock_.fps = options_.framesPerSecond;
+  stepPending_ = true;
+}
+
+void Playback::holdFrame() {
+  clock_.fps = options_.framesPerSecond;
+  stepPending_ = true;
+  nextFrame_ = -1;
+}
+
+void Playback::posePose(const anatomy::Pose& pose, double stepSeconds) {
+  evaluateFrame(*model_, pose, state_);
+  // The spring step is exact for any dt; dt is kept in [1 ms, 1 s] (fps [1, 1000]).
+  clock_.fps = 1.0 / std::clamp(stepSeconds, 1e-3, 1.0);
+  clock_.preRollFrames = -1;
+  stepPending_ = true;
+  nextFrame_ = -1;
+}
+
+Framing Playback::framing() const {
+  return framingOf(*model_, state_, maxHairLength(*model_, fur_->params));
+}
+
+void Playback::step(const fur::FurView* view) {
+  PELAGE_CHECK(stepPending_, "the springs were stepped to this pose already");
+  if (!running_ || generation_ != fur_->generation) {
+    // Restart from the quasi-static hairs: the first step after a reset starts on them, at rest.
+    fur::resetFurDynamics(fur_->roots, dynamics_);
+    generation_ = fur_->generation;
+    running_ = true;
+  }
+  stepClipDynamics(*model_, *fur_, options_.dynamicsParams, clock_, view, dynamics_, state_);
+  stepPending_ = false;
+  if (nextFrame_ >= 0) ++nextFrame_;
+}
+
+void Playback::evaluateFur(const Eigen::Vector3f& eye) {
+  evaluateFur(fur::makeFurView(model_->skin, fur_->params, state_.skin, eye));
+}
+
+void Playback::evaluateFur(const fur::FurView& view) {
+  if (options_.dynamics) {
+    step(&view);
+    return;
+  }
+  scene::evaluateFur(*model_, *fur_, view, cpuHairs(), state_);
+}
+
+void Playback::stepDynamics() {
+  PELAGE_CHECK(options_.dynamics, "stepDynamics without dynamics");
+  step(nullptr);
+}
+
+const DrawList& Playback::drawList(const Camera& camera, const Light& light,
+                                   const DrawOptions& options, const Material* skin) {
+  DrawOptions o = options;
+  o.hairSource = hairSource();
+  buildDrawList(*model_, state_, fur_, camera, light, o,
+                skin ? *skin : skinMaterial(model_->skin.color), list_);
+  return list_;
+}
+
+const DrawList& Playback::sequenceFrame(int frame, const CameraRig& rig, int width, int height,
+                                        const Light& light, const DrawOptions& options) {
+  poseFrame(frame);
+  const Camera camera = rigCamera(rig, firstFraming_, framing(), frame, width, height);
+  evaluateFur(camera.eye);
+  return drawList(camera, light, options);
+}
+
+}  // namespace pelage::scene

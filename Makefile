@@ -4,7 +4,7 @@ BUILD_ASAN ?= build-asan
 JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
 CMAKE_FLAGS ?=
 
-.PHONY: all deps build demo test test-asan soak fuzz fuzz-ci bench format clean
+.PHONY: all deps build demo test test-asan soak fuzz fuzz-ci bench format format-check clean
 
 all: build
 
@@ -53,8 +53,12 @@ fuzz-ci: deps
 bench: build
 	@for b in $(BUILD)/bin/bench_*; do echo "== $$b"; $$b; done
 
+# Formatting (.clang-format): `make format` rewrites, `make format-check` (CI) fails on any diff.
 format:
 	@git ls-files '*.cpp' '*.h' | xargs clang-format -i
+
+format-check: deps
+	@git ls-files '*.cpp' '*.h' | xargs clang-format --dry-run -Werror && echo "format-check: clean"
 
 clean:
 	rm -rf $(BUILD) $(BUILD_ASAN) out

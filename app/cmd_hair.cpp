@@ -54,9 +54,10 @@ void summarise(const fur::FurFrame& frame, const fur::FurParams& params) {
     std::printf(
         "%s: %lld %s hairs, %d points each; length %.2f to %.2f mm (mean %.2f); ends %.2f mm %s "
         "their roots on average\n",
-        c == 0 ? "overcoat" : "undercoat", static_cast<long long>(b.drawn), fur::styleName(b.layout.style),
-        b.layout.pointsPerHair(), lo * 1e3, hi * 1e3, sum / static_cast<double>(b.drawn) * 1e3,
-        std::abs(meanRise), meanRise < 0.0 ? "below" : "above");
+        c == 0 ? "overcoat" : "undercoat", static_cast<long long>(b.drawn),
+        fur::styleName(b.layout.style), b.layout.pointsPerHair(), lo * 1e3, hi * 1e3,
+        sum / static_cast<double>(b.drawn) * 1e3, std::abs(meanRise),
+        meanRise < 0.0 ? "below" : "above");
   }
 }
 
@@ -139,7 +140,8 @@ void addHairCommand(CLI::App& app) {
     int shown = 0;
     if (dynamics->enabled()) {
       if (pose->clip.empty())
-        inputError("--dynamics on needs --clip naming one of the model's clips (see `pelage info`)");
+        inputError(
+            "--dynamics on needs --clip naming one of the model's clips (see `pelage info`)");
       const scene::DynamicsClock clock = dynamics->clock();
       po.clip = scene::resolveClip(m, pose->clip);
       po.framesPerSecond = clock.fps;

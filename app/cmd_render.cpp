@@ -133,7 +133,8 @@ void runRender(RenderArgs& a) {
   const viewer::ContextInfo& info = context->info();
   const int clip = o.playback.clip;
   std::printf(
-      "render: %s (%d triangles), %s, fur %s: %lld hairs%s; frames %d..%d at %g fps, %dx%d -> %s/\n",
+      "render: %s (%d triangles), %s, fur %s: %lld hairs%s; frames %d..%d at %g fps, %dx%d -> "
+      "%s/\n",
       model.name.c_str(), model.skin.numTriangles(),
       clip >= 0 ? ("clip " + model.clips[static_cast<std::size_t>(clip)].name).c_str()
                 : "rest pose",

@@ -22,10 +22,10 @@ void parseSize(const std::string& text, int& width, int& height) {
 }  // namespace
 
 void addViewCommand(CLI::App& app) {
-  auto* cmd = app.add_subcommand(
-      "view",
-      "Interactive viewer: play the creature's clips with fur, edit every fur "
-      "parameter live (needs a display, or --headless)");
+  auto* cmd =
+      app.add_subcommand("view",
+                         "Interactive viewer: play the creature's clips with fur, edit every fur "
+                         "parameter live (needs a display, or --headless)");
   auto args = std::make_shared<ModelArgs>();
   auto furArgs = std::make_shared<FurArgs>();
   auto o = std::make_shared<viewer::ViewerOptions>();
@@ -39,7 +39,8 @@ void addViewCommand(CLI::App& app) {
   auto dyn = std::make_shared<DynamicsArgs>();
   args->add(*cmd);
   cmd->add_option("--pose", w->posePath, "Pose file (JSON) for the still pose");
-  cmd->add_option("--clip", w->clip, "Clip to play (default: the model's first; see `pelage info`)");
+  cmd->add_option("--clip", w->clip,
+                  "Clip to play (default: the model's first; see `pelage info`)");
   cmd->add_option("--time", o->time, "Start time in the clip, seconds")->capture_default_str();
   furArgs->add(*cmd);
   cmd->add_option("--size", w->size, "Window or image size WIDTHxHEIGHT (--benchmark: 1920x1080)")
@@ -57,7 +58,8 @@ void addViewCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_flag("--ribbons", o->ribbons, "Draw hairs as tapered ribbons instead of 1-pixel lines");
   cmd->add_flag("--shadows", o->shadows, "Shadow map: fur and skin shadow each other");
-  cmd->add_option("--skin-color", w->skinColor, "Skin colour R G B in [0, 1] (default: the model's)")
+  cmd->add_option("--skin-color", w->skinColor,
+                  "Skin colour R G B in [0, 1] (default: the model's)")
       ->expected(3);
   cmd->add_flag("--no-culling", o->noCulling,
                 "Draw every hair at any distance (no sec. 3.3 culling)");
@@ -104,9 +106,10 @@ void addViewCommand(CLI::App& app) {
       status = viewer::runViewer(*o, std::move(model));
     } catch (const InputError& e) {
       if (e.field() != "window") throw;
-      inputError("cannot open a window: ", e.detail().substr(e.detail().find(": ") + 2),
-                 ". Run on a desktop, under a virtual display (xvfb-run -a pelage view ...), or add "
-                 "--headless to render offscreen through EGL");
+      inputError(
+          "cannot open a window: ", e.detail().substr(e.detail().find(": ") + 2),
+          ". Run on a desktop, under a virtual display (xvfb-run -a pelage view ...), or add "
+          "--headless to render offscreen through EGL");
     }
     if (status != 0) throw CLI::RuntimeError(status);
   });

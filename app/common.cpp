@@ -53,7 +53,8 @@ void PoseArgs::add(CLI::App& cmd) {
 anatomy::Pose PoseArgs::resolve(scene::Model& model) const {
   if (clip.empty()) {
     if (timeOpt && timeOpt->count() > 0) inputError("--time needs --clip");
-    return posePath.empty() ? anatomy::restPose(model.body) : anatomy::loadPose(model.body, posePath);
+    return posePath.empty() ? anatomy::restPose(model.body)
+                            : anatomy::loadPose(model.body, posePath);
   }
   if (!posePath.empty()) inputError("--pose and --clip cannot be used together");
   if (!(time >= 0.0 && time <= 1e6))

@@ -374,25 +374,21 @@ struct QuietOpenMesh {
   }
 };
 
-}  // namespace
+// ---- The stages of importGltf ------------------------------------------------------------
 
-GltfCreature importGltf(const std::string& path, const GltfImportOptions& options) {
-  if (options.unitScale != 0.0f && !(options.unitScale >= 1e-6f && options.unitScale <= 1e6f))
-    inputError("unit scale ", options.unitScale,
-               " is out of range [1e-6, 1e6] metres per file unit");
-  if (options.furLengthMeters != 0.0f &&
-      !(options.furLengthMeters > 0.0f && options.furLengthMeters <= 10.0f))
-    inputError("fur length ", options.furLengthMeters, " m is out of range (0, 10]");
-  const tinygltf::Model model = gltf::loadModelFile(path);
-  const ImportContext ctx(path, model);
-  const int N = static_cast<int>(model.nodes.size());
-  const Tree tree = buildTree(ctx);
-
-  // Mesh instances in the scene.
-  struct Instance {
-    int node, mesh, skin;
-  };
+// 1. The mesh instances of the scene (mesh nodes reachable from its roots) and the skins they use.
+struct Instance {
+  int node, mesh, skin;
+};
+struct SceneMeshes {
   std::vector<Instance> instances;
+  std::set<int> usedSkins;
+};
+
+SceneMeshes sceneMeshes(const ImportContext& ctx, const Tree& tree) {
+  const tinygltf::Model& model = ctx.model;
+  SceneMeshes out;
+  std::vector<Instance>& instances = out.instances;
   for (int n : tree.sceneNodes) {
     const tinygltf::Node& node = model.nodes[static_cast<std::size_t>(n)];
     if (node.mesh < 0) continue;
@@ -406,6 +402,29 @@ GltfCreature importGltf(const std::string& path, const GltfImportOptions& option
   }
   if (instances.empty()) ctx.fail("the scene has no mesh");
 
+  for (const Instance& in : instances)
+    if (in.skin >= 0) out.usedSkins.insert(in.skin);
+  return out;
+}
+
+// 2. The skeleton: the segments (joints of the used skins, rigid mesh nodes, and all their
+// ancestors) in parents-first order, their rest transforms (file units), every node's global rest
+// transform, and the segments' bind transforms (file units, glTF axes).
+struct Skeleton {
+  std::vector<int> order;                // segment -> node
+  std::vector<int> segmentOf;            // node -> segment, or -1
+  std::vector<anatomy::Transform> rest;  // per segment
+  std::vector<Affine3d> global;          // per node
+  std::vector<Affine3d> bind;            // per segment
+  std::map<int, SkinJoints> skinJoints;  // per used skin
+  int size() const { return static_cast<int>(order.size()); }
+};
+
+Skeleton buildSkeleton(const ImportContext& ctx, const Tree& tree, const SceneMeshes& meshes) {
+  const tinygltf::Model& model = ctx.model;
+  const int N = static_cast<int>(model.nodes.size());
+  const std::vector<Instance>& instances = meshes.instances;
+  Skeleton skel;
   // Segments: joints of the used skins, rigid mesh nodes, and all their ancestors.
   std::vector<bool> isSegment(static_cast<std::size_t>(N), false);
   auto markUp = [&](int n) {
@@ -413,13 +432,11 @@ GltfCreature importGltf(const std::string& path, const GltfImportOptions& option
          n = tree.parent[static_cast<std::size_t>(n)])
       isSegment[static_cast<std::size_t>(n)] = true;
   };
-  std::set<int> usedSkins;
   for (const Instance& in : instances) {
     if (in.skin < 0) {
       markUp(in.node);
       continue;
     }
-    usedSkins.insert(in.skin);
     const tinygltf::Skin& s = model.skins[static_cast<std::size_t>(in.skin)];
     if (s.joints.empty()) ctx.fail("skin ", in.skin, " has no joints");
     for (int j : s.joints) {
@@ -430,7 +447,9 @@ GltfCreature importGltf(const std::string& path, const GltfImportOptions& option
     }
   }
   // Parents-first order: a depth-first walk from the roots of the whole node forest.
-  std::vector<int> order, segmentOf(static_cast<std::size_t>(N), -1);
+  std::vector<int>& order = skel.order;
+  std::vector<int>& segmentOf = skel.segmentOf;
+  segmentOf.assign(static_cast<std::size_t>(N), -1);
   {
     std::vector<int> stack;
     for (int i = N - 1; i >= 0; --i)
@@ -449,13 +468,16 @@ GltfCreature importGltf(const std::string& path, const GltfImportOptions& option
   const int nS = static_cast<int>(order.size());
 
   // Rest transforms (file units) and bind transforms.
-  std::vector<anatomy::Transform> rest(static_cast<std::size_t>(nS));
+  std::vector<anatomy::Transform>& rest = skel.rest;
+  rest.resize(static_cast<std::size_t>(nS));
   for (int s = 0; s < nS; ++s)
     rest[static_cast<std::size_t>(s)] = nodeTransform(ctx, order[static_cast<std::size_t>(s)]);
   std::vector<bool> isJoint(static_cast<std::size_t>(nS), false);
-  std::vector<Affine3d> bind(static_cast<std::size_t>(nS), Affine3d::Identity());
+  std::vector<Affine3d>& bind = skel.bind;
+  bind.assign(static_cast<std::size_t>(nS), Affine3d::Identity());
   // Global rest transforms of all nodes (parents first).
-  std::vector<Affine3d> global(static_cast<std::size_t>(N), Affine3d::Identity());
+  std::vector<Affine3d>& global = skel.global;
+  global.assign(static_cast<std::size_t>(N), Affine3d::Identity());
   {
     std::vector<int> stack;
     for (int i = N - 1; i >= 0; --i)
@@ -472,9 +494,9 @@ GltfCreature importGltf(const std::string& path, const GltfImportOptions& option
   }
   // Joints: bind transform = (mesh node's global rest transform) * IBM^-1, so that bind space is
   // where the rest pose puts the mesh (skinning W IBM M^-1 (M p) = W IBM p, the glTF result).
-  std::map<int, SkinJoints> skinJoints;
+  std::map<int, SkinJoints>& skinJoints = skel.skinJoints;
   std::map<int, std::vector<Eigen::Matrix4d>> ibms;
-  for (int si : usedSkins) {
+  for (int si : meshes.usedSkins) {
     const tinygltf::Skin& sk = model.skins[static_cast<std::size_t>(si)];
     std::vector<Eigen::Matrix4d>& list = ibms[si];
     std::vector<float> ibm;
@@ -529,9 +551,19 @@ GltfCreature importGltf(const std::string& path, const GltfImportOptions& option
               : bind[static_cast<std::size_t>(segmentOf[static_cast<std::size_t>(p)])] * local;
   }
 
-  // Geometry in bind space (file units, glTF axes).
+  return skel;
+}
+
+// 3. The geometry of every mesh instance in bind space (file units, glTF axes).
+Primitives readGeometry(const ImportContext& ctx, const SceneMeshes& meshes, const Skeleton& sk) {
+  const tinygltf::Model& model = ctx.model;
+  const std::string& path = ctx.path;
+  const std::vector<int>& segmentOf = sk.segmentOf;
+  const std::vector<Affine3d>& global = sk.global;
+  const std::vector<Affine3d>& bind = sk.bind;
+  const std::map<int, SkinJoints>& skinJoints = sk.skinJoints;
   Primitives prims;
-  for (const Instance& in : instances) {
+  for (const Instance& in : meshes.instances) {
     const tinygltf::Mesh& mesh = model.meshes[static_cast<std::size_t>(in.mesh)];
     const int seg = segmentOf[static_cast<std::size_t>(in.node)];
     const tinygltf::Node& node = model.nodes[static_cast<std::size_t>(in.node)];
@@ -558,33 +590,50 @@ GltfCreature importGltf(const std::string& path, const GltfImportOptions& option
     warn(str(path, ": ", prims.zeroWeights,
              " vertices have all-zero skin weights; bound to the skin's first joint"));
 
-  // Unit scale from the bounds of the vertices the triangles use.
-  std::vector<bool> used(prims.vertices.size(), false);
-  for (const auto& t : prims.triangles)
-    for (std::int32_t v : t) used[static_cast<std::size_t>(v)] = true;
-  Eigen::AlignedBox3d fileBox;
-  for (std::size_t v = 0; v < prims.vertices.size(); ++v)
-    if (used[v]) fileBox.extend(prims.vertices[v].position);
-  GltfCreature out;
-  out.name = std::filesystem::path(path).stem().string();
-  const float longest = static_cast<float>(fileBox.sizes().maxCoeff());
-  if (options.unitScale > 0.0f) {
-    out.unitScale = options.unitScale;
-    out.unitScaleReason = str("given: ", options.unitScale, " m per unit");
-  } else {
-    out.unitScale = detectUnitScale(longest, &out.unitScaleReason);
-  }
-  const double s = static_cast<double>(out.unitScale);
-  const Eigen::Matrix3d C = basisChange();
-  Affine3d K = Affine3d::Identity();
-  K.linear() = s * C;
-  const Eigen::Quaterniond qC(C);
+  return prims;
+}
 
-  // The body: roots take the change of basis and scale; every bind transform is K * bind.
-  anatomy::Body& body = out.body;
+// 4. Units: metres per file unit (given, or detected from the bounds of the vertices the triangles
+// use) and the map K from file units and glTF axes to metres and pelage's axes.
+struct Units {
+  float scale = 1.0f;
+  std::string reason;
+  Eigen::AlignedBox3d fileBox;  // of the used vertices, file units
+  std::vector<bool> used;       // per raw vertex: some triangle uses it
+  Eigen::Matrix3d C = basisChange();
+  Affine3d K = Affine3d::Identity();
+  Eigen::Quaterniond qC;
+};
+
+Units findUnits(const Primitives& prims, const GltfImportOptions& options) {
+  Units u;
+  u.used.assign(prims.vertices.size(), false);
+  for (const auto& t : prims.triangles)
+    for (std::int32_t v : t) u.used[static_cast<std::size_t>(v)] = true;
+  for (std::size_t v = 0; v < prims.vertices.size(); ++v)
+    if (u.used[v]) u.fileBox.extend(prims.vertices[v].position);
+  const float longest = static_cast<float>(u.fileBox.sizes().maxCoeff());
+  if (options.unitScale > 0.0f) {
+    u.scale = options.unitScale;
+    u.reason = str("given: ", options.unitScale, " m per unit");
+  } else {
+    u.scale = detectUnitScale(longest, &u.reason);
+  }
+  u.K.linear() = static_cast<double>(u.scale) * u.C;
+  u.qC = Eigen::Quaterniond(u.C);
+  return u;
+}
+
+// 5. The body: roots take the change of basis and scale; every bind transform is K * bind.
+void buildBody(const ImportContext& ctx, const Tree& tree, const Skeleton& sk, const Units& units,
+               anatomy::Body& body) {
+  const tinygltf::Model& model = ctx.model;
+  const int nS = sk.size();
+  const double s = static_cast<double>(units.scale);
+  const Eigen::Matrix3d& C = units.C;
   std::set<std::string> names;
   for (int si = 0; si < nS; ++si) {
-    const int n = order[static_cast<std::size_t>(si)];
+    const int n = sk.order[static_cast<std::size_t>(si)];
     anatomy::Segment seg;
     seg.name = model.nodes[static_cast<std::size_t>(n)].name.empty()
                    ? str("node", n)
@@ -594,40 +643,50 @@ GltfCreature importGltf(const std::string& path, const GltfImportOptions& option
       names.insert(seg.name);
     }
     const int p = tree.parent[static_cast<std::size_t>(n)];
-    seg.parent = p < 0 ? -1 : segmentOf[static_cast<std::size_t>(p)];
-    seg.rest = rest[static_cast<std::size_t>(si)];
+    seg.parent = p < 0 ? -1 : sk.segmentOf[static_cast<std::size_t>(p)];
+    seg.rest = sk.rest[static_cast<std::size_t>(si)];
     if (seg.parent < 0) {
-      seg.rest.rotation = (qC.cast<float>() * seg.rest.rotation).normalized();
+      seg.rest.rotation = (units.qC.cast<float>() * seg.rest.rotation).normalized();
       seg.rest.translation = (s * C * seg.rest.translation.cast<double>()).cast<float>();
-      seg.rest.scale *= out.unitScale;
+      seg.rest.scale *= units.scale;
     }
     body.segments.push_back(seg);
-    const Affine3d b = K * bind[static_cast<std::size_t>(si)];
+    const Affine3d b = units.K * sk.bind[static_cast<std::size_t>(si)];
     body.inverseBind.push_back(Eigen::Affine3f(b.inverse().cast<float>()));
   }
   anatomy::checkBody(body);
+}
 
-  // Weld: same converted position (bitwise) and same binding.
+// 6. Welding: raw vertices with the same converted position (bitwise) and the same binding become
+// one; a welded vertex shared with a bare region takes the bare region.
+struct Weld {
+  std::vector<Eigen::Vector3f> conv;  // per raw vertex: position in metres, pelage's axes
+  std::vector<std::int32_t> weldOf;   // raw vertex -> welded vertex (-1: unused)
+  std::vector<std::int32_t> welded;   // welded vertex -> representative raw vertex
+  std::vector<int> weldRegion;        // welded vertex -> region
+};
+
+Weld weldVertices(const Primitives& prims, const Units& units,
+                  const std::vector<bool>& bareRegion) {
+  Weld wd;
+  const std::vector<bool>& used = units.used;
+  std::vector<Eigen::Vector3f>& conv = wd.conv;
+  std::vector<std::int32_t>& weldOf = wd.weldOf;
+  std::vector<std::int32_t>& welded = wd.welded;
+  std::vector<int>& weldRegion = wd.weldRegion;
+  const Affine3d& K = units.K;
   const std::size_t nRaw = prims.vertices.size();
-  std::vector<Eigen::Vector3f> conv(nRaw);
+  conv.resize(nRaw);
   for (std::size_t v = 0; v < nRaw; ++v) {
     conv[v] = (K * prims.vertices[v].position).cast<float>();
     conv[v] += Eigen::Vector3f::Zero();  // -0 -> +0 so that equal positions hash equally
   }
-  const std::vector<std::string>& noFur =
-      options.noFurRegions ? *options.noFurRegions : defaultNoFurRegions();
-  std::vector<bool> bareRegion(prims.regionNames.size(), false);
-  for (std::size_t r = 0; r < prims.regionNames.size(); ++r)
-    for (const std::string& pat : noFur)
-      bareRegion[r] = bareRegion[r] || regionMatches(pat, prims.regionNames[r]);
   struct Key {
     std::array<std::uint32_t, 3> bits;
     bool operator<(const Key& o) const { return bits < o.bits; }
   };
   std::map<Key, std::vector<std::int32_t>> buckets;
-  std::vector<std::int32_t> weldOf(nRaw, -1);
-  std::vector<std::int32_t> welded;  // welded vertex -> representative raw vertex
-  std::vector<int> weldRegion;
+  weldOf.assign(nRaw, -1);
   for (std::size_t v = 0; v < nRaw; ++v) {
     if (!used[v]) continue;
     Key k;
@@ -656,7 +715,19 @@ GltfCreature importGltf(const std::string& path, const GltfImportOptions& option
     weldOf[v] = found;
   }
 
-  // Triangles on welded vertices; degenerate ones dropped.
+  return wd;
+}
+
+// 7. The triangles on welded vertices; degenerate ones dropped (counted in prims.degenerate).
+std::vector<std::array<std::int32_t, 3>> weldedTriangles(const ImportContext& ctx,
+                                                         Primitives& prims, const Weld& wd,
+                                                         const Units& units) {
+  const std::string& path = ctx.path;
+  const std::vector<Eigen::Vector3f>& conv = wd.conv;
+  const std::vector<std::int32_t>& weldOf = wd.weldOf;
+  const std::vector<std::int32_t>& welded = wd.welded;
+  const double s = static_cast<double>(units.scale);
+  const Eigen::AlignedBox3d& fileBox = units.fileBox;
   const float diag = static_cast<float>(s * fileBox.diagonal().norm());
   const float minArea2 = 1e-12f * diag * diag;
   std::vector<std::array<std::int32_t, 3>> tris;
@@ -681,9 +752,17 @@ GltfCreature importGltf(const std::string& path, const GltfImportOptions& option
     warn(str(path, ": dropped ", prims.degenerate, " degenerate triangles"));
   if (tris.empty()) ctx.fail("every triangle is degenerate");
 
-  // OpenMesh: a triangle whose edge is already used in its direction, or whose addition OpenMesh
-  // rejects (non-manifold), gets its own copies of its vertices.
-  skin::SkinMesh& sk = out.skin;
+  return tris;
+}
+
+// 8. The OpenMesh skin: a triangle whose edge is already used in its direction, or whose addition
+// OpenMesh rejects (non-manifold), gets its own copies of its vertices. Returns, per mesh vertex,
+// its welded vertex.
+std::vector<std::int32_t> buildSkinMesh(const std::string& path,
+                                        const std::vector<std::array<std::int32_t, 3>>& tris,
+                                        const Weld& wd, skin::SkinMesh& sk) {
+  const std::vector<Eigen::Vector3f>& conv = wd.conv;
+  const std::vector<std::int32_t>& welded = wd.welded;
   std::vector<std::int32_t> source;  // mesh vertex -> welded vertex
   std::vector<std::int32_t> meshOf(welded.size(), -1);
   auto vertexFor = [&](std::int32_t w, bool fresh) -> skin::TriMesh::VertexHandle {
@@ -725,66 +804,20 @@ GltfCreature importGltf(const std::string& path, const GltfImportOptions& option
                " triangles on non-manifold edges or vertices got their own vertices"));
   }
 
-  // Vertex properties.
-  skin::addSkinProperties(sk);
-  sk.regionNames = prims.regionNames;
-  std::vector<bool> bound(static_cast<std::size_t>(nS), false);
-  for (std::int32_t w : source)
-    for (std::size_t k = 0; k < 4; ++k) {
-      const skin::Binding& b =
-          prims.vertices[static_cast<std::size_t>(welded[static_cast<std::size_t>(w)])].binding;
-      if (b.weight[k] > 0.0f) bound[static_cast<std::size_t>(b.segment[k])] = true;
-    }
-  std::vector<Eigen::Vector3f> bindJoints(static_cast<std::size_t>(nS));
-  for (int si = 0; si < nS; ++si)
-    bindJoints[static_cast<std::size_t>(si)] =
-        body.inverseBind[static_cast<std::size_t>(si)].inverse().translation();
-  const std::vector<Eigen::Vector3f> dirs = headToTailDirections(body, bindJoints, bound);
-  for (int si = 0; si < nS; ++si)
-    body.segments[static_cast<std::size_t>(si)].direction = dirs[static_cast<std::size_t>(si)];
-  std::string sideFile = options.segmentDirections;
-  if (sideFile.empty()) {
-    const std::filesystem::path auto_ =
-        std::filesystem::path(path).replace_extension(".directions.json");
-    std::error_code ec;
-    if (std::filesystem::is_regular_file(auto_, ec)) sideFile = auto_.string();
-  }
-  if (!sideFile.empty()) applyDirectionFile(body, sideFile);
+  return source;
+}
 
-  const float furLength = options.furLengthMeters > 0.0f ? options.furLengthMeters : 0.02f * diag;
-  for (auto vh : sk.mesh.vertices()) {
-    const std::int32_t w = source[static_cast<std::size_t>(vh.idx())];
-    const RawVertex& rv =
-        prims.vertices[static_cast<std::size_t>(welded[static_cast<std::size_t>(w)])];
-    const int region = weldRegion[static_cast<std::size_t>(w)];
-    sk.mesh.property(sk.binding, vh) = rv.binding;
-    sk.mesh.property(sk.region, vh) = region;
-    sk.mesh.property(sk.furLength, vh) =
-        bareRegion[static_cast<std::size_t>(region)] ? 0.0f : furLength;
-    const Eigen::Vector3f& d =
-        body.segments[static_cast<std::size_t>(rv.binding.segment[0])].direction;
-    sk.mesh.property(sk.segmentDirection, vh) = OpenMesh::Vec3f(d.x(), d.y(), d.z());
-  }
-  // Skin colour: the base colour of the furred region with the most triangles. A textured
-  // material's factor only tints its texture (the Fox: factor 1, colour in the texture), and pelage
-  // reads no textures, so such materials leave the skin's default colour.
-  std::int64_t most = -1;
-  for (std::size_t r = 0; r < prims.regionNames.size(); ++r) {
-    const int mat = prims.regionMaterial[r];
-    if (bareRegion[r] || mat < 0 || prims.regionTriangles[r] <= most) continue;
-    const auto& pbr = model.materials[static_cast<std::size_t>(mat)].pbrMetallicRoughness;
-    if (pbr.baseColorTexture.index >= 0) continue;
-    const std::vector<double>& f = pbr.baseColorFactor;
-    if (f.size() >= 3 && finite(f)) {
-      most = prims.regionTriangles[r];
-      sk.color = Eigen::Vector3f(static_cast<float>(std::clamp(f[0], 0.0, 1.0)),
-                                 static_cast<float>(std::clamp(f[1], 0.0, 1.0)),
-                                 static_cast<float>(std::clamp(f[2], 0.0, 1.0)));
-    }
-  }
-  skin::finalizeSkin(sk);
-
-  // Clips.
+// 11. The clips: every animation, its root channels taken to pelage's axes and units.
+std::vector<Clip> readClips(const ImportContext& ctx, const Skeleton& skel, const Units& units,
+                            const anatomy::Body& body) {
+  const tinygltf::Model& model = ctx.model;
+  const std::string& path = ctx.path;
+  const int N = static_cast<int>(model.nodes.size());
+  const std::vector<int>& segmentOf = skel.segmentOf;
+  const double s = static_cast<double>(units.scale);
+  const Eigen::Matrix3d& C = units.C;
+  const Eigen::Quaterniond& qC = units.qC;
+  std::vector<Clip> clips;
   std::set<std::string> clipNames;
   bool warnedWeights = false;
   for (std::size_t ai = 0; ai < model.animations.size(); ++ai) {
@@ -881,7 +914,7 @@ GltfCreature importGltf(const std::string& path, const GltfImportOptions& option
             v[1] = t.y();
             v[2] = t.z();
           } else {
-            for (int i = 0; i < 3; ++i) v[i] *= out.unitScale;
+            for (int i = 0; i < 3; ++i) v[i] *= units.scale;
           }
         }
       }
@@ -889,8 +922,112 @@ GltfCreature importGltf(const std::string& path, const GltfImportOptions& option
     }
     clip.duration = duration;
     checkClip(clip, body);
-    out.clips.push_back(std::move(clip));
+    clips.push_back(std::move(clip));
   }
+  return clips;
+}
+
+}  // namespace
+
+// The stages, in order: the node tree, the scene's meshes, the skeleton, the geometry, the units,
+// the body, welding, triangles, the OpenMesh skin, vertex properties, the skin colour, the clips.
+GltfCreature importGltf(const std::string& path, const GltfImportOptions& options) {
+  if (options.unitScale != 0.0f && !(options.unitScale >= 1e-6f && options.unitScale <= 1e6f))
+    inputError("unit scale ", options.unitScale,
+               " is out of range [1e-6, 1e6] metres per file unit");
+  if (options.furLengthMeters != 0.0f &&
+      !(options.furLengthMeters > 0.0f && options.furLengthMeters <= 10.0f))
+    inputError("fur length ", options.furLengthMeters, " m is out of range (0, 10]");
+  const tinygltf::Model model = gltf::loadModelFile(path);
+  const ImportContext ctx(path, model);
+  const Tree tree = buildTree(ctx);
+  const SceneMeshes meshes = sceneMeshes(ctx, tree);
+  const Skeleton skeleton = buildSkeleton(ctx, tree, meshes);
+  const int nS = skeleton.size();
+  Primitives prims = readGeometry(ctx, meshes, skeleton);
+  const Units units = findUnits(prims, options);
+  GltfCreature out;
+  out.name = std::filesystem::path(path).stem().string();
+  out.unitScale = units.scale;
+  out.unitScaleReason = units.reason;
+  anatomy::Body& body = out.body;
+  buildBody(ctx, tree, skeleton, units, body);
+
+  const std::vector<std::string>& noFur =
+      options.noFurRegions ? *options.noFurRegions : defaultNoFurRegions();
+  std::vector<bool> bareRegion(prims.regionNames.size(), false);
+  for (std::size_t r = 0; r < prims.regionNames.size(); ++r)
+    for (const std::string& pat : noFur)
+      bareRegion[r] = bareRegion[r] || regionMatches(pat, prims.regionNames[r]);
+  const Weld weld = weldVertices(prims, units, bareRegion);
+  const std::vector<std::array<std::int32_t, 3>> tris = weldedTriangles(ctx, prims, weld, units);
+  skin::SkinMesh& sk = out.skin;
+  const std::vector<std::int32_t> source = buildSkinMesh(path, tris, weld, sk);
+  const std::vector<std::int32_t>& welded = weld.welded;
+  const std::vector<int>& weldRegion = weld.weldRegion;
+  const float diag =
+      static_cast<float>(static_cast<double>(units.scale) * units.fileBox.diagonal().norm());
+
+  // 9. Vertex properties: bindings, regions, fur lengths, segment directions.
+  skin::addSkinProperties(sk);
+  sk.regionNames = prims.regionNames;
+  std::vector<bool> bound(static_cast<std::size_t>(nS), false);
+  for (std::int32_t w : source)
+    for (std::size_t k = 0; k < 4; ++k) {
+      const skin::Binding& b =
+          prims.vertices[static_cast<std::size_t>(welded[static_cast<std::size_t>(w)])].binding;
+      if (b.weight[k] > 0.0f) bound[static_cast<std::size_t>(b.segment[k])] = true;
+    }
+  std::vector<Eigen::Vector3f> bindJoints(static_cast<std::size_t>(nS));
+  for (int si = 0; si < nS; ++si)
+    bindJoints[static_cast<std::size_t>(si)] =
+        body.inverseBind[static_cast<std::size_t>(si)].inverse().translation();
+  const std::vector<Eigen::Vector3f> dirs = headToTailDirections(body, bindJoints, bound);
+  for (int si = 0; si < nS; ++si)
+    body.segments[static_cast<std::size_t>(si)].direction = dirs[static_cast<std::size_t>(si)];
+  std::string sideFile = options.segmentDirections;
+  if (sideFile.empty()) {
+    const std::filesystem::path auto_ =
+        std::filesystem::path(path).replace_extension(".directions.json");
+    std::error_code ec;
+    if (std::filesystem::is_regular_file(auto_, ec)) sideFile = auto_.string();
+  }
+  if (!sideFile.empty()) applyDirectionFile(body, sideFile);
+
+  const float furLength = options.furLengthMeters > 0.0f ? options.furLengthMeters : 0.02f * diag;
+  for (auto vh : sk.mesh.vertices()) {
+    const std::int32_t w = source[static_cast<std::size_t>(vh.idx())];
+    const RawVertex& rv =
+        prims.vertices[static_cast<std::size_t>(welded[static_cast<std::size_t>(w)])];
+    const int region = weldRegion[static_cast<std::size_t>(w)];
+    sk.mesh.property(sk.binding, vh) = rv.binding;
+    sk.mesh.property(sk.region, vh) = region;
+    sk.mesh.property(sk.furLength, vh) =
+        bareRegion[static_cast<std::size_t>(region)] ? 0.0f : furLength;
+    const Eigen::Vector3f& d =
+        body.segments[static_cast<std::size_t>(rv.binding.segment[0])].direction;
+    sk.mesh.property(sk.segmentDirection, vh) = OpenMesh::Vec3f(d.x(), d.y(), d.z());
+  }
+  // 10. Skin colour: the base colour of the furred region with the most triangles. A textured
+  // material's factor only tints its texture (the Fox: factor 1, colour in the texture), and pelage
+  // reads no textures, so such materials leave the skin's default colour.
+  std::int64_t most = -1;
+  for (std::size_t r = 0; r < prims.regionNames.size(); ++r) {
+    const int mat = prims.regionMaterial[r];
+    if (bareRegion[r] || mat < 0 || prims.regionTriangles[r] <= most) continue;
+    const auto& pbr = model.materials[static_cast<std::size_t>(mat)].pbrMetallicRoughness;
+    if (pbr.baseColorTexture.index >= 0) continue;
+    const std::vector<double>& f = pbr.baseColorFactor;
+    if (f.size() >= 3 && finite(f)) {
+      most = prims.regionTriangles[r];
+      sk.color = Eigen::Vector3f(static_cast<float>(std::clamp(f[0], 0.0, 1.0)),
+                                 static_cast<float>(std::clamp(f[1], 0.0, 1.0)),
+                                 static_cast<float>(std::clamp(f[2], 0.0, 1.0)));
+    }
+  }
+  skin::finalizeSkin(sk);
+
+  out.clips = readClips(ctx, skeleton, units, body);
   return out;
 }
 

@@ -10,9 +10,9 @@
 
 #include "pelage/fur/generate.h"
 #include "pelage/fur/hair_math.h"
+#include "pelage/scene/playback.h"
 #include "pelage/util/error.h"
 #include "pelage/util/parallel.h"
-#include "pelage/scene/playback.h"
 
 namespace pelage::scene {
 namespace {
@@ -218,9 +218,11 @@ struct Run {
           for (std::int64_t i = b; i < e; ++i) {
             const HairSite& h = sites[static_cast<std::size_t>(i)];
             const fur::CoatShape& shape = shapes[static_cast<std::size_t>(h.coat)];
-            // Sec. 3.2: the hair's inputs interpolated at its root, then sec. 3.4-3.5 (hair_math.h).
-        const fur::HairInput<float> in = fur::rootInput(model.skin, fur.roots, d, h.coat, h.root);
-        fur::HairFrame<float> f;
+            // Sec. 3.2: the hair's inputs interpolated at its root, then sec. 3.4-3.5
+            // (hair_math.h).
+            const fur::HairInput<float> in =
+                fur::rootInput(model.skin, fur.roots, d, h.coat, h.root);
+            fur::HairFrame<float> f;
             fur::hairFrame(shape, in, f);
             if (!(f.length > 0.0f)) continue;
             const Eigen::Vector3f R(f.root.x, f.root.y, f.root.z);
@@ -411,7 +413,8 @@ AnalysisResult analyzeClip(const Model& model, const Fur& fur, const AnalysisOpt
   for (int f = options.firstFrame; f <= options.lastFrame; ++f) {
     playback.poseFrame(f);
     if (options.dynamics) playback.stepDynamics();
-    result.frames.push_back(run.measure(f, false, f == options.lastFrame && holdFrames > 0 ? 1 : 0));
+    result.frames.push_back(
+        run.measure(f, false, f == options.lastFrame && holdFrames > 0 ? 1 : 0));
   }
   for (int k = 1; k <= holdFrames; ++k) {  // the last pose, still: the springs go on
     playback.holdFrame();

@@ -66,7 +66,8 @@ Model loadModel(const std::string& spec, const LoadOptions& options) {
   const bool gltf = ext == ".gltf" || ext == ".glb";
   if (!gltf &&
       (options.unitScale != 0.0f || options.noFurRegions || !options.segmentDirections.empty()))
-    inputError(spec, ": the unit scale, no-fur regions and segment directions apply to glTF models "
+    inputError(spec,
+               ": the unit scale, no-fur regions and segment directions apply to glTF models "
                "(.gltf/.glb) only");
   if (gltf) return fromGltf(spec, options);
   if (spec.empty() || spec == kDefaultModel)

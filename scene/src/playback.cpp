@@ -26,7 +26,8 @@ void validatePlaybackOptions(const Model& model, const PlaybackOptions& o) {
 Playback::Playback(const Model& model, const Fur& fur, PlaybackOptions options)
     : model_(&model), fur_(&fur), options_(std::move(options)) {
   validatePlaybackOptions(model, options_);
-  stillPose_ = options_.stillPose.local.empty() ? anatomy::restPose(model.body) : options_.stillPose;
+  stillPose_ =
+      options_.stillPose.local.empty() ? anatomy::restPose(model.body) : options_.stillPose;
   clock_.fps = options_.framesPerSecond;
   clock_.preRollFrames = options_.preRollFrames;
   generation_ = fur.generation;

@@ -136,10 +136,12 @@ inline bool sameHairs(const fur::FurFrame& a, const fur::FurFrame& b) {
 }
 
 inline Eigen::Vector3f point(const fur::HairBuffers& b, std::int64_t hair, int k) {
-  return Eigen::Map<const Eigen::Vector3f>(b.positions.data() + (hair * b.layout.pointsPerHair() + k) * 3);
+  return Eigen::Map<const Eigen::Vector3f>(b.positions.data() +
+                                           (hair * b.layout.pointsPerHair() + k) * 3);
 }
 inline Eigen::Vector3f normal(const fur::HairBuffers& b, std::int64_t hair, int k) {
-  return Eigen::Map<const Eigen::Vector3f>(b.normals.data() + (hair * b.layout.pointsPerHair() + k) * 3);
+  return Eigen::Map<const Eigen::Vector3f>(b.normals.data() +
+                                           (hair * b.layout.pointsPerHair() + k) * 3);
 }
 
 // A UV sphere of radius r (rings x segments), fur lengths from 2 mm at the bottom to 12 mm at the

@@ -215,7 +215,8 @@ TEST(BuildDrawList, SkinAndOneItemPerCoat) {
     const FurDrawItem& item = list.fur[static_cast<std::size_t>(c)];
     EXPECT_EQ(item.coat, c);
     EXPECT_EQ(item.layout.style, fur.params.coats[static_cast<std::size_t>(c)].style);
-    EXPECT_EQ(item.pointsPerHair(), f.fur.coats[static_cast<std::size_t>(c)].layout.pointsPerHair());
+    EXPECT_EQ(item.pointsPerHair(),
+              f.fur.coats[static_cast<std::size_t>(c)].layout.pointsPerHair());
     EXPECT_EQ(item.rootCount, fur.roots.coats[static_cast<std::size_t>(c)].size());
     EXPECT_EQ(item.drawnHairs, f.fur.coats[static_cast<std::size_t>(c)].drawn);
     EXPECT_EQ(item.positions, f.fur.coats[static_cast<std::size_t>(c)].positions.data());

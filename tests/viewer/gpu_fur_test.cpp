@@ -175,13 +175,15 @@ TEST_P(GpuFurParity, MatchesTheCpuModel) {
           }
           std::vector<float> gp, gs;
           gpu.readBack(gp, gs);
-          const std::size_t floats = static_cast<std::size_t>(cpu.drawn * cpu.layout.pointsPerHair() * 3);
+          const std::size_t floats =
+              static_cast<std::size_t>(cpu.drawn * cpu.layout.pointsPerHair() * 3);
           ASSERT_EQ(gp.size(), floats);
           EXPECT_LT(maxRelativeError(gp, cpu.positions.data(), floats), 1e-4);
           // Also against each hair's own size: a 0.1% error in a 1 cm hair is far below 1e-4 of its
           // distance from the origin. (On llvmpipe the two paths agree bit for bit.)
-          EXPECT_LT(maxHairRelativeError(gp, cpu.positions.data(), cpu.drawn, cpu.layout.pointsPerHair()),
-                    1e-4);
+          EXPECT_LT(
+              maxHairRelativeError(gp, cpu.positions.data(), cpu.drawn, cpu.layout.pointsPerHair()),
+              1e-4);
           if (shading == scene::HairShading::Paper) {
             EXPECT_LT(maxRelativeError(gs, cpu.normals.data(), floats), 1e-4);
           } else {
@@ -263,9 +265,9 @@ TEST_F(GpuFurRandom, EveryStyleWithRandomParametersMatchesTheCpuModel) {
       renderer.render(list);
       for (int c = 0; c < fur::kCoatCount; ++c) {
         const fur::HairBuffers& cpu = frame.fur.coats[static_cast<std::size_t>(c)];
-        SCOPED_TRACE(testing::Message() << "draw " << draw << " coat " << c << " "
-                                        << fur::styleName(cpu.layout.style)
-                                        << (culling ? " culled" : " all"));
+        SCOPED_TRACE(testing::Message()
+                     << "draw " << draw << " coat " << c << " " << fur::styleName(cpu.layout.style)
+                     << (culling ? " culled" : " all"));
         const HairVertexBuffers& gpu = renderer.coatBuffers(c);
         if (cpu.drawn == 0) continue;
         ASSERT_EQ(gpu.drawnHairsOnGpu(), cpu.drawn);
@@ -274,21 +276,21 @@ TEST_F(GpuFurRandom, EveryStyleWithRandomParametersMatchesTheCpuModel) {
         const std::size_t floats =
             static_cast<std::size_t>(cpu.drawn * cpu.layout.pointsPerHair() * 3);
         ASSERT_EQ(gp.size(), floats);
-        EXPECT_LT(maxHairRelativeError(gp, cpu.positions.data(), cpu.drawn,
-                                       cpu.layout.pointsPerHair()),
-                  1e-4);
+        EXPECT_LT(
+            maxHairRelativeError(gp, cpu.positions.data(), cpu.drawn, cpu.layout.pointsPerHair()),
+            1e-4);
         EXPECT_LT(maxRelativeError(gs, cpu.normals.data(), floats), 1e-4);
         for (std::size_t i = 0; i < floats; i += 3) {
           ++points;
           exact += gp[i] == cpu.positions.data()[i] && gp[i + 1] == cpu.positions.data()[i + 1] &&
-                   gp[i + 2] == cpu.positions.data()[i + 2] &&
-                   gs[i] == cpu.normals.data()[i] && gs[i + 1] == cpu.normals.data()[i + 1] &&
-                   gs[i + 2] == cpu.normals.data()[i + 2];
+                   gp[i + 2] == cpu.positions.data()[i + 2] && gs[i] == cpu.normals.data()[i] &&
+                   gs[i + 1] == cpu.normals.data()[i + 1] && gs[i + 2] == cpu.normals.data()[i + 2];
         }
       }
     }
   }
-  for (int s = 0; s < fur::kHairStyleCount; ++s) EXPECT_GE(styleDraws[static_cast<std::size_t>(s)], 6);
+  for (int s = 0; s < fur::kHairStyleCount; ++s)
+    EXPECT_GE(styleDraws[static_cast<std::size_t>(s)], 6);
   std::printf("GPU/CPU parity: %lld of %lld hair points (position and normal) bit-identical\n",
               static_cast<long long>(exact), static_cast<long long>(points));
   EXPECT_GT(points, 50000);

@@ -99,7 +99,8 @@ TEST_F(ViewerSessionTest, DynamicFurStartsLagsAndSettles) {
     EXPECT_EQ(a.drawn, b.drawn);
     EXPECT_GT(a.drawn, 0);
     float gap = 0.0f;
-    for (std::size_t i = 0; i < static_cast<std::size_t>(a.drawn * a.layout.pointsPerHair() * 3); ++i)
+    for (std::size_t i = 0; i < static_cast<std::size_t>(a.drawn * a.layout.pointsPerHair() * 3);
+         ++i)
       gap = std::max(gap, std::abs(a.positions.data()[i] - b.positions.data()[i]));
     return gap;
   };

@@ -78,7 +78,8 @@ void checkShapeLayout(GLuint program) {
   PELAGE_COAT_SHAPE_MEMBERS(PELAGE_CHECK_SCALAR, PELAGE_CHECK_ARRAY)
 #undef PELAGE_CHECK_SCALAR
 #undef PELAGE_CHECK_ARRAY
-  const GLuint block = glGetProgramResourceIndex(program, GL_SHADER_STORAGE_BLOCK, "CoatShapeBlock");
+  const GLuint block =
+      glGetProgramResourceIndex(program, GL_SHADER_STORAGE_BLOCK, "CoatShapeBlock");
   PELAGE_CHECK(block != GL_INVALID_INDEX, "the fur program has no CoatShapeBlock");
   // Drivers may round the block's size up (llvmpipe: to 16 bytes); nothing may be missing.
   const GLint size = property(GL_SHADER_STORAGE_BLOCK, block, GL_BUFFER_DATA_SIZE);

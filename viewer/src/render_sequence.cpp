@@ -63,10 +63,12 @@ void validateSequenceOptions(const SequenceOptions& o) {
     fieldError("size", o.width, "x", o.height, " is out of range [16, 16384] per side");
   if (!(o.playback.framesPerSecond >= 1.0 && o.playback.framesPerSecond <= 1000.0))
     fieldError("fps", o.playback.framesPerSecond, " is out of range [1, 1000]");
-  if (o.frames.first < 0 || o.frames.first > o.frames.last || o.frames.last > scene::kMaxFrameNumber)
+  if (o.frames.first < 0 || o.frames.first > o.frames.last ||
+      o.frames.last > scene::kMaxFrameNumber)
     fieldError("frames", o.frames.first, ":", o.frames.last,
                " is out of range: need 0 <= FIRST <= LAST <= ", scene::kMaxFrameNumber);
-  if (o.samples < -1 || o.samples > 64) fieldError("samples", o.samples, " is out of range [-1, 64]");
+  if (o.samples < -1 || o.samples > 64)
+    fieldError("samples", o.samples, " is out of range [-1, 64]");
   if (o.encoderThreads < 0 || o.encoderThreads > 256)
     fieldError("encoders", o.encoderThreads, " is out of range [0, 256]");
   if (!(o.camera.fovYDegrees > 1.0f && o.camera.fovYDegrees < 179.0f))
@@ -125,8 +127,8 @@ scene::Camera SequenceRenderer::camera(int frame) {
 
 RenderStats SequenceRenderer::render(int frame, Image& out) {
   Impl& m = *impl_;
-  const scene::DrawList& list = m.playback.sequenceFrame(frame, m.options.camera, m.options.width,
-                                                         m.options.height, m.light(), m.options.look);
+  const scene::DrawList& list = m.playback.sequenceFrame(
+      frame, m.options.camera, m.options.width, m.options.height, m.light(), m.options.look);
   const RenderStats stats = m.renderer.render(list);
   m.renderer.readPixels(out);
   return stats;

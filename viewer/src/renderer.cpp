@@ -256,9 +256,8 @@ struct Renderer::Impl {
     setInt(program, "uStrandStride", b.layout().ringSides);
     glBindVertexArray(b.vertexArray());
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, b.commands());
-    glMultiDrawElementsIndirect(primitive(b.layout()),
-                                GL_UNSIGNED_INT, nullptr, static_cast<GLsizei>(b.chunks().size()),
-                                sizeof(DrawCommand));
+    glMultiDrawElementsIndirect(primitive(b.layout()), GL_UNSIGNED_INT, nullptr,
+                                static_cast<GLsizei>(b.chunks().size()), sizeof(DrawCommand));
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
   }
 

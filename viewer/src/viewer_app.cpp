@@ -222,7 +222,8 @@ void validateViewerOptions(const ViewerOptions& o) {
     fieldError("size", o.width, "x", o.height, " is out of range [16, 16384] per side");
   if (o.frames < 0 || o.frames > 10000000)
     fieldError("frames", o.frames, " is out of range [0, 10000000]");
-  if (o.samples < -1 || o.samples > 64) fieldError("samples", o.samples, " is out of range [-1, 64]");
+  if (o.samples < -1 || o.samples > 64)
+    fieldError("samples", o.samples, " is out of range [-1, 64]");
   if (!(o.time >= 0.0 && o.time <= 1e6))
     fieldError("time", o.time, " is out of range [0, 1000000] s");
   if (o.benchmarkFrames < 1 || o.benchmarkFrames > 100000)
@@ -230,7 +231,8 @@ void validateViewerOptions(const ViewerOptions& o) {
   if (!o.screenshot.empty()) {
     const std::filesystem::path parent = std::filesystem::path(o.screenshot).parent_path();
     if (!parent.empty() && !std::filesystem::is_directory(parent))
-      fieldError("screenshot", o.screenshot, ": the directory ", parent.string(), " does not exist");
+      fieldError("screenshot", o.screenshot, ": the directory ", parent.string(),
+                 " does not exist");
   }
   for (double h : o.benchmarkHairs)
     if (!(h >= 0.0 && h <= fur::kMaxHairs))

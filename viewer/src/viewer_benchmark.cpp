@@ -29,9 +29,9 @@ int runBenchmark(const ViewerOptions& options, const scene::Model& model) {
       "%s\n",
       info.renderer.c_str(), info.version.c_str(), info.backend.c_str(), options.width,
       options.height, threadCount(),
-      options.dynamics                                ? "CPU (dynamic fur)"
+      options.dynamics                               ? "CPU (dynamic fur)"
       : options.hairSource == scene::HairSource::Cpu ? "CPU"
-                                                      : "GPU",
+                                                     : "GPU",
       model.name.c_str());
   // MSAA off is the setting of the reference figures (../shared/docs/headless-gl.md); on a GPU 4x
   // is measured too, as the viewer uses it there. A software rasteriser only without (4x costs

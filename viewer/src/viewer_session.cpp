@@ -25,8 +25,7 @@ ViewerSession::ViewerSession(const ViewerOptions& options, scene::Model model)
     : edit(initialParams(options)), model_(std::move(model)) {
   if (!(options.time >= 0.0 && options.time <= 1e6))
     fieldError("time", options.time, " is out of range [0, 1000000] s");
-  stillPose_ =
-      options.stillPose.local.empty() ? anatomy::restPose(model_.body) : options.stillPose;
+  stillPose_ = options.stillPose.local.empty() ? anatomy::restPose(model_.body) : options.stillPose;
   PELAGE_CHECK(static_cast<int>(stillPose_.local.size()) == model_.body.size(), "still pose of ",
                stillPose_.local.size(), " segments");
   const int clips = static_cast<int>(model_.clips.size());
@@ -66,8 +65,8 @@ ViewerSession::ViewerSession(const ViewerOptions& options, scene::Model model)
   lastRoot_ = framing_.rootPosition;
   pivot_ = Eigen::Vector3f(framing_.center.x(), framing_.center.y(), 0.0f);
   pendingPreset_ = options.camera;
-  orbit = scene::orbitOf(
-      scene::presetCamera(framing_, *pendingPreset_, options.width, options.height));
+  orbit =
+      scene::orbitOf(scene::presetCamera(framing_, *pendingPreset_, options.width, options.height));
 }
 
 ViewerSession::~ViewerSession() {
@@ -219,8 +218,8 @@ const anatomy::Pose& ViewerSession::pose() {
   if (turntableDegPerSecond != 0.0f) {
     // The root segment turned about the world +Z axis through the creature's first centre.
     const double deg = std::fmod(time_ * static_cast<double>(turntableDegPerSecond), 360.0);
-    const Eigen::Quaternionf q(Eigen::AngleAxisf(
-        static_cast<float>(deg * 3.14159265358979 / 180.0), Eigen::Vector3f::UnitZ()));
+    const Eigen::Quaternionf q(Eigen::AngleAxisf(static_cast<float>(deg * 3.14159265358979 / 180.0),
+                                                 Eigen::Vector3f::UnitZ()));
     anatomy::Transform& root = pose_.local[0];
     root.rotation = q * root.rotation;
     root.translation = q * (root.translation - pivot_) + pivot_;
@@ -247,8 +246,8 @@ void ViewerSession::frame(double dtSeconds, int width, int height) {
   if (follow) orbit.target += framing_.rootPosition - lastRoot_;
   lastRoot_ = framing_.rootPosition;
   if (pendingPreset_) {
-    orbit = scene::orbitOf(scene::presetCamera(framing_, *pendingPreset_, std::max(width, 1),
-                                               std::max(height, 1)));
+    orbit = scene::orbitOf(
+        scene::presetCamera(framing_, *pendingPreset_, std::max(width, 1), std::max(height, 1)));
     pendingPreset_.reset();
   }
   scene::Camera cam = scene::orbitCamera(orbit, std::max(width, 1), std::max(height, 1));

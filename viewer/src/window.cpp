@@ -31,8 +31,7 @@ std::string lastGlfwError() {
 
 GlfwWindow::GlfwWindow(int width, int height, const std::string& title, bool debug) {
   glfwSetErrorCallback(onGlfwError);
-  if (glfwInit() != GLFW_TRUE)
-    fieldError("window", "cannot be opened: ", lastGlfwError());
+  if (glfwInit() != GLFW_TRUE) fieldError("window", "cannot be opened: ", lastGlfwError());
   const int versions[][2] = {{4, 6}, {4, 5}, {4, 3}};
   std::string tried;
   for (const auto& v : versions) {

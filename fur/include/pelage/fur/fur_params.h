@@ -19,7 +19,7 @@ namespace pelage::fur {
 // One coat (sec. 3.1): "different material characteristics, stiffness, randomness, and hair style".
 struct CoatParams {
   HairStyle style = HairStyle::Polyline;
-  Material material;  // pelage::Material (sec. 3.2)
+  Material material;                    // pelage::Material (sec. 3.2)
   float stiffness = 0.2f;               // [0, 1]; floppiness f = clamp(1 - stiffness, 0.02, 1)
   float normalRandomize = 0.0f;         // [0, 1]: polyline normals twist by up to r * pi
   float hairEndRandomize = 0.0f;        // [0, 2]: weightless end moves by up to r * length

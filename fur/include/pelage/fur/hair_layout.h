@@ -1,7 +1,7 @@
 // The layout of each hair style: how many points a hair has, how they are connected, how much
 // memory a hair takes, and how exporters describe it. The one place these are decided: the hair
-// budget, the CPU kernels' buffers, the draw list, the renderer's index buffers, the PLY, USD and glb
-// exporters and the viewer's panel all ask hairLayout(). Adding a style means an enum value
+// budget, the CPU kernels' buffers, the draw list, the renderer's index buffers, the PLY, USD and
+// glb exporters and the viewer's panel all ask hairLayout(). Adding a style means an enum value
 // (hair_style.h), its maths (hair_math.h and its GLSL mirror) and its entry here; every switch over
 // HairStyle has no `default:`, so the compiler lists the places that must learn it.
 #pragma once

@@ -162,42 +162,42 @@ inline constexpr float kTubeTipFraction = 0.05f;  // tube radius at the tip / at
 //    c1 = (1-t)^2 t, c2 = 2 (1-t) t^2 + t^3; tangent weights dc1 = (1-t)(1-3t), dc2 = 4t - 3t^2;
 //  curl*: the helix, radius curlRadius * L * sin(pi t_k), angle 2 pi (turns t_k + phase);
 //  tube*, ring*: M ring directions and the tube radius at each curve point.
-#define PELAGE_COAT_SHAPE_MEMBERS(SCALAR, ARRAY)                     \
-  SCALAR(HairStyle, int, style)                                      \
-  SCALAR(std::int32_t, int, points)                                  \
-  SCALAR(std::int32_t, int, curvePoints)                             \
-  SCALAR(std::int32_t, int, tubeSides)                               \
-  SCALAR(std::int32_t, int, twist)                                   \
-  SCALAR(std::int32_t, int, curl)                                    \
-  SCALAR(RegionShape, int, regionShape)                              \
-  SCALAR(float, float, lengthMul)                                    \
-  SCALAR(float, float, segmentWeight)                                \
-  SCALAR(float, float, endRandomize)                                 \
-  SCALAR(float, float, floppiness)                                   \
-  ARRAY(float, float, up, 3)                                         \
-  ARRAY(float, float, fallbackTangent, 3)                            \
-  ARRAY(float, float, regionCenter, 3)                               \
-  SCALAR(float, float, regionRadius2)                                \
-  ARRAY(float, float, regionMin, 3)                                  \
-  ARRAY(float, float, regionMax, 3)                                  \
-  SCALAR(float, float, regionScale)                                  \
-  SCALAR(float, float, curlRadius)                                   \
-  ARRAY(float, float, polyA, ::pelage::fur::kPolylinePoints)         \
-  ARRAY(float, float, polyB, ::pelage::fur::kPolylinePoints)         \
-  ARRAY(float, float, polyAlpha, ::pelage::fur::kPolylinePoints)     \
-  ARRAY(float, float, polyBeta, ::pelage::fur::kPolylinePoints)      \
-  ARRAY(float, float, polyAlpha2, ::pelage::fur::kPolylinePoints)    \
-  ARRAY(float, float, polyBeta2, ::pelage::fur::kPolylinePoints)     \
+#define PELAGE_COAT_SHAPE_MEMBERS(SCALAR, ARRAY)                        \
+  SCALAR(HairStyle, int, style)                                         \
+  SCALAR(std::int32_t, int, points)                                     \
+  SCALAR(std::int32_t, int, curvePoints)                                \
+  SCALAR(std::int32_t, int, tubeSides)                                  \
+  SCALAR(std::int32_t, int, twist)                                      \
+  SCALAR(std::int32_t, int, curl)                                       \
+  SCALAR(RegionShape, int, regionShape)                                 \
+  SCALAR(float, float, lengthMul)                                       \
+  SCALAR(float, float, segmentWeight)                                   \
+  SCALAR(float, float, endRandomize)                                    \
+  SCALAR(float, float, floppiness)                                      \
+  ARRAY(float, float, up, 3)                                            \
+  ARRAY(float, float, fallbackTangent, 3)                               \
+  ARRAY(float, float, regionCenter, 3)                                  \
+  SCALAR(float, float, regionRadius2)                                   \
+  ARRAY(float, float, regionMin, 3)                                     \
+  ARRAY(float, float, regionMax, 3)                                     \
+  SCALAR(float, float, regionScale)                                     \
+  SCALAR(float, float, curlRadius)                                      \
+  ARRAY(float, float, polyA, ::pelage::fur::kPolylinePoints)            \
+  ARRAY(float, float, polyB, ::pelage::fur::kPolylinePoints)            \
+  ARRAY(float, float, polyAlpha, ::pelage::fur::kPolylinePoints)        \
+  ARRAY(float, float, polyBeta, ::pelage::fur::kPolylinePoints)         \
+  ARRAY(float, float, polyAlpha2, ::pelage::fur::kPolylinePoints)       \
+  ARRAY(float, float, polyBeta2, ::pelage::fur::kPolylinePoints)        \
   ARRAY(float, float, polyTwoAlphaBeta, ::pelage::fur::kPolylinePoints) \
-  ARRAY(float, float, curveC1, ::pelage::fur::kMaxCurvePoints)       \
-  ARRAY(float, float, curveC2, ::pelage::fur::kMaxCurvePoints)       \
-  ARRAY(float, float, curveDc1, ::pelage::fur::kMaxCurvePoints)      \
-  ARRAY(float, float, curveDc2, ::pelage::fur::kMaxCurvePoints)      \
-  ARRAY(float, float, curlEnvelope, ::pelage::fur::kMaxCurvePoints)  \
-  ARRAY(float, float, curlCos, ::pelage::fur::kMaxCurvePoints)       \
-  ARRAY(float, float, curlSin, ::pelage::fur::kMaxCurvePoints)       \
-  ARRAY(float, float, tubeRadius, ::pelage::fur::kMaxCurvePoints)    \
-  ARRAY(float, float, ringCos, ::pelage::fur::kMaxTubeSides)         \
+  ARRAY(float, float, curveC1, ::pelage::fur::kMaxCurvePoints)          \
+  ARRAY(float, float, curveC2, ::pelage::fur::kMaxCurvePoints)          \
+  ARRAY(float, float, curveDc1, ::pelage::fur::kMaxCurvePoints)         \
+  ARRAY(float, float, curveDc2, ::pelage::fur::kMaxCurvePoints)         \
+  ARRAY(float, float, curlEnvelope, ::pelage::fur::kMaxCurvePoints)     \
+  ARRAY(float, float, curlCos, ::pelage::fur::kMaxCurvePoints)          \
+  ARRAY(float, float, curlSin, ::pelage::fur::kMaxCurvePoints)          \
+  ARRAY(float, float, tubeRadius, ::pelage::fur::kMaxCurvePoints)       \
+  ARRAY(float, float, ringCos, ::pelage::fur::kMaxTubeSides)            \
   ARRAY(float, float, ringSin, ::pelage::fur::kMaxTubeSides)
 
 struct CoatShape {
@@ -211,11 +211,14 @@ struct CoatShape {
 // Every member is 4 bytes wide (so std430 adds no padding) and nothing sits between them.
 #define PELAGE_SCALAR_SIZE(cpp, glsl, name) +sizeof(cpp)
 #define PELAGE_ARRAY_SIZE(cpp, glsl, name, size) +sizeof(cpp) * (size)
-static_assert(sizeof(CoatShape) == 0 PELAGE_COAT_SHAPE_MEMBERS(PELAGE_SCALAR_SIZE, PELAGE_ARRAY_SIZE));
+static_assert(sizeof(CoatShape) ==
+              0 PELAGE_COAT_SHAPE_MEMBERS(PELAGE_SCALAR_SIZE, PELAGE_ARRAY_SIZE));
 #undef PELAGE_SCALAR_SIZE
 #undef PELAGE_ARRAY_SIZE
-#define PELAGE_SCALAR_IS_WORD(cpp, glsl, name) static_assert(sizeof(cpp) == 4, #name " is not 4 bytes");
-#define PELAGE_ARRAY_IS_WORD(cpp, glsl, name, size) static_assert(sizeof(cpp) == 4, #name " is not 4 bytes");
+#define PELAGE_SCALAR_IS_WORD(cpp, glsl, name) \
+  static_assert(sizeof(cpp) == 4, #name " is not 4 bytes");
+#define PELAGE_ARRAY_IS_WORD(cpp, glsl, name, size) \
+  static_assert(sizeof(cpp) == 4, #name " is not 4 bytes");
 PELAGE_COAT_SHAPE_MEMBERS(PELAGE_SCALAR_IS_WORD, PELAGE_ARRAY_IS_WORD)
 #undef PELAGE_SCALAR_IS_WORD
 #undef PELAGE_ARRAY_IS_WORD

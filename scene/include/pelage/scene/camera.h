@@ -51,9 +51,9 @@ CameraPreset parseCameraPreset(std::string_view name, std::string_view field = "
 
 // Where a creature is and which way it faces in one frame; what camera framing needs.
 struct Framing {
-  Eigen::AlignedBox3f bounds;                        // deformed skin plus the longest hair
-  Eigen::Vector3f center = Eigen::Vector3f::Zero();  // centre of the bounding sphere
-  float radius = 0.0f;                               // bounding-sphere radius (metres)
+  Eigen::AlignedBox3f bounds;                          // deformed skin plus the longest hair
+  Eigen::Vector3f center = Eigen::Vector3f::Zero();    // centre of the bounding sphere
+  float radius = 0.0f;                                 // bounding-sphere radius (metres)
   Eigen::Vector3f forward = Eigen::Vector3f::UnitX();  // horizontal unit vector the creature faces
   Eigen::Vector3f faceCenter = Eigen::Vector3f::Zero();  // centre of the face (see framingOf)
   float faceRadius = 0.0f;  // radius of a sphere around the face (metres)

@@ -57,7 +57,7 @@ struct SkinDrawItem {
 
 // One coat (paper sec. 3.1). Non-owning pointers into the scene; valid for the frame.
 struct FurDrawItem {
-  int coat = 0;  // fur::kOvercoat or fur::kUndercoat
+  int coat = 0;            // fur::kOvercoat or fur::kUndercoat
   fur::HairLayout layout;  // the coat's style's points and topology (fur/hair_layout.h)
   Material material;
   std::int64_t rootCount = 0;   // hairs grown on the skin

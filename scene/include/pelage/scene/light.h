@@ -21,7 +21,7 @@ struct Light {
   Eigen::Vector3f direction = lightDirection(kKeyLightAzimuthDegrees, kKeyLightElevationDegrees);
   Eigen::Vector3f color{1.0f, 1.0f, 1.0f};
   Eigen::Vector3f ambient{0.35f, 0.35f, 0.35f};  // ambient light intensity (the paper's GL model)
-  bool shadows = false;                           // shadow map: fur and skin shadow each other
+  bool shadows = false;                          // shadow map: fur and skin shadow each other
   int shadowMapSize = 2048;
 };
 

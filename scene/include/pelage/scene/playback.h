@@ -31,8 +31,8 @@
 namespace pelage::scene {
 
 struct PlaybackOptions {
-  int clip = -1;               // index into model.clips; -1: the still pose in every frame
-  anatomy::Pose stillPose;     // the pose without a clip; empty: the rest pose
+  int clip = -1;                  // index into model.clips; -1: the still pose in every frame
+  anatomy::Pose stillPose;        // the pose without a clip; empty: the rest pose
   double framesPerSecond = 30.0;  // frame f shows clip time f / fps, [1, 1000]
   // Where hairs are computed. Dynamic fur is computed on the CPU (its state lives there), so with
   // dynamics on the CPU's hairs are drawn whatever this says (see hairSource()).
@@ -88,9 +88,10 @@ class Playback {
   Framing framing() const;
   const Framing& firstFraming() const { return firstFraming_; }
 
-  // ---- 2. The fur ---------------------------------------------------------------------------------
-  // For a camera at `eye`: culling, and the CPU hairs or the GPU's counts; with dynamics, the
-  // springs' step to the posed frame (once per pose) and the hairs from their ends.
+  // ---- 2. The fur
+  // --------------------------------------------------------------------------------- For a camera
+  // at `eye`: culling, and the CPU hairs or the GPU's counts; with dynamics, the springs' step to
+  // the posed frame (once per pose) and the hairs from their ends.
   void evaluateFur(const Eigen::Vector3f& eye);
   // The same for an explicit view (a viewing distance rather than a camera; `pelage hair`).
   void evaluateFur(const fur::FurView& view);

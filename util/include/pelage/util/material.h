@@ -8,10 +8,10 @@
 namespace pelage {
 
 struct Material {
-  Eigen::Vector3f ambient{0.3f, 0.14f, 0.0f};   // [0, 1] each
-  Eigen::Vector3f diffuse{0.3f, 0.14f, 0.0f};   // [0, 1] each
-  Eigen::Vector3f specular{0.6f, 0.6f, 0.6f};   // [0, 1] each
-  float shininess = 16.0f;                      // Phong exponent [1, 1000]
+  Eigen::Vector3f ambient{0.3f, 0.14f, 0.0f};  // [0, 1] each
+  Eigen::Vector3f diffuse{0.3f, 0.14f, 0.0f};  // [0, 1] each
+  Eigen::Vector3f specular{0.6f, 0.6f, 0.6f};  // [0, 1] each
+  float shininess = 16.0f;                     // Phong exponent [1, 1000]
 };
 
 }  // namespace pelage

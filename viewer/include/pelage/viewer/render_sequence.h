@@ -97,7 +97,7 @@ using FileWriter =
 // for bad options, an unwritable directory, a failed write or a failed ffmpeg; frames already
 // written stay complete, and no partial frame or video is left.
 SequenceReport renderSequence(const scene::Model& model, const scene::Fur& fur,
-                              const SequenceOptions& options,
-                              const ProgressCallback& progress = {}, const FileWriter& writer = {});
+                              const SequenceOptions& options, const ProgressCallback& progress = {},
+                              const FileWriter& writer = {});
 
 }  // namespace pelage::viewer

@@ -25,7 +25,7 @@ struct ViewerOptions {
   double time = 0.0;        // start time in the clip, seconds [0, 1000000]
   fur::FurParams fur;       // the fur to start with (e.g. a preset; validated by the viewer)
   std::optional<Eigen::Vector3f> skinColor;  // skin diffuse colour in [0, 1]; none: the model's
-  int width = 1280;  // window or image size, [16, 16384] per side
+  int width = 1280;                          // window or image size, [16, 16384] per side
   int height = 720;
   int samples = -1;  // MSAA samples [0, 64]; -1 = 4 on a GPU, 0 on a software rasteriser
   scene::CameraPreset camera = scene::CameraPreset::ThreeQuarter;
@@ -39,7 +39,7 @@ struct ViewerOptions {
   fur::DynamicsParams dynamicsParams;
   std::string screenshot;  // write the last frame here (PNG) and exit
   int frames = 0;  // frames to run (0: until the window closes; with a screenshot, 3 in a window
-                  // (the panel needs two to lay itself out), 1 headless)
+                   // (the panel needs two to lay itself out), 1 headless)
   bool headless = false;   // EGL, no window, no UI
   bool benchmark = false;  // print ms/frame for benchmarkHairs (headless)
   std::vector<double> benchmarkHairs{500000, 1000000, 5000000};

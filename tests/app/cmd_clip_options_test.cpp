@@ -9,8 +9,8 @@
 #include <array>
 #include <sstream>
 
-#include "gltf_test_support.h"
-#include "obj_vertices.h"
+#include "animation/gltf_test_support.h"
+#include "animation/obj_vertices.h"
 #include "test_support.h"
 
 namespace pelage {

@@ -11,7 +11,7 @@
 
 #include <sstream>
 
-#include "obj_vertices.h"
+#include "animation/obj_vertices.h"
 #include "test_support.h"
 
 namespace pelage {

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "commands.h"
+#include "options.h"
 #include "pelage/animation/clip_file.h"
 #include "pelage/scene/analyze.h"
 #include "pelage/scene/frame_range.h"
@@ -187,99 +188,50 @@ void printSummary(const scene::AnalysisResult& r) {
 
 }  // namespace
 
-void DynamicsArgs::add(CLI::App& cmd, bool fpsOption, bool preRollOption) {
-  cmd.add_option("--dynamics", mode,
-                 "Fur dynamics: 'on' makes each hair's end follow the paper's (quasi-static) end "
-                 "through a damped "
-                 "spring; 'off' (default) is the paper's model")
-      ->check(CLI::IsMember({"on", "off"}));
-  cmd.add_option(
-         "--frequency", frequency,
-         "Dynamic spring natural frequency, Hz (0, 100]: one value for both coats or two (overcoat "
-         "undercoat); default 4")
-      ->expected(1, 2);
-  cmd.add_option("--damping", damping,
-                 "Dynamic damping ratio [0, 10] (1 = critical): one value or two (overcoat "
-                 "undercoat); default 0.25")
-      ->expected(1, 2);
-  if (fpsOption)
-    cmd.add_option("--fps", fps, "Frames per second of the clip sampling, [1, 1000] (default 30)");
-  if (preRollOption)
-    cmd.add_option(
-        "--preroll", preRoll,
-        "Dynamics: frames simulated before the first one shown (default: from the clip's start, "
-        "so any frame range matches a whole run exactly)");
-}
-
-bool DynamicsArgs::enabled() const {
-  return mode == "on";
-}
-
-fur::DynamicsParams DynamicsArgs::resolve() const {
-  fur::DynamicsParams p;
-  for (int c = 0; c < fur::kCoatCount; ++c) {
-    const auto ci = static_cast<std::size_t>(c);
-    if (!frequency.empty())
-      p.coats[ci].frequencyHz = static_cast<float>(frequency[std::min(ci, frequency.size() - 1)]);
-    if (!damping.empty())
-      p.coats[ci].dampingRatio = static_cast<float>(damping[std::min(ci, damping.size() - 1)]);
-  }
-  fur::validateDynamicsParams(p, "--frequency/--damping");
-  if (!(fps >= 1.0 && fps <= 1000.0)) inputError("--fps ", fps, " is out of range [1, 1000]");
-  if (preRoll < -1 || preRoll > 10000000)
-    inputError("--preroll ", preRoll, " is out of range [0, 10000000] frames");
-  return p;
-}
-
-scene::DynamicsClock DynamicsArgs::clock() const {
-  scene::DynamicsClock c;
-  c.fps = fps;
-  c.preRollFrames = preRoll;
-  return c;
-}
-
 void addAnalyzeCommand(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "analyze",
       "Measure the fur's response to gravity over a clip (body orientation, droop, tip height and "
       "speed; with --dynamics on, lag, overshoot and settling) into a CSV, with an optional plot");
-  auto model = std::make_shared<ModelArgs>();
-  auto furArgs = std::make_shared<FurArgs>();
-  auto dyn = std::make_shared<DynamicsArgs>();
+  auto model = std::make_shared<ModelOptions>();
+  auto pose = std::make_shared<PoseOptions>();
+  auto furArgs = std::make_shared<FurOptions>();
+  auto dyn = std::make_shared<DynamicsOptions>();
+  auto range = std::make_shared<FrameOptions>();
+  auto common = std::make_shared<CommonOptions>();
   struct Options {
-    std::string clip, frames, out, plot, sweep, groups = "region";
+    std::string out, plot, sweep, groups = "region";
     double hold = 0.0;
   };
   auto o = std::make_shared<Options>();
   model->add(*cmd);
+  pose->add(*cmd);
+  range->add(*cmd);
   furArgs->add(*cmd);
-  dyn->add(*cmd);
-  cmd->add_option(
-         "--clip", o->clip,
-         "Clip: one of the model's (see `pelage info`; the monkey's tumble is the standard "
-         "experiment) or a clip .json file")
-      ->required();
-  cmd->add_option("--frames", o->frames,
-                  "Frames A:B (inclusive; frame f is at time f / fps); default: one cycle, "
-                  "0:duration*fps");
+  dyn->add(*cmd, true);
   cmd->add_option("--hold", o->hold,
                   "Seconds the last frame's pose is held still afterwards [0, 1000] (default 0); "
                   "with --dynamics on, overshoot and settling are measured there");
   cmd->add_option("--groups", o->groups,
-                  "Per-group columns: region (skin regions) or segment (body segments)")
+                  "Per-group columns: region (skin regions) or segment (body segments) (default "
+                  "region)")
       ->check(CLI::IsMember({"region", "segment"}));
   cmd->add_option("--sweep", o->sweep,
                   "Sweep one parameter: stiffness=A:B:N (the paper's, [0, 1]), frequency=A:B:N "
-                  "(Hz) or damping=A:B:N; one CSV with a column per value");
+                  "(Hz) or damping=A:B:N (these two with --dynamics on); one CSV with a column per "
+                  "value");
   cmd->add_option("--out", o->out, "Output .csv file")->required();
   cmd->add_option("--plot", o->plot, "Also draw the main curves against time into this .png file");
+  common->add(*cmd, true);
   cmd->callback([=] {
     // Options first: bad values fail before the model is built.
     const fur::FurParams params = furArgs->resolve();
     scene::AnalysisOptions opt;
     opt.dynamics = dyn->enabled();
     opt.dynamicsParams = dyn->resolve();
-    opt.clock = dyn->clock();
+    range->validateFps();
+    opt.clock.fps = range->fps;
+    opt.clock.preRollFrames = dyn->preRoll;
     opt.holdSeconds = o->hold;
     opt.groups =
         o->groups == "segment" ? scene::AnalysisGroups::Segment : scene::AnalysisGroups::Region;
@@ -288,21 +240,28 @@ void addAnalyzeCommand(CLI::App& app) {
     if (!o->plot.empty() && std::filesystem::path(o->plot).extension() != ".png")
       inputError("--plot '", o->plot, "' must name a .png file");
     scene::SweepSpec sweep;
-    if (!o->sweep.empty()) sweep = scene::parseSweep(o->sweep);
-    if (!o->frames.empty()) {
-      const scene::FrameRange range = scene::parseFrameRange(o->frames);
-      opt.firstFrame = range.first;
-      opt.lastFrame = range.last;
+    if (!o->sweep.empty()) {
+      sweep = scene::parseSweep(o->sweep);
+      if (sweep.parameter != "stiffness" && !opt.dynamics)
+        inputError("--sweep ", o->sweep, ": ", sweep.parameter,
+                   " is a parameter of the dynamic springs; it needs --dynamics on");
     }
-    scene::Model m = model->load();
-    opt.clip = scene::resolveClip(m, o->clip);
-    const animation::Clip& clip = m.clips[static_cast<std::size_t>(opt.clip)];
-    if (o->frames.empty())
-      opt.lastFrame =
-          static_cast<int>(std::lround(static_cast<double>(clip.duration) * opt.clock.fps));
+    if (!range->frames.empty()) scene::parseFrameRange(range->frames);
+    const bool quiet = common->quiet;
+    scene::Model m = model->load(quiet);
+    scene::PlaybackOptions po;
+    pose->sequence(m, po);
+    opt.clip = po.clip;
+    opt.stillPose = po.stillPose;
+    opt.clock.startSeconds = po.startSeconds;
+    const scene::FrameRange frames = range->range(m, opt.clip);
+    opt.firstFrame = frames.first;
+    opt.lastFrame = frames.last;
+    const std::string clipName =
+        opt.clip >= 0 ? m.clips[static_cast<std::size_t>(opt.clip)].name : "still pose";
     const scene::Fur fur =
         scene::growFur(m, params, "fur '" + params.name + "' with the command-line options");
-    std::string title = "pelage analyze: " + m.name + ", clip " + clip.name + ", fur " +
+    std::string title = "pelage analyze: " + m.name + ", clip " + clipName + ", fur " +
                         params.name + ", " + std::to_string(fur.roots.total()) + " hairs";
     if (opt.dynamics) {
       char buf[160];
@@ -314,28 +273,26 @@ void addAnalyzeCommand(CLI::App& app) {
     if (!o->sweep.empty()) {
       const scene::SweepResult s = scene::sweepClip(m, fur, opt, sweep);
       writeFileAtomically(o->out, scene::sweepCsv(s));
+      if (!o->plot.empty()) scene::writePlotPng(o->plot, sweepPlot(s, title + ", sweep " + o->sweep));
+      if (quiet) return;
       std::printf("%s: %zu frames x %d values of %s (%s)\n", o->out.c_str(),
                   s.runs.front().frames.size(), sweep.count, sweep.parameter.c_str(),
                   opt.dynamics ? "dynamic" : "quasi-static");
-      if (!o->plot.empty()) {
-        scene::writePlotPng(o->plot, sweepPlot(s, title + ", sweep " + o->sweep));
-        std::printf("%s: plot\n", o->plot.c_str());
-      }
+      if (!o->plot.empty()) std::printf("%s: plot\n", o->plot.c_str());
       return;
     }
     const scene::AnalysisResult r = scene::analyzeClip(m, fur, opt);
     writeFileAtomically(o->out, scene::analysisCsv(r));
+    if (!o->plot.empty()) scene::writePlotPng(o->plot, analysisPlot(r, title));
+    if (quiet) return;
     std::printf(
         "%s: %zu frames of clip %s at %g fps, %lld hairs (%s); body orientation from segment "
         "'%s'\n",
-        o->out.c_str(), r.frames.size(), clip.name.c_str(), opt.clock.fps,
+        o->out.c_str(), r.frames.size(), clipName.c_str(), opt.clock.fps,
         static_cast<long long>(fur.roots.total()),
         opt.dynamics ? "quasi-static and dynamic" : "quasi-static", r.orientationSegment.c_str());
     printSummary(r);
-    if (!o->plot.empty()) {
-      scene::writePlotPng(o->plot, analysisPlot(r, title));
-      std::printf("%s: plot\n", o->plot.c_str());
-    }
+    if (!o->plot.empty()) std::printf("%s: plot\n", o->plot.c_str());
   });
 }
 

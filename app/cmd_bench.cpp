@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "commands.h"
+#include "options.h"
 #include "pelage/fur/generate.h"
 #include "pelage/fur/roots.h"
 #include "pelage/scene/playback.h"
@@ -19,23 +20,25 @@ namespace pelage::app {
 void addBenchCommand(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "bench", "Time the per-frame fur (and skin) computation: hairs/s and ms/frame");
-  auto model = std::make_shared<ModelArgs>();
-  auto pose = std::make_shared<PoseArgs>();
-  auto furArgs = std::make_shared<FurArgs>();
+  auto model = std::make_shared<ModelOptions>();
+  auto pose = std::make_shared<PoseOptions>();
+  auto furArgs = std::make_shared<FurOptions>();
+  auto common = std::make_shared<CommonOptions>();
   auto frames = std::make_shared<int>(50);
   model->add(*cmd);
   pose->add(*cmd);
   furArgs->add(*cmd);
-  cmd->add_option("--frames", *frames, "Timed frames [1, 100000] (default 50)");
+  cmd->add_option("--repeat", *frames, "Timed frames, each the same posed frame [1, 100000] (default 50)");
+  common->add(*cmd, false);
   cmd->callback([=] {
     if (*frames < 1 || *frames > 100000)
-      inputError("--frames ", *frames, " is out of range [1, 100000]");
+      inputError("--repeat ", *frames, " is out of range [1, 100000]");
     const fur::FurParams params = furArgs->resolve();
     scene::Model m = model->load();
     const scene::Fur fur = scene::growFur(m, params, "fur '" + params.name + "'");
     const fur::FurRoots& roots = fur.roots;
     scene::PlaybackOptions po;
-    po.stillPose = pose->resolve(m);
+    po.stillPose = pose->stillPose(m);
     po.hairSource = scene::HairSource::Cpu;
     scene::Playback playback(m, fur, po);
     playback.poseFrame(0);

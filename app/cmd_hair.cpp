@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "commands.h"
+#include "options.h"
 #include "pelage/fur/culling.h"
 #include "pelage/fur/generate.h"
 #include "pelage/fur/hair_ply.h"
@@ -63,53 +64,16 @@ void summarise(const fur::FurFrame& frame, const fur::FurParams& params) {
 
 }  // namespace
 
-void FurArgs::add(CLI::App& cmd) {
-  cmd.add_option("--fur", preset,
-                 "Fur preset: built-in name (default, fig8, fig9) or a .json file");
-  hairsOpt = cmd.add_option(
-      "--hairs", hairs, "Total hairs over the skin, both coats [0, 2e7] (overrides the preset)");
-  cmd.add_option("--style", style,
-                 "Hair style of both coats: line, polyline, curve, tube (overrides the preset)");
-  seedOpt = cmd.add_option("--seed", seed, "Random seed [0, 2^53]");
-  shareOpt = cmd.add_option("--undercoat-share", undercoatShare,
-                            "Share of the hairs in the undercoat [0, 1]");
-  lengthOpt = cmd.add_option("--length-scale", lengthScale, "Scale of every hair length [0, 10]");
-  stiffnessOpt = cmd.add_option("--stiffness", stiffness,
-                                "Stiffness of both coats [0, 1] (floppiness = 1 - stiffness)");
-}
-
-fur::FurParams FurArgs::resolve() const {
-  fur::FurParams p = fur::loadFurPreset(preset.empty() ? fur::kDefaultPreset : preset);
-  if (hairsOpt && hairsOpt->count() > 0) {
-    p.hairs = hairs;
-    p.densityPerM2 = 0.0;
-  }
-  if (!style.empty()) {
-    const fur::HairStyle s = fur::parseStyle(style, "--style");
-    for (auto& c : p.coats) c.style = s;
-  }
-  if (seedOpt && seedOpt->count() > 0) {
-    if (seed < 0 || seed > (std::int64_t(1) << 53))
-      inputError("--seed ", seed, " is out of range [0, 2^53]");
-    p.seed = static_cast<std::uint64_t>(seed);
-  }
-  if (shareOpt && shareOpt->count() > 0) p.undercoatShare = static_cast<float>(undercoatShare);
-  if (lengthOpt && lengthOpt->count() > 0) p.lengthScale = static_cast<float>(lengthScale);
-  if (stiffnessOpt && stiffnessOpt->count() > 0)
-    for (auto& c : p.coats) c.stiffness = static_cast<float>(stiffness);
-  fur::validateFurParams(p, "fur '" + p.name + "' with the command-line options");
-  return p;
-}
-
 void addHairCommand(CLI::App& app) {
   auto* cmd = app.add_subcommand(
-      "hair",
-      "Write one frame of a creature's hairs as PLY (points, normals, edges or tube faces)");
-  auto model = std::make_shared<ModelArgs>();
-  auto pose = std::make_shared<PoseArgs>();
-  auto furArgs = std::make_shared<FurArgs>();
+      "hair", "Write one frame of a creature's hairs as PLY (points, normals, edges or tube faces)");
+  auto model = std::make_shared<ModelOptions>();
+  auto pose = std::make_shared<PoseOptions>();
+  auto furArgs = std::make_shared<FurOptions>();
+  auto dynamics = std::make_shared<DynamicsOptions>();
+  auto frames = std::make_shared<FrameOptions>();
+  auto common = std::make_shared<CommonOptions>();
   auto out = std::make_shared<std::string>();
-  auto dynamics = std::make_shared<DynamicsArgs>();
   auto distance = std::make_shared<double>(0.0);
   auto distanceOpt = cmd->add_option(
       "--distance", *distance,
@@ -118,13 +82,21 @@ void addHairCommand(CLI::App& app) {
   model->add(*cmd);
   pose->add(*cmd);
   furArgs->add(*cmd);
-  dynamics->add(*cmd);
+  dynamics->add(*cmd, true);
+  cmd->add_option("--fps", frames->fps,
+                  "With --dynamics on: frames per second of the clip's frames simulated up to "
+                  "--time [1, 1000] (default 30)");
   cmd->add_option("--out", *out, "Output .ply file")->required();
+  common->add(*cmd, true);
   cmd->callback([=] {
     if (distanceOpt->count() > 0 && !(*distance >= 0.0 && *distance <= 1e4))
       inputError("--distance ", *distance, " is out of range [0, 10000] (metres)");
-    const fur::FurParams params = furArgs->resolve();  // before the model: bad options fail fast
-    scene::Model m = model->load();
+    frames->validateFps();
+    // Options first: bad values fail before the model is built.
+    const fur::FurParams params = furArgs->resolve();
+    const fur::DynamicsParams dyn = dynamics->resolve();
+    const bool quiet = common->quiet;
+    scene::Model m = model->load(quiet);
     const scene::Fur fur = scene::growFur(m, params, "fur '" + params.name + "'");
     const fur::FurRoots& roots = fur.roots;
     fur::FurView view;
@@ -140,33 +112,36 @@ void addHairCommand(CLI::App& app) {
     int shown = 0;
     if (dynamics->enabled()) {
       if (pose->clip.empty())
-        inputError(
-            "--dynamics on needs --clip naming one of the model's clips (see `pelage info`)");
-      const scene::DynamicsClock clock = dynamics->clock();
+        inputError("--dynamics on needs --clip naming one of the model's clips (see `pelage info`)");
+      if (!(pose->time >= 0.0 && pose->time <= 1e6))
+        inputError("--time ", pose->time, " is out of range [0, 1000000] seconds");
       po.clip = scene::resolveClip(m, pose->clip);
-      po.framesPerSecond = clock.fps;
-      po.preRollFrames = clock.preRollFrames;
+      po.framesPerSecond = frames->fps;
+      po.preRollFrames = dynamics->preRoll;
       po.dynamics = true;
-      po.dynamicsParams = dynamics->resolve();
-      shown = static_cast<int>(std::lround(pose->time * clock.fps));
+      po.dynamicsParams = dyn;
+      shown = static_cast<int>(std::lround(pose->time * frames->fps));
     } else {
-      po.stillPose = pose->resolve(m);
+      po.stillPose = pose->stillPose(m);
     }
     scene::Playback playback(m, fur, po);
     playback.poseFrame(shown);
     playback.evaluateFur(view);
     const fur::FurFrame& frame = playback.state().fur;
-    if (dynamics->enabled()) {
-      const scene::DynamicsClock clock = dynamics->clock();
-      std::printf(
-          "dynamic fur: frame %d of clip %s at %g fps (time %.4f s), simulated from frame %d\n",
-          shown, m.clips[static_cast<std::size_t>(po.clip)].name.c_str(), clock.fps,
-          shown / clock.fps, scene::preRollStart(shown, clock));
-    }
     const std::string comment =
         str("model ", m.name, ", fur ", params.name, ", seed ", params.seed, ", ", frame.drawn(),
             " of ", roots.total(), " hairs (culling factor ", frame.cullingFactor, ")");
     const fur::HairPlyCounts n = fur::writeHairPly(*out, frame, comment);
+    if (quiet) return;
+    if (dynamics->enabled()) {
+      scene::DynamicsClock clock;
+      clock.fps = frames->fps;
+      clock.preRollFrames = dynamics->preRoll;
+      std::printf(
+          "dynamic fur: frame %d of clip %s at %g fps (time %.4f s), simulated from frame %d\n",
+          shown, m.clips[static_cast<std::size_t>(po.clip)].name.c_str(), frames->fps,
+          shown / frames->fps, scene::preRollStart(shown, clock));
+    }
     std::printf("%s: %s on %s (%d triangles, %.4f m^2 furred)\n", out->c_str(), params.name.c_str(),
                 m.name.c_str(), m.skin.numTriangles(), roots.furredArea);
     if (view.culling)

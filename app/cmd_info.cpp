@@ -5,18 +5,29 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.h"
+#include "options.h"
 #include "pelage/skin/skin_mesh.h"
 
 namespace pelage::app {
 
 void addInfoCommand(CLI::App& app) {
   auto* cmd = app.add_subcommand("info", "Print a creature's segments, skin size, area and bounds");
-  auto args = std::make_shared<ModelArgs>();
+  auto args = std::make_shared<ModelOptions>();
+  auto common = std::make_shared<CommonOptions>();
   auto json = std::make_shared<bool>(false);
   args->add(*cmd);
+  common->add(*cmd, false);
   cmd->add_flag("--json", *json, "Print machine-readable JSON");
   cmd->callback([args, json] {
     const scene::Model m = args->load();
+    // Which regions grow fur: those with a vertex whose fur length is above 0.
+    std::vector<bool> furred(m.skin.regionNames.size(), false);
+    const float* lengths = m.skin.furLengths();
+    const std::int32_t* regions = m.skin.regions();
+    for (int v = 0; v < m.skin.numVertices(); ++v)
+      if (lengths[v] > 0.0f && regions[v] >= 0 &&
+          static_cast<std::size_t>(regions[v]) < furred.size())
+        furred[static_cast<std::size_t>(regions[v])] = true;
     const skin::SkinStats s = skin::skinStats(m.skin);
     if (*json) {
       nlohmann::json j;
@@ -31,6 +42,10 @@ void addInfoCommand(CLI::App& app) {
       j["nonManifoldVertices"] = s.nonManifoldVertices;
       j["minAngleDegrees"] = s.minAngleDegrees;
       j["regions"] = m.skin.regionNames;
+      nlohmann::json fur = nlohmann::json::array();
+      for (std::size_t r = 0; r < furred.size(); ++r)
+        if (furred[r]) fur.push_back(m.skin.regionNames[r]);
+      j["furredRegions"] = fur;
       nlohmann::json segs = nlohmann::json::array();
       for (const auto& seg : m.body.segments) {
         nlohmann::json e;
@@ -63,7 +78,8 @@ void addInfoCommand(CLI::App& app) {
     std::printf("topology   %d boundary edges, %d non-manifold vertices, min angle %.1f deg\n",
                 s.boundaryEdges, s.nonManifoldVertices, s.minAngleDegrees);
     std::printf("regions   ");
-    for (const auto& r : m.skin.regionNames) std::printf(" %s", r.c_str());
+    for (std::size_t r = 0; r < furred.size(); ++r)
+      std::printf(" %s%s", m.skin.regionNames[r].c_str(), furred[r] ? "" : " (no fur)");
     std::printf("\nsegments   %d\n", m.body.size());
     for (const auto& seg : m.body.segments)
       std::printf("  %-20s parent %s\n", seg.name.c_str(),

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "commands.h"
+#include "options.h"
 #include "pelage/scene/frame.h"
 #include "pelage/util/atomic_file.h"
 #include "pelage/util/error.h"
@@ -23,35 +24,19 @@ namespace pelage::app {
 namespace {
 
 struct RenderArgs {
-  ModelArgs model;
-  FurArgs fur;
-  FurSettings furSet;
-  ClipFramesArgs range;
-  std::string size = "1280x720";
+  ModelOptions model;
+  PoseOptions pose;
+  FurOptions fur;
+  DynamicsOptions dynamics;
+  FrameOptions range;
+  ViewOptions view;
+  CommonOptions common;
   std::string out;
   std::string video;
-  std::string camera = "three-quarter";
   std::string cameraFile;
-  bool track = false;
-  double fov = 35.0;
-  int samples = -1;
-  std::string hairSource = "gpu";
-  std::string shading = "paper";
-  bool ribbons = false;
-  bool shadows = false;
-  bool noCulling = false;
   bool resume = false;
   int encoders = 0;
-  bool quiet = false;
-  DynamicsArgs dynamics;
 };
-
-void parseSize(const std::string& text, int& width, int& height) {
-  char x = 0;
-  std::istringstream in(text);
-  if (!(in >> width >> x >> height) || x != 'x' || !in.eof())
-    inputError("--size '", text, "' is not WIDTHxHEIGHT (e.g. 1920x1080)");
-}
 
 std::string clock(double seconds) {
   const long s = std::lround(std::max(seconds, 0.0));
@@ -95,24 +80,34 @@ class Progress {
 
 void runRender(RenderArgs& a) {
   viewer::SequenceOptions o;
-  parseSize(a.size, o.width, o.height);
-  o.frames = scene::parseFrameRange(a.range.frames);
+  a.view.validate();
+  a.range.validateFps();
+  if (!a.range.frames.empty()) o.frames = scene::parseFrameRange(a.range.frames);
+  o.width = a.view.width();
+  o.height = a.view.height();
   o.playback.framesPerSecond = a.range.fps;
-  o.samples = a.samples;
+  o.samples = a.view.samples;
   o.outDir = a.out;
   o.resume = a.resume;
   o.video = a.video;
   o.encoderThreads = a.encoders;
-  o.camera.fovYDegrees = static_cast<float>(a.fov);
-  o.camera.track = a.track;
+  o.camera.fovYDegrees = static_cast<float>(a.view.fov);
+  o.camera.track = a.view.follow;
   if (!a.cameraFile.empty())
     o.camera.path = scene::loadCameraFile(a.cameraFile);
   else
-    o.camera.preset = scene::parseCameraPreset(a.camera);
-  o.playback.hairSource = scene::parseHairSource(a.hairSource);
-  o.look.hairShading = scene::parseHairShading(a.shading);
-  o.look.hairWidth = a.ribbons ? scene::HairWidth::Ribbons : scene::HairWidth::Lines;
-  o.shadows = a.shadows;
+    o.camera.preset = a.view.cameraPreset();
+  o.playback.hairSource = a.view.source();
+  o.look.hairShading = a.view.hairShading();
+  o.look.hairWidth = a.view.ribbons ? scene::HairWidth::Ribbons : scene::HairWidth::Lines;
+  o.shadows = a.view.shadows;
+  o.skinColor = a.view.skin();
+  const std::string ext = std::filesystem::path(o.outDir).extension().string();
+  if ((ext == ".png" || ext == ".jpg" || ext == ".mp4" || ext == ".gif") &&
+      !std::filesystem::is_directory(o.outDir))
+    inputError("--out ", o.outDir,
+               " names a file; --out is the directory for frame_NNNNN.png (give the video with "
+               "--video)");
   viewer::validateSequenceOptions(o);  // before the model is built; dynamics once the clip is known
   const fur::DynamicsParams dynamics = a.dynamics.resolve();
   ensureWritableDirectory(o.outDir);
@@ -120,10 +115,12 @@ void runRender(RenderArgs& a) {
     inputError("--video ", o.video,
                " needs the ffmpeg program, which is not on PATH (Debian: apt-get install ffmpeg)");
 
-  fur::FurParams params = a.furSet.apply(a.fur.resolve());
-  if (a.noCulling) params.culling.enabled = false;
-  scene::Model model = a.model.load();
-  o.playback.clip = scene::resolveClip(model, a.range.clip);
+  fur::FurParams params = a.fur.resolve();
+  if (a.view.noCulling) params.culling.enabled = false;
+  const bool quiet = a.common.quiet;
+  scene::Model model = a.model.load(quiet);
+  a.pose.sequence(model, o.playback);
+  if (a.range.frames.empty()) o.frames = a.range.range(model, o.playback.clip);
   o.playback.dynamics = a.dynamics.enabled();
   o.playback.dynamicsParams = dynamics;
   o.playback.preRollFrames = a.dynamics.preRoll;
@@ -132,21 +129,24 @@ void runRender(RenderArgs& a) {
   auto context = viewer::createHeadlessContext();
   const viewer::ContextInfo& info = context->info();
   const int clip = o.playback.clip;
-  std::printf(
-      "render: %s (%d triangles), %s, fur %s: %lld hairs%s; frames %d..%d at %g fps, %dx%d -> "
-      "%s/\n",
-      model.name.c_str(), model.skin.numTriangles(),
-      clip >= 0 ? ("clip " + model.clips[static_cast<std::size_t>(clip)].name).c_str()
-                : "rest pose",
-      params.name.c_str(), static_cast<long long>(fur.roots.total()),
-      o.playback.dynamics ? " (dynamic, CPU)" : "", o.frames.first, o.frames.last,
-      o.playback.framesPerSecond, o.width, o.height, o.outDir.c_str());
-  std::printf("render: %s, %s (%s); %d worker threads\n", info.renderer.c_str(),
-              info.version.c_str(), info.backend.c_str(), threadCount());
-  std::fflush(stdout);
-  Progress progress(a.quiet);
+  if (!quiet) {
+    std::printf(
+        "render: %s (%d triangles), %s, fur %s: %lld hairs%s; frames %d..%d at %g fps, %dx%d -> "
+        "%s/\n",
+        model.name.c_str(), model.skin.numTriangles(),
+        clip >= 0 ? ("clip " + model.clips[static_cast<std::size_t>(clip)].name).c_str()
+                  : "rest pose",
+        params.name.c_str(), static_cast<long long>(fur.roots.total()),
+        o.playback.dynamics ? " (dynamic, CPU)" : "", o.frames.first, o.frames.last,
+        o.playback.framesPerSecond, o.width, o.height, o.outDir.c_str());
+    std::printf("render: %s, %s (%s); %d worker threads\n", info.renderer.c_str(),
+                info.version.c_str(), info.backend.c_str(), threadCount());
+    std::fflush(stdout);
+  }
+  Progress progress(quiet);
   const viewer::SequenceReport r = viewer::renderSequence(
       model, fur, o, [&](const viewer::SequenceProgress& p) { progress(p); });
+  if (quiet) return;
   std::printf("rendered %d frame(s)%s in %.2f s: %.2f frames/s (%lld hairs drawn in the last)%s\n",
               r.rendered, r.skipped > 0 ? str(", skipped ", r.skipped, " complete").c_str() : "",
               r.seconds, r.seconds > 0.0 ? r.rendered / r.seconds : 0.0,
@@ -166,41 +166,21 @@ void addRenderCommand(CLI::App& app) {
       "deterministic per frame, so frame ranges can be split across processes");
   auto a = std::make_shared<RenderArgs>();
   a->model.add(*cmd);
+  a->pose.add(*cmd);
   a->range.add(*cmd);
-  cmd->add_option("--size", a->size, "Image size WIDTHxHEIGHT [16, 16384] per side")
-      ->capture_default_str();
   cmd->add_option("--out", a->out, "Output directory for frame_NNNNN.png (created if missing)")
       ->required();
   cmd->add_option("--video", a->video,
                   "Also encode the frames, in order, to this .mp4 or .gif (needs ffmpeg)");
   cmd->add_flag("--resume", a->resume,
                 "Skip frames whose PNG is already complete (a killed or retried run)");
-  cmd->add_option("--camera", a->camera,
-                  "Camera preset, framed at clip time 0: front, side, three-quarter, face, follow")
-      ->capture_default_str();
+  a->view.add(*cmd);
   cmd->add_option("--camera-file", a->cameraFile,
                   "Camera JSON file (one camera or keys per frame) instead of a preset");
-  cmd->add_flag("--track", a->track,
-                "Move the camera with the creature (its root's horizontal motion)");
-  cmd->add_option("--fov", a->fov, "Vertical field of view of the presets, degrees (1, 179)")
-      ->capture_default_str();
   a->fur.add(*cmd);
-  a->furSet.add(*cmd);
-  cmd->add_option("--samples", a->samples,
-                  "MSAA samples [0, 64]; -1 = 4 on a GPU, 0 on a software rasteriser")
-      ->capture_default_str();
-  cmd->add_option("--hair-source", a->hairSource, "Where hairs are computed each frame: gpu or cpu")
-      ->capture_default_str();
-  cmd->add_option("--shading", a->shading, "Hair shading: paper or kajiya-kay")
-      ->capture_default_str();
-  cmd->add_flag("--ribbons", a->ribbons, "Draw hairs as tapered ribbons instead of 1-pixel lines");
-  cmd->add_flag("--shadows", a->shadows, "Shadow map: fur and skin shadow each other");
-  cmd->add_flag("--no-culling", a->noCulling,
-                "Draw every hair at any distance (no sec. 3.3 culling)");
-  cmd->add_option("--encoders", a->encoders, "PNG encoder threads (0 = --threads)")
-      ->capture_default_str();
-  cmd->add_flag("--quiet", a->quiet, "No progress output");
-  a->dynamics.add(*cmd, false, true);
+  a->dynamics.add(*cmd, true);
+  cmd->add_option("--encoders", a->encoders, "PNG encoder threads [0, 256] (default 0: --threads)");
+  a->common.add(*cmd, true);
   cmd->callback([a] { runRender(*a); });
 }
 

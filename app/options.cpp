@@ -1,12 +1,41 @@
 #include "options.h"
 
 #include <array>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <sstream>
 #include <utility>
 
+#include <nlohmann/json.hpp>
+
+#include "pelage/anatomy/pose_file.h"
+#include "pelage/animation/clip.h"
+#include "pelage/fur/preset.h"
+#include "pelage/skin/skin_mesh.h"
+#include "pelage/util/log.h"
+#include "pelage/util/parallel.h"
+
 namespace pelage::app {
+namespace {
+
+// "%g" of a default value, for help texts (the defaults shown are the libraries' own).
+std::string number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+
+// The --threads value every command shares (the top-level option and each command's).
+int& sharedThreads() {
+  static int threads = 0;
+  return threads;
+}
+
+}  // namespace
 
 std::string_view optionForField(std::string_view field) {
-  static constexpr std::array<std::pair<std::string_view, std::string_view>, 22> kOptions{{
+  static constexpr std::array<std::pair<std::string_view, std::string_view>, 24> kOptions{{
       {"benchmark frames", "--benchmark-frames"},
       {"benchmark hairs", "--benchmark-hairs"},
       {"camera", "--camera"},
@@ -18,6 +47,7 @@ std::string_view optionForField(std::string_view field) {
       {"frames", "--frames"},
       {"hair source", "--hair-source"},
       {"hold", "--hold"},
+      {"no fur", "--no-fur"},
       {"out", "--out"},
       {"preroll", "--preroll"},
       {"samples", "--samples"},
@@ -28,6 +58,7 @@ std::string_view optionForField(std::string_view field) {
       {"sweep", "--sweep"},
       {"time", "--time"},
       {"triangles", "--triangles"},
+      {"unit scale", "--unit-scale"},
       {"video", "--video"},
   }};
   for (const auto& [name, option] : kOptions)
@@ -39,6 +70,418 @@ std::string describe(const InputError& error) {
   const std::string_view option = optionForField(error.field());
   if (option.empty()) return error.what();
   return InputError::join(std::string(option), error.detail());
+}
+
+// ---- CommonOptions -------------------------------------------------------------------------
+
+void CommonOptions::add(CLI::App& cmd, bool quietOption) {
+  cmd.add_option("--threads", sharedThreads(), "Worker threads [0, 1024] (default 0: all cores)");
+  if (quietOption)
+    cmd.add_flag("--quiet", quiet, "Print nothing but warnings and errors (no progress, no summary)");
+}
+
+void CommonOptions::apply() const {
+  const int t = sharedThreads();
+  if (t < 0 || t > 1024) inputError("--threads ", t, " is out of range [0, 1024]");
+  setThreadCount(t);
+}
+
+// ---- ModelOptions --------------------------------------------------------------------------
+
+void ModelOptions::add(CLI::App& cmd) {
+  cmd.add_option("model", model,
+                 "Creature: 'monkey' (built-in, default), a creature .json, a .gltf/.glb, or a "
+                 "static .obj/.ply/.off/.stl mesh; anywhere on the line");
+  cmd.add_option("--triangles", triangles,
+                 "Skin triangles for creatures built from shapes [2000, 2000000] (default: the "
+                 "creature's, 130000 for the monkey)");
+  cmd.add_option("--unit-scale", unitScale,
+                 "glTF and static meshes: metres per file unit (0, 1000000] (default: glTF "
+                 "detected from the bounding box, meshes 1)");
+  cmd.add_option("--no-fur", noFur,
+                 "glTF: regions (material or node names, '*' wildcards) that grow no fur, "
+                 "replacing the default list (Eye*, Hooves, Nose, *Horn*, ...); each must match a "
+                 "region (see `pelage info`)");
+  cmd.add_option("--directions", directions,
+                 "glTF: JSON side file of per-joint segment directions (default: "
+                 "<model>.directions.json if it exists)");
+}
+
+scene::Model ModelOptions::load(bool quiet) const {
+  scene::LoadOptions opt;
+  opt.triangles = triangles;
+  if (unitScale != 0.0 && !(unitScale > 0.0 && unitScale <= 1e6))
+    inputError("--unit-scale ", unitScale, " is out of range (0, 1000000] metres per file unit");
+  opt.unitScale = static_cast<float>(unitScale);
+  if (!noFur.empty()) opt.noFurRegions = noFur;
+  opt.segmentDirections = directions;
+  scene::Model m = scene::loadModel(model, opt);
+  const float size = scene::modelSizeMeters(m);
+  if (!quiet && (size > scene::kPlausibleSizeMeters[1] || size < scene::kPlausibleSizeMeters[0]))
+    warn(str(m.source, ": the creature is ", size, " m long, implausible for an animal; if the "
+             "file is not in metres, give --unit-scale (metres per file unit, e.g. 0.01 for "
+             "centimetres, 0.3 to make it 0.3 times as large)"));
+  return m;
+}
+
+// ---- PoseOptions ---------------------------------------------------------------------------
+
+void PoseOptions::add(CLI::App& cmd) {
+  cmd.add_option("--pose", posePath, "Pose file (JSON) bending segments from the rest pose");
+  cmd.add_option("--clip", clip,
+                 "Clip: one of the model's (see `pelage info`) or a clip .json file (default: "
+                 "the model's first, for commands that play one)");
+  timeOption = cmd.add_option("--time", time,
+                              "Clip time in seconds [0, 1000000] of the pose, or of frame 0 of a "
+                              "sequence (default 0; loops wrap)");
+}
+
+anatomy::Pose PoseOptions::stillPose(scene::Model& model) const {
+  if (clip.empty()) {
+    if (timeOption && timeOption->count() > 0) inputError("--time needs --clip");
+    return posePath.empty() ? anatomy::restPose(model.body)
+                            : anatomy::loadPose(model.body, posePath);
+  }
+  if (!posePath.empty()) inputError("--pose and --clip cannot be used together");
+  if (!(time >= 0.0 && time <= 1e6))
+    inputError("--time ", time, " is out of range [0, 1000000] seconds");
+  anatomy::Pose pose;
+  const int c = scene::resolveClip(model, clip);
+  animation::sampleClip(model.clips[static_cast<std::size_t>(c)], model.body, time, pose);
+  return pose;
+}
+
+void PoseOptions::sequence(scene::Model& model, scene::PlaybackOptions& playback) const {
+  if (!(time >= 0.0 && time <= 1e6))
+    inputError("--time ", time, " is out of range [0, 1000000] seconds");
+  if (!posePath.empty()) {
+    if (!clip.empty()) inputError("--pose and --clip cannot be used together");
+    if (timeOption && timeOption->count() > 0) inputError("--time needs --clip");
+    playback.clip = -1;
+    playback.stillPose = anatomy::loadPose(model.body, posePath);
+    return;
+  }
+  playback.clip = scene::resolveClip(model, clip);
+  if (playback.clip < 0 && timeOption && timeOption->count() > 0)
+    inputError("--time needs a clip, and model '", model.name, "' has none");
+  playback.startSeconds = time;
+}
+
+// ---- FurOptions ----------------------------------------------------------------------------
+
+void FurOptions::add(CLI::App& cmd) {
+  const fur::FurParams d;
+  cmd.add_option("--fur", preset,
+                 std::string("Fur preset: built-in name (default, fig8, fig9) or a .json file "
+                             "(default: ") +
+                     fur::kDefaultPreset + ")");
+  hairsOption = cmd.add_option(
+      "--hairs", hairs,
+      "Total hairs over the skin, both coats [0, 2e7] (default: the preset's)");
+  cmd.add_option("--style", style,
+                 "Hair style of both coats: " + fur::styleNames() + " (default: the preset's)");
+  seedOption = cmd.add_option("--seed", seed, "Random seed [0, 2^53] (default: the preset's)");
+  shareOption = cmd.add_option("--undercoat-share", undercoatShare,
+                               "Share of the hairs in the undercoat [0, 1] (default: the "
+                               "preset's)");
+  lengthOption = cmd.add_option("--length-scale", lengthScale,
+                                "Scale of every hair length [0, 10] (default: the preset's)");
+  stiffnessOption = cmd.add_option("--stiffness", stiffness,
+                                   "Stiffness of both coats [0, 1], floppiness = 1 - stiffness "
+                                   "(default: the preset's)");
+  cmd.add_option("--fur-set", settings,
+                 "Any preset field, FIELD=VALUE (repeatable), e.g. overcoat.stiffness=0.6, "
+                 "undercoat.diffuse=[0.3,0.2,0.1], overcoat.curl.turns=3, culling.enabled=false "
+                 "(fields: models/presets/README.md); a field also set by a named option is "
+                 "refused");
+}
+
+fur::FurParams FurOptions::resolve() const {
+  fur::FurParams p = fur::loadFurPreset(preset.empty() ? fur::kDefaultPreset : preset);
+  // The named options, and the preset fields each sets (a --fur-set of one of them is refused).
+  struct Named {
+    const char* option;
+    bool given;
+    std::vector<std::string> fields;
+  };
+  const std::vector<Named> named = {
+      {"--hairs", hairsOption && hairsOption->count() > 0, {"hairs", "density"}},
+      {"--style", !style.empty(), {"overcoat.style", "undercoat.style"}},
+      {"--seed", seedOption && seedOption->count() > 0, {"seed"}},
+      {"--undercoat-share", shareOption && shareOption->count() > 0, {"undercoatShare"}},
+      {"--length-scale", lengthOption && lengthOption->count() > 0, {"lengthScale"}},
+      {"--stiffness", stiffnessOption && stiffnessOption->count() > 0,
+       {"overcoat.stiffness", "undercoat.stiffness"}},
+  };
+  if (!settings.empty()) {
+    nlohmann::json doc = nlohmann::json::parse(fur::furPresetJson(p));
+    for (const std::string& s : settings) {
+      const std::size_t eq = s.find('=');
+      if (eq == std::string::npos || eq == 0 || eq + 1 == s.size())
+        inputError("--fur-set '", s, "' is not FIELD=VALUE (e.g. overcoat.stiffness=0.6)");
+      const std::string field = s.substr(0, eq), text = s.substr(eq + 1);
+      for (const Named& n : named)
+        for (const std::string& f : n.fields)
+          if (n.given && f == field)
+            inputError(n.option, " and --fur-set ", s, " both set ", field,
+                       ": give one (a named option and --fur-set never silently override each "
+                       "other)");
+      nlohmann::json value = nlohmann::json::parse(text, nullptr, false);
+      if (value.is_discarded()) value = text;  // a bare word: a string (e.g. a style name)
+      std::string pointer;
+      std::size_t start = 0;
+      for (;;) {
+        const std::size_t dot = field.find('.', start);
+        const std::string part =
+            field.substr(start, dot == std::string::npos ? std::string::npos : dot - start);
+        if (part.empty()) inputError("--fur-set '", s, "': empty field name in '", field, "'");
+        pointer += "/" + part;
+        if (dot == std::string::npos) break;
+        start = dot + 1;
+      }
+      const nlohmann::json::json_pointer ptr(pointer);
+      // The parent must be an object that the preset format has (unknown fields fail on parse).
+      if (!ptr.parent_pointer().empty() &&
+          (!doc.contains(ptr.parent_pointer()) || !doc[ptr.parent_pointer()].is_object()))
+        inputError("--fur-set '", s, "': no field group '", field.substr(0, field.rfind('.')),
+                   "' (accepted: overcoat, undercoat, culling, lengthRegion, or top-level "
+                   "fields)");
+      // "hairs" and "density" exclude each other: setting one drops the other.
+      if (pointer == "/hairs") doc.erase("density");
+      if (pointer == "/density") doc.erase("hairs");
+      doc[ptr] = value;
+    }
+    p = fur::parseFurPreset(doc.dump(), "--fur-set options");
+  }
+  if (hairsOption && hairsOption->count() > 0) {
+    p.hairs = hairs;
+    p.densityPerM2 = 0.0;
+  }
+  if (!style.empty()) {
+    const fur::HairStyle s = fur::parseStyle(style, "--style");
+    for (auto& c : p.coats) c.style = s;
+  }
+  if (seedOption && seedOption->count() > 0) {
+    if (seed < 0 || seed > (std::int64_t(1) << 53))
+      inputError("--seed ", seed, " is out of range [0, 2^53]");
+    p.seed = static_cast<std::uint64_t>(seed);
+  }
+  if (shareOption && shareOption->count() > 0) p.undercoatShare = static_cast<float>(undercoatShare);
+  if (lengthOption && lengthOption->count() > 0) p.lengthScale = static_cast<float>(lengthScale);
+  if (stiffnessOption && stiffnessOption->count() > 0)
+    for (auto& c : p.coats) c.stiffness = static_cast<float>(stiffness);
+  fur::validateFurParams(p, "fur '" + p.name + "' with the command-line options");
+  return p;
+}
+
+// ---- DynamicsOptions -----------------------------------------------------------------------
+
+void DynamicsOptions::add(CLI::App& cmd, bool withPreRoll) {
+  const fur::CoatDynamics d;
+  cmd.add_option("--dynamics", mode,
+                 "Fur dynamics: 'on' makes each hair's end follow the paper's (quasi-static) end "
+                 "through a damped spring; 'off' is the paper's model (default off)")
+      ->check(CLI::IsMember({"on", "off"}));
+  cmd.add_option("--frequency", frequency,
+                 "With --dynamics on: natural frequency of a 1 cm hair, Hz (0, 100]: one value "
+                 "for both coats or two (overcoat undercoat) (default " +
+                     number(static_cast<double>(d.frequencyHz)) + ")")
+      ->expected(1, 2);
+  cmd.add_option("--damping", damping,
+                 "With --dynamics on: damping ratio [0, 10] (1 = critical): one value or two "
+                 "(overcoat undercoat) (default " +
+                     number(static_cast<double>(d.dampingRatio)) + ")")
+      ->expected(1, 2);
+  if (withPreRoll)
+    preRollOption = cmd.add_option(
+        "--preroll", preRoll,
+        "With --dynamics on: frames simulated before the first one shown [0, 10000000] "
+        "(default: from the clip's start, so any frame range matches a whole run exactly)");
+}
+
+fur::DynamicsParams DynamicsOptions::resolve() const {
+  fur::DynamicsParams p;
+  for (int c = 0; c < fur::kCoatCount; ++c) {
+    const auto ci = static_cast<std::size_t>(c);
+    if (!frequency.empty())
+      p.coats[ci].frequencyHz =
+          static_cast<float>(frequency[std::min(ci, frequency.size() - 1)]);
+    if (!damping.empty())
+      p.coats[ci].dampingRatio = static_cast<float>(damping[std::min(ci, damping.size() - 1)]);
+  }
+  fur::validateDynamicsParams(p, "--frequency/--damping");
+  const bool preRollGiven = preRollOption && preRollOption->count() > 0;
+  if (preRollGiven && (preRoll < 0 || preRoll > 10000000))
+    inputError("--preroll ", preRoll, " is out of range [0, 10000000] frames");
+  // Options that cannot take effect are refused, never silently ignored.
+  if (!enabled()) {
+    const char* given = !frequency.empty() ? "--frequency"
+                        : !damping.empty() ? "--damping"
+                        : preRollGiven     ? "--preroll"
+                                           : nullptr;
+    if (given) inputError(given, " needs --dynamics on (without it the fur is quasi-static)");
+  }
+  return p;
+}
+
+// ---- FrameOptions --------------------------------------------------------------------------
+
+void FrameOptions::add(CLI::App& cmd) {
+  cmd.add_option("--frames", frames,
+                 "Frames FIRST:LAST (inclusive) or one frame F; frame f shows clip time --time + "
+                 "f / fps (default: the whole clip, 0 to duration x fps; the still pose: 0)");
+  cmd.add_option("--fps", fps, "Frames per second [1, 1000] (default " + number(fps) + ")");
+}
+
+void FrameOptions::validateFps() const {
+  if (!(fps >= 1.0 && fps <= 1000.0)) inputError("--fps ", fps, " is out of range [1, 1000]");
+}
+
+scene::FrameRange FrameOptions::range(const scene::Model& model, int clip) const {
+  validateFps();
+  if (!frames.empty()) return scene::parseFrameRange(frames);
+  if (clip < 0) return {0, 0};
+  const double duration = static_cast<double>(model.clips[static_cast<std::size_t>(clip)].duration);
+  return {0, static_cast<int>(std::lround(duration * fps))};
+}
+
+// ---- ViewOptions ---------------------------------------------------------------------------
+
+void parseSize(const std::string& text, const char* option, int& width, int& height) {
+  char x = 0;
+  std::istringstream in(text);
+  if (!(in >> width >> x >> height) || x != 'x' || !in.eof())
+    inputError(option, " '", text, "' is not WIDTHxHEIGHT (e.g. 1920x1080)");
+  if (width < 16 || width > 16384 || height < 16 || height > 16384)
+    inputError(option, " ", width, "x", height, " is out of range [16, 16384] per side");
+}
+
+void ViewOptions::add(CLI::App& cmd) {
+  cmd.add_option("--size", size, "Image or window size WIDTHxHEIGHT, [16, 16384] per side "
+                                 "(default " + size + ")");
+  cmd.add_option("--samples", samples,
+                 "MSAA samples [0, 64]; -1 = 4 on a GPU, 0 on a software rasteriser (default -1)");
+  cmd.add_option("--camera", camera,
+                 "Camera preset: " + scene::cameraPresetNames() + " (default " + camera + ")");
+  cmd.add_flag("--follow,--track", follow,
+               "Move the camera with the creature (its root's horizontal motion)");
+  cmd.add_option("--fov", fov,
+                 "Vertical field of view, degrees (1, 179) (default " + number(fov) + ")");
+  cmd.add_option("--hair-source", hairSource,
+                 "Where hairs are computed each frame: gpu or cpu (default " + hairSource +
+                     "; dynamic fur is always the CPU's)");
+  cmd.add_option("--shading", shading,
+                 "Hair shading: paper or kajiya-kay (default " + shading + ")");
+  cmd.add_flag("--ribbons", ribbons, "Draw hairs as tapered ribbons instead of 1-pixel lines");
+  cmd.add_flag("--shadows", shadows, "Shadow map: fur and skin shadow each other");
+  cmd.add_flag("--no-culling", noCulling,
+               "Draw every hair at any distance (no sec. 3.3 culling)");
+  cmd.add_option("--skin-color", skinColor,
+                 "Skin colour R G B, each in [0, 1] (default: the model's)")
+      ->expected(3);
+}
+
+int ViewOptions::width() const {
+  int w = 0, h = 0;
+  parseSize(size, "--size", w, h);
+  return w;
+}
+
+int ViewOptions::height() const {
+  int w = 0, h = 0;
+  parseSize(size, "--size", w, h);
+  return h;
+}
+
+scene::CameraPreset ViewOptions::cameraPreset() const {
+  return scene::parseCameraPreset(camera);
+}
+
+scene::HairSource ViewOptions::source() const {
+  return scene::parseHairSource(hairSource);
+}
+
+scene::HairShading ViewOptions::hairShading() const {
+  return scene::parseHairShading(shading);
+}
+
+std::optional<Eigen::Vector3f> ViewOptions::skin() const {
+  if (skinColor.empty()) return std::nullopt;
+  return Eigen::Vector3f(skinColor[0], skinColor[1], skinColor[2]);
+}
+
+void ViewOptions::validate() const {
+  int w = 0, h = 0;
+  parseSize(size, "--size", w, h);
+  if (samples < -1 || samples > 64) inputError("--samples ", samples, " is out of range [-1, 64]");
+  if (!(fov > 1.0 && fov < 179.0)) inputError("--fov ", fov, " is out of range (1, 179) degrees");
+  cameraPreset();
+  source();
+  hairShading();
+  if (!skinColor.empty()) {
+    if (skinColor.size() != 3)
+      inputError("--skin-color takes 3 values (R G B in [0, 1]), got ", skinColor.size());
+    for (int c = 0; c < 3; ++c) {
+      const float v = skinColor[static_cast<std::size_t>(c)];
+      if (!(v >= 0.0f && v <= 1.0f))
+        inputError("--skin-color ", "RGB"[c], " = ", v, " is out of range [0, 1]");
+    }
+  }
+}
+
+// ---- Argument normalisation ------------------------------------------------------------------
+
+namespace {
+
+bool isModelSpec(const std::string& token) {
+  if (token == scene::kDefaultModel) return true;
+  std::string ext = std::filesystem::path(token).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  static const char* kExtensions[] = {".gltf", ".glb", ".json", ".obj", ".ply", ".off", ".stl"};
+  bool modelExtension = false;
+  for (const char* e : kExtensions) modelExtension = modelExtension || ext == e;
+  std::error_code ec;
+  return modelExtension && std::filesystem::is_regular_file(token, ec);
+}
+
+bool takesSeveralValues(const std::string& token) {
+  for (const char* o : {"--no-fur", "--fur-set", "--frequency", "--damping", "--skin-color",
+                        "--benchmark-hairs"})
+    if (token == o) return true;
+  return false;
+}
+
+}  // namespace
+
+std::vector<std::string> normalizeArguments(const std::vector<std::string>& args) {
+  static const char* kCommands[] = {"info",   "skin",   "hair",   "bench",  "view",
+                                    "render", "export", "analyze"};
+  std::size_t command = args.size();
+  for (std::size_t i = 0; i < args.size() && command == args.size(); ++i)
+    for (const char* c : kCommands)
+      if (args[i] == c) command = i;
+  if (command == args.size()) return args;
+  std::vector<std::string> out(args.begin(), args.begin() + static_cast<std::ptrdiff_t>(command) + 1);
+  std::vector<std::string> rest;
+  std::string model;
+  bool afterSeveral = false;
+  for (std::size_t i = command + 1; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    if (a.rfind("-", 0) == 0 && a.size() > 1 && !std::isdigit(static_cast<unsigned char>(a[1]))) {
+      afterSeveral = takesSeveralValues(a);
+      rest.push_back(a);
+      continue;
+    }
+    if (afterSeveral && model.empty() && isModelSpec(a)) {
+      model = a;  // ends the list; the model goes first
+      afterSeveral = false;
+      continue;
+    }
+    rest.push_back(a);
+  }
+  if (!model.empty()) out.push_back(model);
+  out.insert(out.end(), rest.begin(), rest.end());
+  return out;
 }
 
 }  // namespace pelage::app

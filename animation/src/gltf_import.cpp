@@ -959,6 +959,20 @@ GltfCreature importGltf(const std::string& path, const GltfImportOptions& option
   for (std::size_t r = 0; r < prims.regionNames.size(); ++r)
     for (const std::string& pat : noFur)
       bareRegion[r] = bareRegion[r] || regionMatches(pat, prims.regionNames[r]);
+  // Patterns the user gave must each match a region: a typo would otherwise replace the default
+  // list and grow fur on eyes and antlers without a word.
+  if (options.noFurRegions)
+    for (const std::string& pat : *options.noFurRegions) {
+      bool matched = false;
+      for (const std::string& name : prims.regionNames) matched = matched || regionMatches(pat, name);
+      if (!matched) {
+        std::string names;
+        for (const std::string& name : prims.regionNames)
+          names += (names.empty() ? "" : ", ") + name;
+        fieldError("no fur", "'", pat, "' matches no region of ", path, " (its regions: ", names,
+                   ")");
+      }
+    }
   const Weld weld = weldVertices(prims, units, bareRegion);
   const std::vector<std::array<std::int32_t, 3>> tris = weldedTriangles(ctx, prims, weld, units);
   skin::SkinMesh& sk = out.skin;

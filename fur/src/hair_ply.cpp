@@ -1,6 +1,7 @@
 #include "pelage/fur/hair_ply.h"
 
 #include <bit>
+#include <fstream>
 #include <cstring>
 #include <limits>
 #include <sstream>
@@ -119,6 +120,31 @@ HairPlyCounts writeHairPly(const std::string& path, const FurFrame& frame,
   out.flush();
   w.commit();
   return n;
+}
+
+bool isCompleteHairPly(const std::string& path) {
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  if (!in) return false;
+  const auto size = static_cast<std::int64_t>(in.tellg());
+  in.seekg(0);
+  std::string line;
+  if (!std::getline(in, line) || line != "ply") return false;
+  std::int64_t vertices = -1, edges = 0, faces = 0;
+  while (std::getline(in, line) && line != "end_header") {
+    std::istringstream words(line);
+    std::string kind, what;
+    std::int64_t n = -1;
+    if (!(words >> kind) || kind != "element") continue;
+    if (!(words >> what >> n) || n < 0) return false;
+    if (what == "vertex") vertices = n;
+    if (what == "edge") edges = n;
+    if (what == "face") faces = n;
+    if (in.tellg() > (1 << 16)) return false;
+  }
+  if (line != "end_header" || vertices < 0) return false;
+  // Body: 29 bytes per vertex (6 floats, int, uchar), 8 per edge, 13 per triangle face.
+  const std::int64_t body = vertices * 29 + edges * 8 + faces * 13;
+  return static_cast<std::int64_t>(in.tellg()) + body == size;
 }
 
 }  // namespace pelage::fur

@@ -337,7 +337,9 @@ SettlingAnalysis settle(const AnalysisResult& r, const AnalysisOptions& o, doubl
 }
 
 void checkOptions(const Model& model, const AnalysisOptions& o) {
-  PELAGE_CHECK(o.clip >= 0 && o.clip < static_cast<int>(model.clips.size()), "clip ", o.clip);
+  PELAGE_CHECK(o.clip >= -1 && o.clip < static_cast<int>(model.clips.size()), "clip ", o.clip);
+  if (o.dynamics && o.clip < 0)
+    fieldError("dynamics", "on needs a clip: the rest pose does not move");
   if (!(o.clock.fps >= 1.0 && o.clock.fps <= 1000.0))
     fieldError("fps", o.clock.fps, " is out of range [1, 1000]");
   if (o.firstFrame < 0 || o.lastFrame < o.firstFrame || o.lastFrame > 10000000)
@@ -395,11 +397,14 @@ double parseNumber(const std::string& text, const std::string& field, const std:
 AnalysisResult analyzeClip(const Model& model, const Fur& fur, const AnalysisOptions& options) {
   checkOptions(model, options);
   AnalysisResult result;
-  result.clipName = model.clips[static_cast<std::size_t>(options.clip)].name;
+  result.clipName =
+      options.clip >= 0 ? model.clips[static_cast<std::size_t>(options.clip)].name : "still pose";
   result.fps = options.clock.fps;
   result.dynamics = options.dynamics;
   PlaybackOptions po;
   po.clip = options.clip;
+  po.stillPose = options.stillPose;
+  po.startSeconds = options.clock.startSeconds;
   po.framesPerSecond = options.clock.fps;
   po.preRollFrames = options.clock.preRollFrames;
   po.dynamics = options.dynamics;

@@ -17,7 +17,7 @@ void preRollDynamics(const Model& model, const Fur& fur, const fur::DynamicsPara
   PELAGE_CHECK(clock.fps >= 1.0 && clock.fps <= 1000.0, "fps ", clock.fps);
   fur::resetFurDynamics(fur.roots, state);
   for (int f = preRollStart(firstFrame, clock); f < firstFrame; ++f) {
-    evaluateClipFrame(model, clip, f / clock.fps, scratch);
+    evaluateClipFrame(model, clip, clock.startSeconds + f / clock.fps, scratch);
     stepClipDynamics(model, fur, dynamics, clock, Eigen::Vector3f::Zero(), false, state, scratch);
   }
 }

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <fstream>
 #include <limits>
 #include <vector>
 
@@ -241,6 +242,20 @@ GlbCounts writeFrameGlb(const std::string& path, const Model& model, const fur::
   bin.flush();
   w.commit();
   return counts;
+}
+
+bool isCompleteGlb(const std::string& path) {
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  if (!in) return false;
+  const auto size = static_cast<std::uint64_t>(in.tellg());
+  in.seekg(0);
+  unsigned char h[12] = {};
+  if (!in.read(reinterpret_cast<char*>(h), 12)) return false;
+  auto u32 = [&](int at) {
+    return static_cast<std::uint32_t>(h[at]) | static_cast<std::uint32_t>(h[at + 1]) << 8 |
+           static_cast<std::uint32_t>(h[at + 2]) << 16 | static_cast<std::uint32_t>(h[at + 3]) << 24;
+  };
+  return u32(0) == 0x46546C67u && u32(4) == 2 && u32(8) == size;
 }
 
 }  // namespace pelage::scene

@@ -45,10 +45,12 @@ class Spool {
       const int err = errno;
       inputError(output_, ": cannot write (", reason(err), ")");
     }
+    registerTemporary(path_);  // removed also when the process is interrupted
   }
   ~Spool() {
     if (file_) std::fclose(file_);
     std::remove(path_.c_str());
+    unregisterTemporary(path_);
   }
   Spool(const Spool&) = delete;
   Spool& operator=(const Spool&) = delete;
@@ -178,6 +180,7 @@ struct UsdaWriter::Impl {
   int frames = 0;
   int lastAdded = -1;
   bool first = true;
+  int removedTemporaries = 0;
   std::vector<float> curve, scratch;
 };
 
@@ -190,12 +193,22 @@ UsdaWriter::UsdaWriter(std::string path, const Model& model, const fur::FurParam
   m.params = &params;
   m.options = options;
   PELAGE_CHECK(options.firstFrame <= options.lastFrame && options.framesPerSecond > 0.0);
+  // Spools and temporaries an earlier run of the same output left when it was killed.
+  const fs::path p(m.path);
+  const std::string name = p.filename().string();
+  m.removedTemporaries =
+      removeStaleTemporaries(p.has_parent_path() ? p.parent_path().string() : std::string("."),
+                             [&](const std::string& finalName) { return finalName == name; });
   m.skinPoints = std::make_unique<Spool>(m.path, "skin-points");
   m.skinNormals = std::make_unique<Spool>(m.path, "skin-normals");
   m.skinExtent = std::make_unique<Spool>(m.path, "skin-extent");
 }
 
 UsdaWriter::~UsdaWriter() = default;
+
+int UsdaWriter::removedTemporaries() const {
+  return impl_->removedTemporaries;
+}
 
 void UsdaWriter::addFrame(int frame, const FrameState& state) {
   Impl& m = *impl_;

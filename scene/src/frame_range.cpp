@@ -32,6 +32,17 @@ FrameRange parseFrameRange(std::string_view text, std::string_view field) {
   return r;
 }
 
+int frameOfFileName(std::string_view name, std::string_view extension) {
+  constexpr std::string_view kPrefix = "frame_";
+  if (name.size() <= kPrefix.size() + extension.size() || name.substr(0, kPrefix.size()) != kPrefix ||
+      name.substr(name.size() - extension.size()) != extension)
+    return -1;
+  int frame = -1;
+  const std::string_view digits =
+      name.substr(kPrefix.size(), name.size() - kPrefix.size() - extension.size());
+  return parseInt(digits, frame) && frame >= 0 ? frame : -1;
+}
+
 std::string frameFileName(int frame, std::string_view extension) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "frame_%05d", frame);

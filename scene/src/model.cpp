@@ -64,11 +64,12 @@ Model loadModel(const std::string& spec, const LoadOptions& options) {
     fieldError("triangles", options.triangles, " is out of range [2000, 2000000]");
   const std::string ext = lowerExtension(spec);
   const bool gltf = ext == ".gltf" || ext == ".glb";
-  if (!gltf &&
-      (options.unitScale != 0.0f || options.noFurRegions || !options.segmentDirections.empty()))
-    inputError(spec,
-               ": the unit scale, no-fur regions and segment directions apply to glTF models "
-               "(.gltf/.glb) only");
+  const bool mesh = ext == ".obj" || ext == ".ply" || ext == ".off" || ext == ".stl";
+  if (!gltf && (options.noFurRegions || !options.segmentDirections.empty()))
+    inputError(spec, ": no-fur regions and segment directions apply to glTF models (.gltf/.glb) "
+               "only");
+  if (!gltf && !mesh && options.unitScale != 0.0f)
+    inputError(spec, ": a unit scale applies to glTF models and static meshes only");
   if (gltf) return fromGltf(spec, options);
   if (spec.empty() || spec == kDefaultModel)
     return fromCreature(builtinCreature(kDefaultModel), options);
@@ -77,7 +78,8 @@ Model loadModel(const std::string& spec, const LoadOptions& options) {
     Model m;
     m.name = std::filesystem::path(spec).stem().string();
     m.source = spec;
-    m.skin = skin::readStaticMesh(spec);
+    m.unitScale = options.unitScale > 0.0f ? options.unitScale : 1.0f;
+    m.skin = skin::readStaticMesh(spec, -1.0f, m.unitScale);
     anatomy::SegmentSpec root;
     root.name = "root";
     m.body = anatomy::makeBody({root}, spec);
@@ -87,6 +89,13 @@ Model loadModel(const std::string& spec, const LoadOptions& options) {
     inputError(spec, ": no such file, and not a built-in model (built-in: monkey)");
   inputError(spec, ": unsupported model format '", ext,
              "' (accepted: monkey, .json creature, .gltf/.glb, .obj .ply .off .stl mesh)");
+}
+
+float modelSizeMeters(const Model& model) {
+  const float* p = model.skin.restPositions();
+  Eigen::AlignedBox3f box;
+  for (int v = 0; v < model.skin.numVertices(); ++v) box.extend(Eigen::Vector3f(p[3 * v], p[3 * v + 1], p[3 * v + 2]));
+  return box.isEmpty() ? 0.0f : box.sizes().maxCoeff();
 }
 
 int resolveClip(Model& model, const std::string& spec) {

@@ -12,6 +12,8 @@ void validatePlaybackOptions(const Model& model, const PlaybackOptions& o) {
                " of ", model.clips.size());
   if (!(o.framesPerSecond >= 1.0 && o.framesPerSecond <= 1000.0))
     fieldError("fps", o.framesPerSecond, " is out of range [1, 1000]");
+  if (!(o.startSeconds >= 0.0 && o.startSeconds <= 1e6))
+    fieldError("time", o.startSeconds, " is out of range [0, 1000000] seconds");
   if (o.preRollFrames < -1 || o.preRollFrames > 10000000)
     fieldError("preroll", o.preRollFrames, " is out of range [0, 10000000] frames");
   if (o.dynamics) {
@@ -29,6 +31,7 @@ Playback::Playback(const Model& model, const Fur& fur, PlaybackOptions options)
   stillPose_ =
       options_.stillPose.local.empty() ? anatomy::restPose(model.body) : options_.stillPose;
   clock_.fps = options_.framesPerSecond;
+  clock_.startSeconds = options_.startSeconds;
   clock_.preRollFrames = options_.preRollFrames;
   generation_ = fur.generation;
   evaluatePose(0, state_);
@@ -53,7 +56,8 @@ void Playback::setDynamics(bool on, const fur::DynamicsParams& params) {
 
 void Playback::evaluatePose(int frame, FrameState& into) const {
   if (options_.clip >= 0)
-    evaluateClipFrame(*model_, options_.clip, static_cast<double>(frame) / options_.framesPerSecond,
+    evaluateClipFrame(*model_, options_.clip,
+                      options_.startSeconds + static_cast<double>(frame) / options_.framesPerSecond,
                       into);
   else
     evaluateFrame(*model_, stillPose_, into);
@@ -136,11 +140,12 @@ const DrawList& Playback::drawList(const Camera& camera, const Light& light,
 }
 
 const DrawList& Playback::sequenceFrame(int frame, const CameraRig& rig, int width, int height,
-                                        const Light& light, const DrawOptions& options) {
+                                        const Light& light, const DrawOptions& options,
+                                        const Material* skin) {
   poseFrame(frame);
   const Camera camera = rigCamera(rig, firstFraming_, framing(), frame, width, height);
   evaluateFur(camera.eye);
-  return drawList(camera, light, options);
+  return drawList(camera, light, options, skin);
 }
 
 }  // namespace pelage::scene

@@ -581,7 +581,7 @@ void readOff(const std::string& path, TriMesh& mesh, std::uintmax_t fileSize) {
 
 }  // namespace
 
-SkinMesh readStaticMesh(const std::string& path, float furLengthMeters) {
+SkinMesh readStaticMesh(const std::string& path, float furLengthMeters, float unitScale) {
   namespace fs = std::filesystem;
   std::error_code ec;
   if (!fs::exists(path, ec)) inputError(path, ": mesh file does not exist");
@@ -623,11 +623,13 @@ SkinMesh readStaticMesh(const std::string& path, float furLengthMeters) {
     m.garbage_collection();
     warn(str(path, ": removed ", isolated, " isolated vertices"));
   }
+  if (unitScale != 1.0f)
+    for (auto v : m.vertices()) m.point(v) *= unitScale;
   addSkinProperties(skin);
   Eigen::Map<const Eigen::Matrix<float, 3, Eigen::Dynamic>> P(
       skin.restPositions(), 3, static_cast<Eigen::Index>(m.n_vertices()));
   const float diag = (P.rowwise().maxCoeff() - P.rowwise().minCoeff()).norm();
-  const float len = furLengthMeters > 0.0f ? furLengthMeters : 0.03f * diag;
+  const float len = furLengthMeters > 0.0f ? furLengthMeters : 0.02f * diag;
   for (auto v : m.vertices()) m.property(skin.furLength, v) = len;
   finalizeSkin(skin);
   return skin;

@@ -39,12 +39,12 @@ TEST(HairCommand, TubesWriteFaces) {
 
 TEST(BenchCommand, PrintsHairsPerSecondAndMsPerFrame) {
   const test::RunResult r =
-      runPelage("--threads 2 bench --hairs 20000 --style polyline --frames 3");
+      runPelage("--threads 2 bench --hairs 20000 --style polyline --repeat 3");
   ASSERT_EQ(r.exitCode, 0) << r.output;
   EXPECT_NE(r.output.find("M hairs/s"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("ms/frame"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("threads 2"), std::string::npos) << r.output;
-  EXPECT_NE(runPelage("bench --frames 0").exitCode, 0);
+  EXPECT_NE(runPelage("bench --repeat 0").exitCode, 0);
 }
 
 TEST(HairCommand, UnwritableOutputIsAnErrorWithoutPartialFile) {

@@ -1,8 +1,12 @@
 #include "pelage/util/atomic_file.h"
 
+#include <signal.h>
+#include <sys/types.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
+#include <mutex>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
@@ -22,7 +26,92 @@ std::string reason(int err) {
   return std::strerror(err);
 }
 std::atomic<unsigned> tempCounter{0};
+
+// The registered temporaries: fixed slots the signal handler reads without locks (async-signal-
+// safe: it only reads the flags and paths and calls unlink).
+constexpr std::size_t kPathBytes = 4096;
+struct Slot {
+  std::atomic<bool> used{false};
+  char path[kPathBytes] = {};
+};
+Slot gSlots[kMaxTemporaries];
+std::mutex gSlotMutex;  // registration only (never taken in the handler)
+
+extern "C" void removeTemporariesAndDie(int sig) {
+  for (Slot& s : gSlots)
+    if (s.used.load(std::memory_order_acquire)) ::unlink(s.path);
+  ::signal(sig, SIG_DFL);
+  ::raise(sig);
+}
+
+void installHandlers() {
+  static const bool installed = [] {
+    for (int sig : {SIGINT, SIGTERM, SIGHUP, SIGQUIT}) {
+      struct sigaction old {};
+      ::sigaction(sig, nullptr, &old);
+      if (old.sa_handler != SIG_DFL) continue;  // the program handles (or ignores) it itself
+      struct sigaction sa {};
+      sa.sa_handler = removeTemporariesAndDie;
+      sigemptyset(&sa.sa_mask);
+      ::sigaction(sig, &sa, nullptr);
+    }
+    return true;
+  }();
+  (void)installed;
+}
+
+bool processRuns(long pid) {
+  return pid > 0 && (::kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM);
+}
 }  // namespace
+
+void registerTemporary(const std::string& path) {
+  if (path.size() + 1 > kPathBytes) return;
+  installHandlers();
+  std::lock_guard<std::mutex> lock(gSlotMutex);
+  for (Slot& s : gSlots)
+    if (!s.used.load(std::memory_order_relaxed)) {
+      std::memcpy(s.path, path.c_str(), path.size() + 1);
+      s.used.store(true, std::memory_order_release);
+      return;
+    }
+}
+
+void unregisterTemporary(const std::string& path) {
+  std::lock_guard<std::mutex> lock(gSlotMutex);
+  for (Slot& s : gSlots)
+    if (s.used.load(std::memory_order_relaxed) && path == s.path) {
+      s.used.store(false, std::memory_order_release);
+      return;
+    }
+}
+
+int removeStaleTemporaries(const std::string& dir,
+                           const std::function<bool(const std::string& finalName)>& matches) {
+  int removed = 0;
+  std::error_code ec;
+  for (const fs::directory_entry& e : fs::directory_iterator(dir, ec)) {
+    const std::string name = e.path().filename().string();
+    if (name.size() < 2 || name[0] != '.') continue;
+    std::size_t kind = std::string::npos;
+    for (const char* k : {".tmp-", ".spool-"}) kind = std::min(kind, name.find(k, 1));
+    if (kind == std::string::npos) continue;
+    // ...-<pid>-<n>: the pid is the second number from the end.
+    const std::size_t lastDash = name.rfind('-');
+    const std::size_t pidDash = lastDash == std::string::npos || lastDash == 0
+                                    ? std::string::npos
+                                    : name.rfind('-', lastDash - 1);
+    if (pidDash == std::string::npos || pidDash < kind) continue;
+    const std::string pidText = name.substr(pidDash + 1, lastDash - pidDash - 1);
+    if (pidText.empty() || pidText.find_first_not_of("0123456789") != std::string::npos) continue;
+    const long pid = std::stol(pidText);
+    if (pid == static_cast<long>(::getpid()) || processRuns(pid)) continue;  // still in use
+    if (!matches(name.substr(1, kind - 1))) continue;
+    std::error_code rec;
+    if (fs::remove(e.path(), rec)) ++removed;
+  }
+  return removed;
+}
 
 AtomicFileWriter::AtomicFileWriter(std::string path) : path_(std::move(path)) {
   const fs::path p(path_);
@@ -35,12 +124,14 @@ AtomicFileWriter::AtomicFileWriter(std::string path) : path_(std::move(path)) {
     const int err = errno;
     inputError(path_, ": cannot write (", reason(err), ")");
   }
+  registerTemporary(tempPath_);
   std::setvbuf(file_, nullptr, _IOFBF, 1 << 20);
 }
 
 AtomicFileWriter::~AtomicFileWriter() {
   if (file_) std::fclose(file_);
   if (!committed_) std::remove(tempPath_.c_str());
+  unregisterTemporary(tempPath_);
 }
 
 void AtomicFileWriter::failWith(const char* what, int err) {

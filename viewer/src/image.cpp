@@ -35,6 +35,35 @@ void writePng(const std::string& path, const Image& image) {
   w.commit();
 }
 
+void writeImage(const std::string& path, const Image& image) {
+  std::string ext;
+  const std::size_t dot = path.rfind('.');
+  if (dot != std::string::npos && path.find('/', dot) == std::string::npos) ext = path.substr(dot);
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (ext == ".png") {
+    writePng(path, image);
+    return;
+  }
+  if (ext != ".jpg" && ext != ".jpeg")
+    inputError(path, ": unsupported image format '", ext, "' (accepted: .png, .jpg, .jpeg)");
+  std::vector<std::uint8_t> rgb(static_cast<std::size_t>(image.width) *
+                                static_cast<std::size_t>(image.height) * 3);
+  for (std::size_t i = 0, n = rgb.size() / 3; i < n; ++i)
+    for (int c = 0; c < 3; ++c) rgb[3 * i + static_cast<std::size_t>(c)] = image.rgba[4 * i + static_cast<std::size_t>(c)];
+  std::vector<std::uint8_t> out;
+  stbi_write_jpg_to_func(
+      [](void* ctx, void* data, int size) {
+        auto* v = static_cast<std::vector<std::uint8_t>*>(ctx);
+        const auto* p = static_cast<const std::uint8_t*>(data);
+        v->insert(v->end(), p, p + size);
+      },
+      &out, image.width, image.height, 3, rgb.data(), 95);
+  PELAGE_CHECK(!out.empty(), "JPEG encoding failed");
+  AtomicFileWriter w(path);
+  w.write(out.data(), out.size());
+  w.commit();
+}
+
 Image readPng(const std::string& path) {
   int w = 0, h = 0, channels = 0;
   stbi_uc* data = stbi_load(path.c_str(), &w, &h, &channels, 4);

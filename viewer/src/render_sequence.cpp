@@ -25,35 +25,10 @@ double secondsSince(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-bool parseInt(std::string_view s, int& out) {
-  if (s.empty()) return false;
-  const auto r = std::from_chars(s.data(), s.data() + s.size(), out);
-  return r.ec == std::errc() && r.ptr == s.data() + s.size();
-}
-
 void defaultWrite(const std::string& path, const std::vector<std::uint8_t>& bytes) {
   AtomicFileWriter w(path);
   w.write(bytes.data(), bytes.size());
   w.commit();
-}
-
-// Removes temporary files (".frame_00042.png.tmp-<pid>-<n>") that killed runs left for frames in
-// `range`; returns how many.
-int removeStaleTemporaries(const std::string& dir, const FrameRange& range) {
-  int removed = 0;
-  std::error_code ec;
-  for (const fs::directory_entry& e : fs::directory_iterator(dir, ec)) {
-    const std::string name = e.path().filename().string();
-    if (name.rfind(".frame_", 0) != 0) continue;
-    const std::size_t tmp = name.find(".png.tmp-");
-    if (tmp == std::string::npos) continue;
-    int frame = -1;
-    if (!parseInt(std::string_view(name).substr(7, tmp - 7), frame)) continue;
-    if (frame < range.first || frame > range.last) continue;
-    std::error_code rec;
-    if (fs::remove(e.path(), rec)) ++removed;
-  }
-  return removed;
 }
 
 }  // namespace
@@ -78,6 +53,10 @@ void validateSequenceOptions(const SequenceOptions& o) {
     fieldError("dynamics", "on needs a clip: the rest pose does not move");
   if (o.playback.preRollFrames < -1 || o.playback.preRollFrames > 10000000)
     fieldError("preroll", o.playback.preRollFrames, " is out of range [0, 10000000] frames");
+  if (o.skinColor)
+    for (int c = 0; c < 3; ++c)
+      if (!((*o.skinColor)[c] >= 0.0f && (*o.skinColor)[c] <= 1.0f))
+        fieldError("skin color", "RGB"[c], " = ", (*o.skinColor)[c], " is out of range [0, 1]");
   if (!o.video.empty()) {
     const std::string ext = fs::path(o.video).extension().string();
     if (ext != ".mp4" && ext != ".gif")
@@ -127,8 +106,12 @@ scene::Camera SequenceRenderer::camera(int frame) {
 
 RenderStats SequenceRenderer::render(int frame, Image& out) {
   Impl& m = *impl_;
-  const scene::DrawList& list = m.playback.sequenceFrame(
-      frame, m.options.camera, m.options.width, m.options.height, m.light(), m.options.look);
+  const std::optional<Material> skin =
+      m.options.skinColor ? std::optional<Material>(scene::skinMaterial(*m.options.skinColor))
+                          : std::nullopt;
+  const scene::DrawList& list =
+      m.playback.sequenceFrame(frame, m.options.camera, m.options.width, m.options.height,
+                               m.light(), m.options.look, skin ? &*skin : nullptr);
   const RenderStats stats = m.renderer.render(list);
   m.renderer.readPixels(out);
   return stats;
@@ -144,7 +127,11 @@ SequenceReport renderSequence(const scene::Model& model, const scene::Fur& fur,
   SequenceReport report;
   const Clock::time_point t0 = Clock::now();
   if (options.resume)
-    report.removedTemporaries = removeStaleTemporaries(options.outDir, options.frames);
+    report.removedTemporaries =
+        removeStaleTemporaries(options.outDir, [&](const std::string& name) {
+          const int f = scene::frameOfFileName(name, ".png");
+          return f >= options.frames.first && f <= options.frames.last;
+        });
 
   // Which frames are already complete (--resume).
   const int total = options.frames.count();

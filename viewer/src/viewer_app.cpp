@@ -168,7 +168,7 @@ int runWindow(const ViewerOptions& o, scene::Model model) {
     ++rendered;
     const bool last_frame = frames > 0 && rendered >= frames;
     if (last_frame && !o.screenshot.empty()) {
-      writePng(o.screenshot, readBackBuffer(fbw, fbh));
+      writeImage(o.screenshot, readBackBuffer(fbw, fbh));
       std::printf("wrote %s (%dx%d, %lld hairs drawn, %d skin triangles)\n", o.screenshot.c_str(),
                   fbw, fbh, static_cast<long long>(session.hairsDrawn()),
                   session.model().skin.numTriangles());
@@ -209,7 +209,7 @@ int runHeadless(const ViewerOptions& o, scene::Model model) {
               frames, o.width, o.height, static_cast<long long>(session.hairsDrawn()),
               session.model().skin.numTriangles(), totalMs / frames);
   if (!o.screenshot.empty()) {
-    writePng(o.screenshot, session.renderer().readPixels());
+    writeImage(o.screenshot, session.renderer().readPixels());
     std::printf("wrote %s\n", o.screenshot.c_str());
   }
   return 0;

@@ -21,6 +21,10 @@ struct HairPlyCounts {
   std::int64_t faces = 0;
 };
 
+// True when `path` is a complete hair PLY: its header ends, and the file is exactly as long as the
+// header's element counts say (what --resume keeps).
+bool isCompleteHairPly(const std::string& path);
+
 // The element counts writeHairPly writes for `frame`.
 HairPlyCounts hairPlyCounts(const FurFrame& frame);
 

@@ -23,13 +23,14 @@ namespace pelage::scene {
 enum class AnalysisGroups { Region, Segment };
 
 struct AnalysisOptions {
-  int clip = 0;              // index into model.clips
-  int firstFrame = 0;        // frame f shows clip time f / fps
+  int clip = 0;              // index into model.clips; -1: the still pose in every frame
+  anatomy::Pose stillPose;   // the pose without a clip (empty: the rest pose)
+  int firstFrame = 0;        // frame f shows clip time clock.startSeconds + f / fps
   int lastFrame = 0;         // inclusive
   double holdSeconds = 0.0;  // after lastFrame, the last pose held still this long, [0, 1000]
   bool dynamics = false;     // also the damped dynamic ends (fur/dynamics.h)
   fur::DynamicsParams dynamicsParams;
-  DynamicsClock clock;  // fps and pre-roll
+  DynamicsClock clock;  // fps, start time and pre-roll
   AnalysisGroups groups = AnalysisGroups::Region;
   double settleTolerance = 0.02;  // settled: within this fraction of the largest swing, (0, 1)
 };

@@ -14,7 +14,8 @@ namespace pelage::scene {
 
 // How a frame range is reached.
 struct DynamicsClock {
-  double fps = 30.0;       // frames per second, [1, 1000]
+  double fps = 30.0;          // frames per second, [1, 1000]
+  double startSeconds = 0.0;  // clip time of frame 0
   int preRollFrames = -1;  // -1: from the clip's start (frame 0); else this many frames before
 };
 

@@ -25,6 +25,10 @@ struct GlbCounts {
   std::uint64_t bytes = 0;                                   // file size
 };
 
+// True when `path` is a complete glTF binary: the magic, version 2, and a total length equal to
+// the file's size (what --resume keeps).
+bool isCompleteGlb(const std::string& path);
+
 // The counts writeFrameGlb would write for `state`.
 GlbCounts glbCounts(const Model& model, const fur::FurParams& params, const FrameState& state);
 

@@ -7,7 +7,10 @@
 //
 // Layout (USD's ordering: an attribute's time samples are consecutive): each animated attribute's
 // samples go to a spool file beside the output as frames arrive; finish() assembles the layer from
-// the spools into the output (a temporary file renamed when complete) and removes them.
+// the spools into the output (a temporary file renamed when complete) and removes them. The spools
+// are removed on every exit path: by the destructor (errors), by the signal handler of
+// util/atomic_file.h (an interrupted run), and, after a SIGKILL, by the next run for the same
+// output.
 #pragma once
 
 #include <cstdint>
@@ -55,6 +58,9 @@ class UsdaWriter {
   // Writes the layer atomically and removes the spools. Frames not added are absent (USD holds the
   // nearest sample).
   UsdExportCounts finish();
+
+  // Spool and temporary files of the same output that killed runs had left, removed on opening.
+  int removedTemporaries() const;
 
  private:
   struct Impl;

@@ -23,4 +23,7 @@ FrameRange parseFrameRange(std::string_view text, std::string_view field = "fram
 // "frame_00042.png" for (42, ".png"): at least 5 digits.
 std::string frameFileName(int frame, std::string_view extension);
 
+// The frame a frame file name names ("frame_00042.png" with ".png": 42), or -1.
+int frameOfFileName(std::string_view name, std::string_view extension);
+
 }  // namespace pelage::scene

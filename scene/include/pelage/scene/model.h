@@ -48,6 +48,12 @@ inline constexpr const char* kDefaultModel = "monkey";
 // Throws InputError naming the file for anything missing or malformed.
 Model loadModel(const std::string& spec, const LoadOptions& options = {});
 
+// The longest side (m) of the rest skin's bounding box.
+float modelSizeMeters(const Model& model);
+// Longest sides (m) outside which a creature is implausible for an animal (its file is probably
+// not in metres): applications warn and suggest a unit scale.
+inline constexpr float kPlausibleSizeMeters[2] = {0.02f, 3.0f};
+
 // The clip `spec` names: one of model.clips by name, or a clip .json file (loaded for the model's
 // body and appended to model.clips); "" gives the model's first clip, or -1 (the still pose) when
 // it has none. InputError naming field "clip" and listing the model's clips otherwise. The one

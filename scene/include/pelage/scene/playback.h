@@ -33,7 +33,8 @@ namespace pelage::scene {
 struct PlaybackOptions {
   int clip = -1;                  // index into model.clips; -1: the still pose in every frame
   anatomy::Pose stillPose;        // the pose without a clip; empty: the rest pose
-  double framesPerSecond = 30.0;  // frame f shows clip time f / fps, [1, 1000]
+  double framesPerSecond = 30.0;  // frame f shows clip time start + f / fps, [1, 1000]
+  double startSeconds = 0.0;      // the clip time of frame 0, [0, 1000000]
   // Where hairs are computed. Dynamic fur is computed on the CPU (its state lives there), so with
   // dynamics on the CPU's hairs are drawn whatever this says (see hairSource()).
   HairSource hairSource = HairSource::Gpu;
@@ -105,7 +106,8 @@ class Playback {
                            const Material* skin = nullptr);
   // All three for sequence frame `frame` seen by `rig` in a width x height image.
   const DrawList& sequenceFrame(int frame, const CameraRig& rig, int width, int height,
-                                const Light& light, const DrawOptions& options);
+                                const Light& light, const DrawOptions& options,
+                                const Material* skin = nullptr);
 
   const FrameState& state() const { return state_; }
   const fur::FurDynamicsState& dynamicsState() const { return dynamics_; }

@@ -11,9 +11,11 @@
 namespace pelage::skin {
 
 // Reads a static mesh (OBJ/PLY/OFF/STL) as a skin bound rigidly to segment 0, polygons
-// triangulated, fur length `furLengthMeters` everywhere (if <= 0: 3% of the bounding-box diagonal).
+// triangulated, coordinates times `unitScale` (metres per file unit), fur length
+// `furLengthMeters` everywhere (if <= 0: 2% of the bounding-box diagonal, glTF creatures' rule).
 // Throws InputError naming the file for a missing/unreadable/empty/non-finite mesh.
-SkinMesh readStaticMesh(const std::string& path, float furLengthMeters = -1.0f);
+SkinMesh readStaticMesh(const std::string& path, float furLengthMeters = -1.0f,
+                        float unitScale = 1.0f);
 
 // Writes the skin with the given vertex positions and normals (nV each) to an OBJ or PLY file
 // (chosen by extension), atomically. Throws InputError on an unsupported extension or a write

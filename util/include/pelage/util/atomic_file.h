@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdio>
+#include <functional>
 #include <string>
 #include <string_view>
 
@@ -35,6 +36,21 @@ class AtomicFileWriter {
 
 // Writes `content` to `path` atomically (see AtomicFileWriter).
 void writeFileAtomically(const std::string& path, std::string_view content);
+
+// Temporary files (an AtomicFileWriter's, an exporter's spools) registered here are removed when
+// the process is stopped by SIGINT, SIGTERM, SIGHUP or SIGQUIT: the handler unlinks them, then the
+// signal takes its default action. (SIGKILL cannot be caught: removeStaleTemporaries cleans up
+// after such a run.) At most kMaxTemporaries at a time; more are simply not covered.
+inline constexpr int kMaxTemporaries = 256;
+void registerTemporary(const std::string& path);
+void unregisterTemporary(const std::string& path);
+
+// Removes the temporary files that stopped processes left in `dir`: names of the form
+// ".<final>.<kind>-...-<pid>-<n>" (kind "tmp" or "spool") whose process no longer runs and whose
+// final name satisfies `matches` (e.g. the frames of one range, so shards writing other frames
+// into a shared directory are left alone). Returns how many were removed.
+int removeStaleTemporaries(const std::string& dir,
+                           const std::function<bool(const std::string& finalName)>& matches);
 
 // Creates a directory and its parents; throws InputError naming it if that fails or it is not
 // writable.

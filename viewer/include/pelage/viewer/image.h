@@ -24,6 +24,9 @@ std::vector<std::uint8_t> encodePng(const Image& image);
 // Writes a PNG atomically (temporary file + rename): never a truncated file. Throws InputError
 // naming the file on failure (unwritable directory, disk full).
 void writePng(const std::string& path, const Image& image);
+// Writes a PNG (.png) or a JPEG (.jpg, .jpeg; quality 95, alpha dropped), chosen by the
+// extension, atomically; InputError naming the file for another extension or a failed write.
+void writeImage(const std::string& path, const Image& image);
 // Reads a PNG as RGBA8; throws InputError naming the file if it is missing or not a PNG.
 Image readPng(const std::string& path);
 // True when `path` is a complete PNG file: the signature, an IHDR chunk first and an IEND chunk at

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -38,6 +39,7 @@ struct SequenceOptions {
   scene::CameraRig camera;
   // The look: hair shading, lines or ribbons, background (the hair source is the playback's).
   scene::DrawOptions look;
+  std::optional<Eigen::Vector3f> skinColor;  // the skin's diffuse colour; none: the model's
   bool shadows = false;
   std::string outDir;      // frames go to outDir/frame_NNNNN.png
   bool resume = false;     // skip frames whose PNG is already complete

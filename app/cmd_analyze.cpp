@@ -273,7 +273,8 @@ void addAnalyzeCommand(CLI::App& app) {
     if (!o->sweep.empty()) {
       const scene::SweepResult s = scene::sweepClip(m, fur, opt, sweep);
       writeFileAtomically(o->out, scene::sweepCsv(s));
-      if (!o->plot.empty()) scene::writePlotPng(o->plot, sweepPlot(s, title + ", sweep " + o->sweep));
+      if (!o->plot.empty())
+        scene::writePlotPng(o->plot, sweepPlot(s, title + ", sweep " + o->sweep));
       if (quiet) return;
       std::printf("%s: %zu frames x %d values of %s (%s)\n", o->out.c_str(),
                   s.runs.front().frames.size(), sweep.count, sweep.parameter.c_str(),

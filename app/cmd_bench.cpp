@@ -28,7 +28,8 @@ void addBenchCommand(CLI::App& app) {
   model->add(*cmd);
   pose->add(*cmd);
   furArgs->add(*cmd);
-  cmd->add_option("--repeat", *frames, "Timed frames, each the same posed frame [1, 100000] (default 50)");
+  cmd->add_option("--repeat", *frames,
+                  "Timed frames, each the same posed frame [1, 100000] (default 50)");
   common->add(*cmd, false);
   cmd->callback([=] {
     if (*frames < 1 || *frames > 100000)

@@ -44,8 +44,9 @@ void runExport(ExportArgs& a) {
   a.range.validateFps();
   if (!a.range.frames.empty()) scene::parseFrameRange(a.range.frames);
   if (a.resume && a.format == "usda")
-    inputError("--resume applies to the per-frame formats (ply, glb); a USD layer is written "
-               "whole");
+    inputError(
+        "--resume applies to the per-frame formats (ply, glb); a USD layer is written "
+        "whole");
   // Output place first: a bad path fails before the model is built.
   if (a.format == "usda") {
     if (fs::path(a.out).extension() != ".usda")
@@ -113,7 +114,8 @@ void runExport(ExportArgs& a) {
     });
   for (int f = first; f <= last; ++f) {
     if (!usd && a.resume &&
-        (a.format == "ply" ? fur::isCompleteHairPly(framePath(f)) : scene::isCompleteGlb(framePath(f)))) {
+        (a.format == "ply" ? fur::isCompleteHairPly(framePath(f))
+                           : scene::isCompleteGlb(framePath(f)))) {
       ++skipped;
       continue;
     }
@@ -130,8 +132,7 @@ void runExport(ExportArgs& a) {
       scene::writeFrameGlb(framePath(f), model, fur.params, state, "pelage 0.1.0");
     }
     if (!quiet) {
-      const double s =
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       std::printf("frame %d/%d (%d): %lld hairs, %.2f s\n", f - first + 1, last - first + 1, f,
                   static_cast<long long>(state.fur.drawn()), s);
       std::fflush(stdout);
@@ -157,17 +158,19 @@ void runExport(ExportArgs& a) {
             .string()
             .c_str(),
         skipped > 0 ? str(" (", skipped, " complete frame(s) kept by --resume)").c_str() : "",
-        removed > 0 ? str("; removed ", removed, " temporary file(s) of a killed run").c_str() : "");
+        removed > 0 ? str("; removed ", removed, " temporary file(s) of a killed run").c_str()
+                    : "");
   }
 }
 
 }  // namespace
 
 void addExportCommand(CLI::App& app) {
-  auto* cmd = app.add_subcommand("export",
-                                 "Write a clip's animated skin and hairs: a USD ASCII layer "
-                                 "(usda), or one PLY or glTF binary (glb) file per frame; one frame "
-                                 "in memory at a time");
+  auto* cmd =
+      app.add_subcommand("export",
+                         "Write a clip's animated skin and hairs: a USD ASCII layer "
+                         "(usda), or one PLY or glTF binary (glb) file per frame; one frame "
+                         "in memory at a time");
   auto a = std::make_shared<ExportArgs>();
   a->model.add(*cmd);
   a->pose.add(*cmd);

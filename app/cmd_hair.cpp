@@ -66,7 +66,8 @@ void summarise(const fur::FurFrame& frame, const fur::FurParams& params) {
 
 void addHairCommand(CLI::App& app) {
   auto* cmd = app.add_subcommand(
-      "hair", "Write one frame of a creature's hairs as PLY (points, normals, edges or tube faces)");
+      "hair",
+      "Write one frame of a creature's hairs as PLY (points, normals, edges or tube faces)");
   auto model = std::make_shared<ModelOptions>();
   auto pose = std::make_shared<PoseOptions>();
   auto furArgs = std::make_shared<FurOptions>();
@@ -83,9 +84,7 @@ void addHairCommand(CLI::App& app) {
   pose->add(*cmd);
   furArgs->add(*cmd);
   dynamics->add(*cmd, true);
-  cmd->add_option("--fps", frames->fps,
-                  "With --dynamics on: frames per second of the clip's frames simulated up to "
-                  "--time [1, 1000] (default 30)");
+  frames->addFps(*cmd);
   cmd->add_option("--out", *out, "Output .ply file")->required();
   common->add(*cmd, true);
   cmd->callback([=] {
@@ -112,7 +111,8 @@ void addHairCommand(CLI::App& app) {
     int shown = 0;
     if (dynamics->enabled()) {
       if (pose->clip.empty())
-        inputError("--dynamics on needs --clip naming one of the model's clips (see `pelage info`)");
+        inputError(
+            "--dynamics on needs --clip naming one of the model's clips (see `pelage info`)");
       if (!(pose->time >= 0.0 && pose->time <= 1e6))
         inputError("--time ", pose->time, " is out of range [0, 1000000] seconds");
       po.clip = scene::resolveClip(m, pose->clip);

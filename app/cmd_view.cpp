@@ -86,9 +86,10 @@ void addViewCommand(CLI::App& app) {
       status = viewer::runViewer(*o, std::move(m));
     } catch (const InputError& e) {
       if (e.field() != "window") throw;
-      inputError("cannot open a window: ", e.detail().substr(e.detail().find(": ") + 2),
-                 ". Run on a desktop, under a virtual display (xvfb-run -a pelage view ...), or add "
-                 "--headless to render offscreen through EGL");
+      inputError(
+          "cannot open a window: ", e.detail().substr(e.detail().find(": ") + 2),
+          ". Run on a desktop, under a virtual display (xvfb-run -a pelage view ...), or add "
+          "--headless to render offscreen through EGL");
     }
     if (status != 0) throw CLI::RuntimeError(status);
   });

@@ -77,7 +77,8 @@ std::string describe(const InputError& error) {
 void CommonOptions::add(CLI::App& cmd, bool quietOption) {
   cmd.add_option("--threads", sharedThreads(), "Worker threads [0, 1024] (default 0: all cores)");
   if (quietOption)
-    cmd.add_flag("--quiet", quiet, "Print nothing but warnings and errors (no progress, no summary)");
+    cmd.add_flag("--quiet", quiet,
+                 "Print nothing but warnings and errors (no progress, no summary)");
 }
 
 void CommonOptions::apply() const {
@@ -118,7 +119,8 @@ scene::Model ModelOptions::load(bool quiet) const {
   scene::Model m = scene::loadModel(model, opt);
   const float size = scene::modelSizeMeters(m);
   if (!quiet && (size > scene::kPlausibleSizeMeters[1] || size < scene::kPlausibleSizeMeters[0]))
-    warn(str(m.source, ": the creature is ", size, " m long, implausible for an animal; if the "
+    warn(str(m.source, ": the creature is ", size,
+             " m long, implausible for an animal; if the "
              "file is not in metres, give --unit-scale (metres per file unit, e.g. 0.01 for "
              "centimetres, 0.3 to make it 0.3 times as large)"));
   return m;
@@ -137,14 +139,14 @@ void PoseOptions::add(CLI::App& cmd) {
 }
 
 anatomy::Pose PoseOptions::stillPose(scene::Model& model) const {
+  if (!(time >= 0.0 && time <= 1e6))
+    inputError("--time ", time, " is out of range [0, 1000000] seconds");
   if (clip.empty()) {
     if (timeOption && timeOption->count() > 0) inputError("--time needs --clip");
     return posePath.empty() ? anatomy::restPose(model.body)
                             : anatomy::loadPose(model.body, posePath);
   }
   if (!posePath.empty()) inputError("--pose and --clip cannot be used together");
-  if (!(time >= 0.0 && time <= 1e6))
-    inputError("--time ", time, " is out of range [0, 1000000] seconds");
   anatomy::Pose pose;
   const int c = scene::resolveClip(model, clip);
   animation::sampleClip(model.clips[static_cast<std::size_t>(c)], model.body, time, pose);
@@ -176,8 +178,7 @@ void FurOptions::add(CLI::App& cmd) {
                              "(default: ") +
                      fur::kDefaultPreset + ")");
   hairsOption = cmd.add_option(
-      "--hairs", hairs,
-      "Total hairs over the skin, both coats [0, 2e7] (default: the preset's)");
+      "--hairs", hairs, "Total hairs over the skin, both coats [0, 2e7] (default: the preset's)");
   cmd.add_option("--style", style,
                  "Hair style of both coats: " + fur::styleNames() + " (default: the preset's)");
   seedOption = cmd.add_option("--seed", seed, "Random seed [0, 2^53] (default: the preset's)");
@@ -210,7 +211,8 @@ fur::FurParams FurOptions::resolve() const {
       {"--seed", seedOption && seedOption->count() > 0, {"seed"}},
       {"--undercoat-share", shareOption && shareOption->count() > 0, {"undercoatShare"}},
       {"--length-scale", lengthOption && lengthOption->count() > 0, {"lengthScale"}},
-      {"--stiffness", stiffnessOption && stiffnessOption->count() > 0,
+      {"--stiffness",
+       stiffnessOption && stiffnessOption->count() > 0,
        {"overcoat.stiffness", "undercoat.stiffness"}},
   };
   if (!settings.empty()) {
@@ -266,7 +268,8 @@ fur::FurParams FurOptions::resolve() const {
       inputError("--seed ", seed, " is out of range [0, 2^53]");
     p.seed = static_cast<std::uint64_t>(seed);
   }
-  if (shareOption && shareOption->count() > 0) p.undercoatShare = static_cast<float>(undercoatShare);
+  if (shareOption && shareOption->count() > 0)
+    p.undercoatShare = static_cast<float>(undercoatShare);
   if (lengthOption && lengthOption->count() > 0) p.lengthScale = static_cast<float>(lengthScale);
   if (stiffnessOption && stiffnessOption->count() > 0)
     for (auto& c : p.coats) c.stiffness = static_cast<float>(stiffness);
@@ -304,8 +307,7 @@ fur::DynamicsParams DynamicsOptions::resolve() const {
   for (int c = 0; c < fur::kCoatCount; ++c) {
     const auto ci = static_cast<std::size_t>(c);
     if (!frequency.empty())
-      p.coats[ci].frequencyHz =
-          static_cast<float>(frequency[std::min(ci, frequency.size() - 1)]);
+      p.coats[ci].frequencyHz = static_cast<float>(frequency[std::min(ci, frequency.size() - 1)]);
     if (!damping.empty())
       p.coats[ci].dampingRatio = static_cast<float>(damping[std::min(ci, damping.size() - 1)]);
   }
@@ -330,6 +332,10 @@ void FrameOptions::add(CLI::App& cmd) {
   cmd.add_option("--frames", frames,
                  "Frames FIRST:LAST (inclusive) or one frame F; frame f shows clip time --time + "
                  "f / fps (default: the whole clip, 0 to duration x fps; the still pose: 0)");
+  addFps(cmd);
+}
+
+void FrameOptions::addFps(CLI::App& cmd) {
   cmd.add_option("--fps", fps, "Frames per second [1, 1000] (default " + number(fps) + ")");
 }
 
@@ -357,8 +363,10 @@ void parseSize(const std::string& text, const char* option, int& width, int& hei
 }
 
 void ViewOptions::add(CLI::App& cmd) {
-  cmd.add_option("--size", size, "Image or window size WIDTHxHEIGHT, [16, 16384] per side "
-                                 "(default " + size + ")");
+  cmd.add_option("--size", size,
+                 "Image or window size WIDTHxHEIGHT, [16, 16384] per side "
+                 "(default " +
+                     size + ")");
   cmd.add_option("--samples", samples,
                  "MSAA samples [0, 64]; -1 = 4 on a GPU, 0 on a software rasteriser (default -1)");
   cmd.add_option("--camera", camera,
@@ -374,8 +382,7 @@ void ViewOptions::add(CLI::App& cmd) {
                  "Hair shading: paper or kajiya-kay (default " + shading + ")");
   cmd.add_flag("--ribbons", ribbons, "Draw hairs as tapered ribbons instead of 1-pixel lines");
   cmd.add_flag("--shadows", shadows, "Shadow map: fur and skin shadow each other");
-  cmd.add_flag("--no-culling", noCulling,
-               "Draw every hair at any distance (no sec. 3.3 culling)");
+  cmd.add_flag("--no-culling", noCulling, "Draw every hair at any distance (no sec. 3.3 culling)");
   cmd.add_option("--skin-color", skinColor,
                  "Skin colour R G B, each in [0, 1] (default: the model's)")
       ->expected(3);
@@ -445,8 +452,8 @@ bool isModelSpec(const std::string& token) {
 }
 
 bool takesSeveralValues(const std::string& token) {
-  for (const char* o : {"--no-fur", "--fur-set", "--frequency", "--damping", "--skin-color",
-                        "--benchmark-hairs"})
+  for (const char* o :
+       {"--no-fur", "--fur-set", "--frequency", "--damping", "--skin-color", "--benchmark-hairs"})
     if (token == o) return true;
   return false;
 }
@@ -454,14 +461,15 @@ bool takesSeveralValues(const std::string& token) {
 }  // namespace
 
 std::vector<std::string> normalizeArguments(const std::vector<std::string>& args) {
-  static const char* kCommands[] = {"info",   "skin",   "hair",   "bench",  "view",
-                                    "render", "export", "analyze"};
+  static const char* kCommands[] = {"info", "skin",   "hair",   "bench",
+                                    "view", "render", "export", "analyze"};
   std::size_t command = args.size();
   for (std::size_t i = 0; i < args.size() && command == args.size(); ++i)
     for (const char* c : kCommands)
       if (args[i] == c) command = i;
   if (command == args.size()) return args;
-  std::vector<std::string> out(args.begin(), args.begin() + static_cast<std::ptrdiff_t>(command) + 1);
+  std::vector<std::string> out(args.begin(),
+                               args.begin() + static_cast<std::ptrdiff_t>(command) + 1);
   std::vector<std::string> rest;
   std::string model;
   bool afterSeveral = false;

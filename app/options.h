@@ -107,6 +107,7 @@ struct FrameOptions {
   std::string frames;
   double fps = 30.0;
   void add(CLI::App& cmd);
+  void addFps(CLI::App& cmd);  // --fps alone (`pelage hair`: the frames simulated for dynamics)
   // The range for `clip` of `model` (-1: the still pose, frame 0).
   scene::FrameRange range(const scene::Model& model, int clip) const;
   void validateFps() const;

@@ -964,7 +964,8 @@ GltfCreature importGltf(const std::string& path, const GltfImportOptions& option
   if (options.noFurRegions)
     for (const std::string& pat : *options.noFurRegions) {
       bool matched = false;
-      for (const std::string& name : prims.regionNames) matched = matched || regionMatches(pat, name);
+      for (const std::string& name : prims.regionNames)
+        matched = matched || regionMatches(pat, name);
       if (!matched) {
         std::string names;
         for (const std::string& name : prims.regionNames)

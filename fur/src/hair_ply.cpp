@@ -1,8 +1,8 @@
 #include "pelage/fur/hair_ply.h"
 
 #include <bit>
-#include <fstream>
 #include <cstring>
+#include <fstream>
 #include <limits>
 #include <sstream>
 #include <vector>

@@ -59,6 +59,20 @@ class Bin {
     buf_.insert(buf_.end(), p, p + n);
   }
   void putU32(std::uint32_t v) { put(&v, 4); }
+  // `points` xyz points (pelage axes) in glTF axes.
+  void putPoints(const float* xyz, std::size_t points) {
+    float out[3 * 256];
+    for (std::size_t i = 0; i < points; i += 256) {
+      const std::size_t n = std::min<std::size_t>(256, points - i);
+      for (std::size_t k = 0; k < n; ++k) {
+        const float* p = xyz + 3 * (i + k);
+        out[3 * k] = p[1];
+        out[3 * k + 1] = p[2];
+        out[3 * k + 2] = p[0];
+      }
+      put(out, n * 12);
+    }
+  }
   void flush() {
     if (!buf_.empty()) w_.write(buf_.data(), buf_.size());
     buf_.clear();
@@ -70,8 +84,20 @@ class Bin {
   std::vector<char> buf_;
 };
 
+// glTF 2.0 is +Y up (front +Z); pelage is +Z up (front +X). A point goes to glTF axes by the
+// rotation (x, y, z) -> (y, z, x), the inverse of the importer's change of basis, so a creature
+// exported and imported again lands where it was.
+Eigen::Vector3f toGltfAxes(const Eigen::Vector3f& v) {
+  return {v.y(), v.z(), v.x()};
+}
+
 nlohmann::json vec(const Eigen::Vector3f& v) {
   return nlohmann::json::array({v.x(), v.y(), v.z()});
+}
+
+// An axis-aligned box in glTF axes.
+Eigen::AlignedBox3f toGltfAxes(const Eigen::AlignedBox3f& box) {
+  return Eigen::AlignedBox3f(toGltfAxes(box.min()), toGltfAxes(box.max()));
 }
 
 nlohmann::json material(const std::string& name, const Eigen::Vector3f& color) {
@@ -132,7 +158,7 @@ GlbCounts writeFrameGlb(const std::string& path, const Model& model, const fur::
   materials.push_back(material("skin", skin.color));
   const int skinPos =
       addAccessor(addView(nV * 12, kArrayBuffer), kFloat, static_cast<std::int64_t>(nV), "VEC3");
-  setBounds(skinPos, state.skinBounds);
+  setBounds(skinPos, toGltfAxes(state.skinBounds));
   const int skinNrm =
       addAccessor(addView(nV * 12, kArrayBuffer), kFloat, static_cast<std::int64_t>(nV), "VEC3");
   const int skinIdx = addAccessor(addView(skin.triangles.size() * 4, kElementArrayBuffer), kUint,
@@ -166,7 +192,7 @@ GlbCounts writeFrameGlb(const std::string& path, const Model& model, const fur::
                  " hair vertices, more than a glTF index can address");
     const int pos = addAccessor(addView(static_cast<std::uint64_t>(p.vertices) * 12, kArrayBuffer),
                                 kFloat, p.vertices, "VEC3");
-    setBounds(pos, box);
+    setBounds(pos, toGltfAxes(box));
     const int idx =
         addAccessor(addView(static_cast<std::uint64_t>(p.segments) * 8, kElementArrayBuffer), kUint,
                     p.segments * 2, "SCALAR");
@@ -182,7 +208,15 @@ GlbCounts writeFrameGlb(const std::string& path, const Model& model, const fur::
   const std::uint64_t binBytes = offset;  // every view is a multiple of 4 bytes
   nlohmann::json sceneNodes = nlohmann::json::array();
   for (std::size_t i = 0; i < nodes.size(); ++i) sceneNodes.push_back(i);
-  nlohmann::json root = {{"asset", {{"version", "2.0"}, {"generator", generator}}},
+  // The asset says how pelage's coordinates were converted.
+  const nlohmann::json asset = {
+      {"version", "2.0"},
+      {"generator", generator},
+      {"extras",
+       {{"up", "+Y"},
+        {"units", "metres"},
+        {"converted", "from pelage's +Z up: glTF (x, y, z) = pelage (y, z, x)"}}}};
+  nlohmann::json root = {{"asset", asset},
                          {"scene", 0},
                          {"scenes", {{{"name", model.name}, {"nodes", sceneNodes}}}},
                          {"nodes", nodes},
@@ -209,20 +243,21 @@ GlbCounts writeFrameGlb(const std::string& path, const Model& model, const fur::
   bin.put(json.data(), json.size());
   bin.putU32(static_cast<std::uint32_t>(binBytes));
   bin.putU32(0x004E4942u);  // "BIN\0"
-  bin.put(state.skin.positions.data(), nV * 12);
-  bin.put(state.skin.normals.data(), nV * 12);
+  static_assert(sizeof(Eigen::Vector3f) == 12);
+  bin.putPoints(state.skin.positions.front().data(), nV);
+  bin.putPoints(state.skin.normals.front().data(), nV);
   bin.put(skin.triangles.data(), skin.triangles.size() * 4);
   std::vector<std::uint32_t> idx;
   for (const CoatPart& p : parts) {
     const fur::HairBuffers& b = state.fur.coats[static_cast<std::size_t>(p.coat)];
     const int K = p.layout.strandPoints;
     if (p.layout.ringSides == 1) {
-      bin.put(b.positions.data(), static_cast<std::size_t>(p.vertices) * 12);
+      bin.putPoints(b.positions.data(), static_cast<std::size_t>(p.vertices));
     } else {
       line.resize(static_cast<std::size_t>(K) * 3);
       for (std::int64_t h = 0; h < p.hairs; ++h) {
         detail::hairCenterLine(b, h, line.data());
-        bin.put(line.data(), line.size() * 4);
+        bin.putPoints(line.data(), static_cast<std::size_t>(K));
       }
     }
     idx.clear();
@@ -253,7 +288,8 @@ bool isCompleteGlb(const std::string& path) {
   if (!in.read(reinterpret_cast<char*>(h), 12)) return false;
   auto u32 = [&](int at) {
     return static_cast<std::uint32_t>(h[at]) | static_cast<std::uint32_t>(h[at + 1]) << 8 |
-           static_cast<std::uint32_t>(h[at + 2]) << 16 | static_cast<std::uint32_t>(h[at + 3]) << 24;
+           static_cast<std::uint32_t>(h[at + 2]) << 16 |
+           static_cast<std::uint32_t>(h[at + 3]) << 24;
   };
   return u32(0) == 0x46546C67u && u32(4) == 2 && u32(8) == size;
 }

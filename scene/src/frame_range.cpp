@@ -34,7 +34,8 @@ FrameRange parseFrameRange(std::string_view text, std::string_view field) {
 
 int frameOfFileName(std::string_view name, std::string_view extension) {
   constexpr std::string_view kPrefix = "frame_";
-  if (name.size() <= kPrefix.size() + extension.size() || name.substr(0, kPrefix.size()) != kPrefix ||
+  if (name.size() <= kPrefix.size() + extension.size() ||
+      name.substr(0, kPrefix.size()) != kPrefix ||
       name.substr(name.size() - extension.size()) != extension)
     return -1;
   int frame = -1;

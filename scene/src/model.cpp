@@ -66,7 +66,8 @@ Model loadModel(const std::string& spec, const LoadOptions& options) {
   const bool gltf = ext == ".gltf" || ext == ".glb";
   const bool mesh = ext == ".obj" || ext == ".ply" || ext == ".off" || ext == ".stl";
   if (!gltf && (options.noFurRegions || !options.segmentDirections.empty()))
-    inputError(spec, ": no-fur regions and segment directions apply to glTF models (.gltf/.glb) "
+    inputError(spec,
+               ": no-fur regions and segment directions apply to glTF models (.gltf/.glb) "
                "only");
   if (!gltf && !mesh && options.unitScale != 0.0f)
     inputError(spec, ": a unit scale applies to glTF models and static meshes only");
@@ -94,7 +95,8 @@ Model loadModel(const std::string& spec, const LoadOptions& options) {
 float modelSizeMeters(const Model& model) {
   const float* p = model.skin.restPositions();
   Eigen::AlignedBox3f box;
-  for (int v = 0; v < model.skin.numVertices(); ++v) box.extend(Eigen::Vector3f(p[3 * v], p[3 * v + 1], p[3 * v + 2]));
+  for (int v = 0; v < model.skin.numVertices(); ++v)
+    box.extend(Eigen::Vector3f(p[3 * v], p[3 * v + 1], p[3 * v + 2]));
   return box.isEmpty() ? 0.0f : box.sizes().maxCoeff();
 }
 

@@ -3,8 +3,12 @@
 // unwritable outputs and a failing disk.
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <filesystem>
 
+#include <nlohmann/json.hpp>
+
+#include "pelage/scene/frame_range.h"
 #include "scene/export_test_support.h"
 #include "test_support.h"
 
@@ -178,6 +182,108 @@ TEST_F(ExportCommand, FailingDiskLeavesNoPartialFiles) {
       << out;
   EXPECT_EQ(std::distance(fs::directory_iterator(dir.path()), fs::directory_iterator()),
             1);  // wag.json only
+}
+
+}  // namespace
+}  // namespace pelage::test
+
+namespace pelage::test {
+namespace {
+
+// The JSON chunk of a .glb file.
+nlohmann::json glbJson(const std::string& path) {
+  const std::string bytes = readText(path);
+  EXPECT_GE(bytes.size(), 20u);
+  std::uint32_t length = 0;
+  std::memcpy(&length, bytes.data() + 12, 4);
+  return nlohmann::json::parse(bytes.substr(20, length));
+}
+
+// glTF is +Y up: the Fox (1.55 m nose to tail, 0.77 m high) stands on its feet, its height along
+// Y and its length along Z, and the asset says how pelage's axes were converted.
+TEST(ExportGlb, TheFoxStandsUpInGltfAxes) {
+  const std::string fox = PELAGE_SHARED_MODELS_DIR "/Fox/Fox.glb";
+  if (!fs::exists(fox)) GTEST_SKIP() << fox << " is absent (../shared/models)";
+  TempDir dir;
+  const RunResult r = runPelage("export " + fox + " --clip Walk --frames 0 --hairs 3000 " +
+                                "--format glb --out " + dir.file("fox"));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const nlohmann::json j = glbJson(dir.file("fox/frame_00000.glb"));
+  EXPECT_EQ(j["asset"]["extras"]["up"], "+Y");
+  const int position = j["meshes"][0]["primitives"][0]["attributes"]["POSITION"];
+  const nlohmann::json& acc = j["accessors"][static_cast<std::size_t>(position)];
+  double size[3];
+  for (int a = 0; a < 3; ++a)
+    size[a] = acc["max"][static_cast<std::size_t>(a)].get<double>() -
+              acc["min"][static_cast<std::size_t>(a)].get<double>();
+  EXPECT_NEAR(size[1], 0.77, 0.12);               // height: Y (mid-stride in the walk)
+  EXPECT_NEAR(size[2], 1.55, 0.15);               // nose to tail: Z, glTF's front
+  EXPECT_LT(size[0], size[1]);                    // width: X, the narrowest
+  EXPECT_GT(acc["min"][1].get<double>(), -0.05);  // the paws on the ground plane, none below it
+}
+
+// Spools of a USD export killed by SIGKILL are removed by the next run for the same output; a
+// SIGTERM removes them at once (the signal handler of util/atomic_file.h).
+TEST_F(ExportCommand, KilledUsdExportsLeaveNoSpoolFiles) {
+  const std::string out = dir.file("walk.usda");
+  auto spools = [&] {
+    int n = 0;
+    for (const auto& e : fs::directory_iterator(dir.path()))
+      n += e.path().filename().string().rfind(".walk.usda.", 0) == 0;
+    return n;
+  };
+  for (const char* signal : {"KILL", "TERM"}) {
+    SCOPED_TRACE(signal);
+    const RunResult r =
+        runShell("bash -c '" + std::string(PELAGE_BIN_DIR) + "/pelage export " +
+                 PELAGE_SOURCE_DIR "/tests/scene/critter.json --clip " + dir.file("wag.json") +
+                 " --hairs 200000 --frames 0:400 --format usda --out " + out +
+                 " > /dev/null & pid=$!; for i in $(seq 400); do ls -a " + dir.path().string() +
+                 " | grep -q walk.usda.spool && break; sleep 0.05; done; kill -" + signal +
+                 " $pid; wait $pid; echo status $?'");
+    EXPECT_NE(r.output.find(std::string("status ") + (signal[0] == 'K' ? "137" : "143")),
+              std::string::npos)
+        << r.output;
+    if (signal[0] == 'K') {
+      EXPECT_GT(spools(), 0) << "SIGKILL cannot be caught: its spools stay until the next run";
+      const RunResult next =
+          runPelage("export " + base() + " --frames 0:1 --format usda --out " + out);
+      ASSERT_EQ(next.exitCode, 0) << next.output;
+      EXPECT_NE(next.output.find("spool file(s) of a killed run"), std::string::npos)
+          << next.output;
+    }
+    EXPECT_EQ(spools(), 0);
+  }
+}
+
+// --resume keeps complete PLY/glb frames, redoes the missing one and removes a killed run's
+// temporary: the same bytes as one run, with dynamics too (the redone frame is pre-rolled).
+TEST_F(ExportCommand, ResumeCompletesPerFrameExportsToTheSameBytes) {
+  for (const std::string format : {"ply", "glb"}) {
+    SCOPED_TRACE(format);
+    const std::string whole = dir.file("whole-" + format), part = dir.file("part-" + format);
+    const std::string dyn = " --dynamics on --format " + format;
+    ASSERT_EQ(runPelage("export " + base() + " --frames 0:4" + dyn + " --out " + whole).exitCode,
+              0);
+    ASSERT_EQ(runPelage("export " + base() + " --frames 0:4" + dyn + " --out " + part).exitCode, 0);
+    const std::string name = "frame_00003." + format;
+    fs::remove(fs::path(part) / name);
+    writeText((fs::path(part) / ("frame_00004." + format)).string(), "truncated");
+    writeText((fs::path(part) / ("." + name + ".tmp-999999-0")).string(), "half");
+    const auto kept = fs::last_write_time(fs::path(part) / ("frame_00001." + format));
+    const RunResult r =
+        runPelage("export " + base() + " --frames 0:4" + dyn + " --resume --out " + part);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("3 complete frame(s) kept by --resume"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("removed 1 temporary file(s)"), std::string::npos) << r.output;
+    EXPECT_EQ(fs::last_write_time(fs::path(part) / ("frame_00001." + format)), kept);
+    for (int f = 0; f <= 4; ++f) {
+      const std::string n = scene::frameFileName(f, "." + format);
+      EXPECT_EQ(readText((fs::path(part) / n).string()), readText((fs::path(whole) / n).string()))
+          << n;
+    }
+    EXPECT_FALSE(fs::exists(fs::path(part) / ("." + name + ".tmp-999999-0")));
+  }
 }
 
 }  // namespace

@@ -69,7 +69,12 @@ void checkFrame(fur::HairStyle style) {
   EXPECT_EQ(sp.mode, TINYGLTF_MODE_TRIANGLES);
   const std::vector<float> pos = read<float>(g, sp.attributes.at("POSITION"));
   ASSERT_EQ(pos.size(), static_cast<std::size_t>(m.skin.numVertices()) * 3);
-  EXPECT_EQ(std::memcmp(pos.data(), state.skin.positions.data(), pos.size() * 4), 0);
+  // glTF axes: +Y up; pelage's (x, y, z) is (y, z, x) there, exactly.
+  for (std::size_t v = 0; v < pos.size() / 3; ++v) {
+    ASSERT_EQ(pos[3 * v], state.skin.positions[v].y());
+    ASSERT_EQ(pos[3 * v + 1], state.skin.positions[v].z());
+    ASSERT_EQ(pos[3 * v + 2], state.skin.positions[v].x());
+  }
   EXPECT_EQ(read<float>(g, sp.attributes.at("NORMAL")).size(), pos.size());
   const std::vector<std::uint32_t> tri = read<std::uint32_t>(g, sp.indices);
   ASSERT_EQ(tri.size(), m.skin.triangles.size());
@@ -96,7 +101,8 @@ void checkFrame(fur::HairStyle style) {
           float expect = 0.0f;
           for (int j = 0; j < M; ++j) expect += b.positions.data()[((h * K + k) * M + j) * 3 + a];
           expect /= static_cast<float>(M);
-          ASSERT_NEAR(hp[static_cast<std::size_t>((h * K + k) * 3 + a)], expect, 1e-7f);
+          // Written in glTF axes: component a of pelage lands at (a + 2) % 3.
+          ASSERT_NEAR(hp[static_cast<std::size_t>((h * K + k) * 3 + (a + 2) % 3)], expect, 1e-7f);
         }
     // Bounds contain every point.
     const tinygltf::Accessor& acc =

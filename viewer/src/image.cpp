@@ -49,7 +49,8 @@ void writeImage(const std::string& path, const Image& image) {
   std::vector<std::uint8_t> rgb(static_cast<std::size_t>(image.width) *
                                 static_cast<std::size_t>(image.height) * 3);
   for (std::size_t i = 0, n = rgb.size() / 3; i < n; ++i)
-    for (int c = 0; c < 3; ++c) rgb[3 * i + static_cast<std::size_t>(c)] = image.rgba[4 * i + static_cast<std::size_t>(c)];
+    for (int c = 0; c < 3; ++c)
+      rgb[3 * i + static_cast<std::size_t>(c)] = image.rgba[4 * i + static_cast<std::size_t>(c)];
   std::vector<std::uint8_t> out;
   stbi_write_jpg_to_func(
       [](void* ctx, void* data, int size) {

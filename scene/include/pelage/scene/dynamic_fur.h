@@ -16,7 +16,7 @@ namespace pelage::scene {
 struct DynamicsClock {
   double fps = 30.0;          // frames per second, [1, 1000]
   double startSeconds = 0.0;  // clip time of frame 0
-  int preRollFrames = -1;  // -1: from the clip's start (frame 0); else this many frames before
+  int preRollFrames = -1;     // -1: from the clip's start (frame 0); else this many frames before
 };
 
 // The first frame simulated to show frames from `firstFrame` on: 0, or max(0, first - preRoll).

@@ -2,7 +2,9 @@
 // skin as a triangle mesh (POSITION, NORMAL, indices) and each coat's hairs (Van Gelder & Wilhelms
 // 1997, sec. 3.1) as one LINES primitive (POSITION, index pairs joining consecutive points of each
 // hair: the line, polyline or tessellated curve; a tube's ring centres), each with a material of
-// its colour. Written atomically; the data streams from the frame's buffers (no copy of the hairs).
+// its colour. Coordinates are glTF's: +Y up, metres (pelage's +Z-up point (x, y, z) is written as
+// (y, z, x), which the asset's extras state). Written atomically; the data streams from the frame's
+// buffers.
 #pragma once
 
 #include <array>

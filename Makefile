@@ -4,7 +4,7 @@ BUILD_ASAN ?= build-asan
 JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
 CMAKE_FLAGS ?=
 
-.PHONY: all deps build demo test test-asan soak fuzz fuzz-ci bench format format-check clean
+.PHONY: all deps build demo test test-asan soak fuzz fuzz-ci farm-test bench format format-check clean
 
 all: build
 
@@ -49,6 +49,11 @@ fuzz: deps
 # The bounded, fixed-seed fuzz run CI does (reproducible: same seed, same number of runs).
 fuzz-ci: deps
 	@scripts/fuzz.sh ci
+
+# The render-farm and sweep recipes under a running one-node Slurm cluster (scripts/farm-test.sh;
+# root; installs slurm-wlm and munge).
+farm-test: build
+	@scripts/farm-test.sh $(BUILD)
 
 bench: build
 	@for b in $(BUILD)/bin/bench_*; do echo "== $$b"; $$b; done

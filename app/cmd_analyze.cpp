@@ -120,7 +120,7 @@ scene::PlotSpec sweepPlot(const scene::SweepResult& s, const std::string& title)
   scene::PlotPanel height{
       std::string("mean tip height above the root (mm)") + (dyn ? ", dynamic" : ", quasi-static"),
       {}};
-  const std::vector<double> values = s.spec.values();
+  const std::vector<double>& values = s.values;
   for (std::size_t i = 0; i < s.runs.size(); ++i) {
     char label[64];
     std::snprintf(label, sizeof label, "%s = %g", s.spec.parameter.c_str(), values[i]);
@@ -202,6 +202,8 @@ void addAnalyzeCommand(CLI::App& app) {
   struct Options {
     std::string out, plot, sweep, groups = "region";
     double hold = 0.0;
+    int sweepIndex = -1;
+    std::vector<std::string> merge;
   };
   auto o = std::make_shared<Options>();
   model->add(*cmd);
@@ -220,10 +222,34 @@ void addAnalyzeCommand(CLI::App& app) {
                   "Sweep one parameter: stiffness=A:B:N (the paper's, [0, 1]), frequency=A:B:N "
                   "(Hz) or damping=A:B:N (these two with --dynamics on); one CSV with a column per "
                   "value");
+  auto* indexOption = cmd->add_option(
+      "--sweep-index", o->sweepIndex,
+      "With --sweep: run only value I of the sweep [0, N-1] (one task of a sweep split across "
+      "processes or a job array; join the parts with --merge)");
+  auto* mergeOption = cmd->add_option(
+      "--merge", o->merge,
+      "Join the CSVs of a split sweep's parts, given in value order, into the CSV one run writes "
+      "(no model is loaded; only --out applies)");
   cmd->add_option("--out", o->out, "Output .csv file")->required();
   cmd->add_option("--plot", o->plot, "Also draw the main curves against time into this .png file");
   common->add(*cmd, true);
   cmd->callback([=] {
+    if (!o->merge.empty()) {
+      for (const CLI::Option* opt : cmd->get_options())
+        if (opt->count() > 0 && opt != mergeOption && opt->get_name() != "--out" &&
+            opt->get_name() != "--quiet" && opt->get_name() != "--threads")
+          inputError("--merge takes only --out (and --quiet, --threads), not ", opt->get_name());
+      std::vector<std::string> texts;
+      for (const std::string& f : o->merge) {
+        if (!std::filesystem::is_regular_file(f)) inputError(f, ": no such file to merge");
+        texts.push_back(readTextFile(f));
+      }
+      writeFileAtomically(o->out, scene::mergeSweepCsv(texts, o->merge));
+      if (!common->quiet)
+        std::printf("%s: merged %zu sweep parts\n", o->out.c_str(), o->merge.size());
+      return;
+    }
+    if (indexOption->count() > 0 && o->sweep.empty()) inputError("--sweep-index needs --sweep");
     // Options first: bad values fail before the model is built.
     const fur::FurParams params = furArgs->resolve();
     scene::AnalysisOptions opt;
@@ -271,13 +297,13 @@ void addAnalyzeCommand(CLI::App& app) {
       title += buf;
     }
     if (!o->sweep.empty()) {
-      const scene::SweepResult s = scene::sweepClip(m, fur, opt, sweep);
+      const scene::SweepResult s = scene::sweepClip(m, fur, opt, sweep, o->sweepIndex);
       writeFileAtomically(o->out, scene::sweepCsv(s));
       if (!o->plot.empty())
         scene::writePlotPng(o->plot, sweepPlot(s, title + ", sweep " + o->sweep));
       if (quiet) return;
-      std::printf("%s: %zu frames x %d values of %s (%s)\n", o->out.c_str(),
-                  s.runs.front().frames.size(), sweep.count, sweep.parameter.c_str(),
+      std::printf("%s: %zu frames x %zu values of %s (%s)\n", o->out.c_str(),
+                  s.runs.front().frames.size(), s.values.size(), sweep.parameter.c_str(),
                   opt.dynamics ? "dynamic" : "quasi-static");
       if (!o->plot.empty()) std::printf("%s: plot\n", o->plot.c_str());
       return;

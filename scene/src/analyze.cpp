@@ -499,10 +499,18 @@ SweepSpec parseSweep(const std::string& text, const std::string& field) {
 }
 
 SweepResult sweepClip(const Model& model, const Fur& fur, const AnalysisOptions& options,
-                      const SweepSpec& spec) {
+                      const SweepSpec& spec, int index) {
+  if (index < -1 || index >= spec.count)
+    fieldError("sweep index", index, " is out of range [0, ", spec.count - 1, "] (", spec.count,
+               " values)");
   SweepResult out;
   out.spec = spec;
-  for (double v : spec.values()) {
+  const std::vector<double> all = spec.values();
+  if (index >= 0)
+    out.values = {all[static_cast<std::size_t>(index)]};
+  else
+    out.values = all;
+  for (double v : out.values) {
     Fur varied = fur;
     AnalysisOptions o = options;
     for (int c = 0; c < fur::kCoatCount; ++c) {
@@ -522,7 +530,7 @@ SweepResult sweepClip(const Model& model, const Fur& fur, const AnalysisOptions&
 std::string sweepCsv(const SweepResult& sweep) {
   PELAGE_CHECK(!sweep.runs.empty(), "empty sweep");
   const AnalysisResult& first = sweep.runs.front();
-  const std::vector<double> values = sweep.spec.values();
+  const std::vector<double>& values = sweep.values;
   std::string out = "frame,time_s,held,pitch_deg,tilt_deg";
   for (const char* column : {"droop_mean_deg", "tip_height_mm"})
     for (double v : values)
@@ -540,6 +548,97 @@ std::string sweepCsv(const SweepResult& sweep) {
       const FrameAnalysis& g = r.frames[i];
       row += "," + number(r.dynamics ? g.dynamic.tipHeightMm : g.quasiStatic.tipHeightMm);
     }
+    out += row + "\n";
+  }
+  return out;
+}
+
+namespace {
+
+std::vector<std::string> splitLine(const std::string& line) {
+  std::vector<std::string> cells;
+  std::size_t start = 0;
+  for (;;) {
+    const std::size_t comma = line.find(',', start);
+    cells.push_back(line.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
+    if (comma == std::string::npos) return cells;
+    start = comma + 1;
+  }
+}
+
+}  // namespace
+
+std::string mergeSweepCsv(const std::vector<std::string>& texts,
+                          const std::vector<std::string>& sources) {
+  PELAGE_CHECK(texts.size() == sources.size());
+  if (texts.empty()) inputError("no sweep CSV to merge");
+  constexpr std::size_t kShared = 5;  // frame, time_s, held, pitch_deg, tilt_deg
+  const std::vector<std::string> shared = {"frame", "time_s", "held", "pitch_deg", "tilt_deg"};
+  struct Part {
+    std::vector<std::vector<std::string>> rows;  // header first
+    std::size_t values = 0;
+  };
+  std::vector<Part> parts;
+  for (std::size_t i = 0; i < texts.size(); ++i) {
+    Part p;
+    std::size_t start = 0;
+    while (start < texts[i].size()) {
+      std::size_t end = texts[i].find('\n', start);
+      if (end == std::string::npos) end = texts[i].size();
+      p.rows.push_back(splitLine(texts[i].substr(start, end - start)));
+      start = end + 1;
+    }
+    if (p.rows.size() < 2)
+      inputError(sources[i], ": not a sweep CSV (a header and at least one row are needed)");
+    const std::vector<std::string>& h = p.rows.front();
+    const std::size_t columns = h.size();
+    if (columns < kShared + 2 || (columns - kShared) % 2 != 0 ||
+        !std::equal(shared.begin(), shared.end(), h.begin()) ||
+        h[kShared].rfind("droop_mean_deg[", 0) != 0)
+      inputError(sources[i], ": not a sweep CSV of `pelage analyze --sweep` (its header is '",
+                 texts[i].substr(0, texts[i].find('\n')), "')");
+    p.values = (columns - kShared) / 2;
+    for (std::size_t r = 1; r < p.rows.size(); ++r)
+      if (p.rows[r].size() != columns)
+        inputError(sources[i], ": row ", r + 1, " has ", p.rows[r].size(), " cells, the header ",
+                   columns);
+    if (i > 0) {
+      const Part& first = parts.front();
+      if (p.rows.size() != first.rows.size())
+        inputError(sources[i], ": ", p.rows.size() - 1, " frames, ", sources[0], " has ",
+                   first.rows.size() - 1, " (parts of one sweep cover the same frames)");
+      for (std::size_t r = 1; r < p.rows.size(); ++r)
+        if (!std::equal(first.rows[r].begin(), first.rows[r].begin() + kShared, p.rows[r].begin()))
+          inputError(sources[i], ": row ", r + 1, " (frame ", p.rows[r][0], ") differs from ",
+                     sources[0], " in frame, time or body orientation: not the same clip and frames");
+      const std::string parameter = h[kShared].substr(0, h[kShared].find('='));
+      const std::string firstParameter =
+          first.rows[0][kShared].substr(0, first.rows[0][kShared].find('='));
+      if (parameter != firstParameter)
+        inputError(sources[i], ": sweeps ", parameter.substr(15), ", ", sources[0], " sweeps ",
+                   firstParameter.substr(15));
+    }
+    parts.push_back(std::move(p));
+  }
+  // Each value once.
+  std::map<std::string, std::size_t> seen;
+  for (std::size_t i = 0; i < parts.size(); ++i)
+    for (std::size_t v = 0; v < parts[i].values; ++v) {
+      const std::string& column = parts[i].rows[0][kShared + v];
+      const auto [it, fresh] = seen.emplace(column, i);
+      if (!fresh)
+        inputError(sources[i], ": ", column, " is also in ", sources[it->second],
+                   " (each value of the sweep in one part)");
+    }
+  std::string out;
+  for (std::size_t r = 0; r < parts.front().rows.size(); ++r) {
+    std::string row;
+    for (std::size_t c = 0; c < kShared; ++c)
+      row += (c ? "," : "") + parts.front().rows[r][c];
+    for (int block = 0; block < 2; ++block)
+      for (const Part& p : parts)
+        for (std::size_t v = 0; v < p.values; ++v)
+          row += "," + p.rows[r][kShared + static_cast<std::size_t>(block) * p.values + v];
     out += row + "\n";
   }
   return out;

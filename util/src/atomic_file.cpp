@@ -169,6 +169,19 @@ void AtomicFileWriter::commit() {
   committed_ = true;
 }
 
+std::string readTextFile(const std::string& path) {
+  std::FILE* f = std::fopen(path.c_str(), "rb");
+  if (!f) inputError(path, ": cannot read (", reason(errno), ")");
+  std::string text;
+  char buf[1 << 16];
+  std::size_t n;
+  while ((n = std::fread(buf, 1, sizeof buf, f)) > 0) text.append(buf, n);
+  const bool failed = std::ferror(f) != 0;
+  std::fclose(f);
+  if (failed) inputError(path, ": read failed");
+  return text;
+}
+
 void writeFileAtomically(const std::string& path, std::string_view content) {
   AtomicFileWriter w(path);
   w.write(content);

@@ -131,14 +131,24 @@ SweepSpec parseSweep(const std::string& text, const std::string& field = "sweep"
 
 struct SweepResult {
   SweepSpec spec;
+  std::vector<double> values;        // the values run (all of spec.values(), or one of them)
   std::vector<AnalysisResult> runs;  // one per value
 };
-// Runs analyzeClip once per value (fur parameters changed per run; the roots stay).
+// Runs analyzeClip once per value (fur parameters changed per run; the roots stay); with `index`
+// in [0, spec.count), only value `index` (one task of a sweep split across processes, whose CSVs
+// mergeSweepCsv joins). InputError naming field "sweep index" for an index out of range.
 SweepResult sweepClip(const Model& model, const Fur& fur, const AnalysisOptions& options,
-                      const SweepSpec& spec);
+                      const SweepSpec& spec, int index = -1);
 
 // The sweep's CSV: time_s, frame, held, pitch_deg, tilt_deg, then per value v the mean droop and
 // tip height of the model in use (dynamic in dynamic mode): "droop_mean_deg[stiffness=0.2]", ...
 std::string sweepCsv(const SweepResult& sweep);
+
+// Joins the CSVs of one sweep's parts (sweepCsv of runs of single values, in value order) into the
+// CSV one run of the whole sweep writes: the shared columns (frame, time, held, pitch, tilt) must
+// agree row for row, then every part's droop columns, then every part's tip-height columns.
+// InputError naming `sources[i]` for a part that is not a sweep CSV or does not fit the others.
+std::string mergeSweepCsv(const std::vector<std::string>& texts,
+                          const std::vector<std::string>& sources);
 
 }  // namespace pelage::scene

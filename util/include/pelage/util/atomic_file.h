@@ -34,6 +34,9 @@ class AtomicFileWriter {
   bool committed_ = false;
 };
 
+// The whole content of a file; InputError naming it when it cannot be read.
+std::string readTextFile(const std::string& path);
+
 // Writes `content` to `path` atomically (see AtomicFileWriter).
 void writeFileAtomically(const std::string& path, std::string_view content);
 

@@ -146,16 +146,24 @@ void makeTwistTable(std::uint64_t seed, float normalRandomize, std::vector<float
 }
 
 void prepareFurFrame(const FurRoots& roots, const FurParams& params, FurFrame& frame) {
+  std::array<std::size_t, kCoatCount> floats{};
   for (int c = 0; c < kCoatCount; ++c) {
-    HairBuffers& hb = frame.coats[static_cast<std::size_t>(c)];
-    const std::int64_t n = roots.coats[static_cast<std::size_t>(c)].size();
-    hb.layout = hairLayout(params.coats[static_cast<std::size_t>(c)]);
-    const std::size_t floats =
-        static_cast<std::size_t>(n) * static_cast<std::size_t>(hb.layout.pointsPerHair()) * 3;
-    hb.positions.resize(floats);
-    hb.normals.resize(floats);
-    if (hb.hairIds.size() != static_cast<std::size_t>(n))
-      hb.hairIds.resize(static_cast<std::size_t>(n));
+    const auto ci = static_cast<std::size_t>(c);
+    frame.coats[ci].layout = hairLayout(params.coats[ci]);
+    floats[ci] = static_cast<std::size_t>(roots.coats[ci].size()) *
+                 static_cast<std::size_t>(frame.coats[ci].layout.pointsPerHair()) * 3;
+  }
+  frame.positions.resize(floats[0] + floats[1]);
+  frame.normals.resize(floats[0] + floats[1]);
+  std::size_t offset = 0;
+  for (int c = 0; c < kCoatCount; ++c) {
+    const auto ci = static_cast<std::size_t>(c);
+    HairBuffers& hb = frame.coats[ci];
+    hb.positions = {frame.positions.data() + offset, floats[ci]};
+    hb.normals = {frame.normals.data() + offset, floats[ci]};
+    offset += floats[ci];
+    const auto n = static_cast<std::size_t>(roots.coats[ci].size());
+    if (hb.hairIds.size() != n) hb.hairIds.resize(n);
     hb.drawn = 0;
   }
 }
@@ -297,8 +305,10 @@ void detail::generateFurWithDynamics(
     const double bytes = static_cast<double>(drawn) * shape.points * 24.0;
     // Streaming needs 32-byte aligned rows: polyline-like layouts (P a multiple of 8) and lines
     // (a full 8-line block is six aligned vectors).
+    // ... and coat 1's arrays start where coat 0's end: only at a 64-byte boundary.
+    const auto aligned = [](const float* p) { return reinterpret_cast<std::uintptr_t>(p) % 64 == 0; };
     a.streamStores = emit && (shape.points % 8 == 0 || shape.style == HairStyle::Line) &&
-                     bytes > kStreamStoreBytes;
+                     bytes > kStreamStoreBytes && aligned(a.positions) && aligned(a.normals);
     auto run = path == KernelPath::Avx512 ? detail::runCoatRangeAvx512
                : path == KernelPath::Avx2 ? detail::runCoatRangeAvx2
                                           : detail::runCoatRangeGeneric;

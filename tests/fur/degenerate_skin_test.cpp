@@ -53,7 +53,7 @@ f 1 2 18
 f 2 1 18
 )";
 
-bool allFinite(const FloatBuffer& b) {
+bool allFinite(const FloatSpan& b) {
   for (std::size_t i = 0; i < b.size(); ++i)
     if (!std::isfinite(b.data()[i])) return false;
   return true;

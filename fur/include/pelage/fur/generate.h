@@ -42,22 +42,36 @@ class FloatBuffer {
   std::size_t capacity_ = 0;
 };
 
+// A view of floats in a FloatBuffer (non-owning).
+struct FloatSpan {
+  float* begin = nullptr;
+  std::size_t count = 0;
+  float* data() { return begin; }
+  const float* data() const { return begin; }
+  std::size_t size() const { return count; }
+};
+
 // One coat's hairs for one frame, laid out as `layout` says (hair_layout.h): hair i (i < drawn)
 // has P = layout.pointsPerHair() points, at [i * P, (i + 1) * P) in `positions` and `normals`, each
 // point 3 floats (x, y, z), world metres; `hairIds[i]` is the hair's index into the coat's roots
 // (CoatRoots). Point 0 is the root. Shading normals: line and curve repeat the skin normal;
 // polyline has one per point (sec. 3.7); tube points are ring points with radial normals (point
-// k * M + j: ring k, direction j).
+// k * M + j: ring k, direction j). The arrays are views into the FurFrame's.
 struct HairBuffers {
   HairLayout layout;
   std::int64_t drawn = 0;
-  FloatBuffer positions;              // (capacity * P) x 3
-  FloatBuffer normals;                // (capacity * P) x 3
+  FloatSpan positions;                // (capacity * P) x 3
+  FloatSpan normals;                  // (capacity * P) x 3
   std::vector<std::int32_t> hairIds;  // capacity
 };
 
+// One frame's hairs, both coats in one allocation: coat 0's roots, then coat 1's (each coat's slots
+// for all its roots). Without culling every root is drawn, so the two coats' hairs are one
+// contiguous array (what the Python package hands out as a single numpy view).
 struct FurFrame {
   std::array<HairBuffers, kCoatCount> coats;
+  FloatBuffer positions;  // sum over coats of (roots * P) x 3
+  FloatBuffer normals;
   float cullingFactor = 1.0f;
   std::int64_t drawn() const { return coats[0].drawn + coats[1].drawn; }
 };

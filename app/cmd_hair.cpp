@@ -113,14 +113,12 @@ void addHairCommand(CLI::App& app) {
       if (pose->clip.empty())
         inputError(
             "--dynamics on needs --clip naming one of the model's clips (see `pelage info`)");
-      if (!(pose->time >= 0.0 && pose->time <= 1e6))
-        inputError("--time ", pose->time, " is out of range [0, 1000000] seconds");
       po.clip = scene::resolveClip(m, pose->clip);
       po.framesPerSecond = frames->fps;
       po.preRollFrames = dynamics->preRoll;
       po.dynamics = true;
       po.dynamicsParams = dyn;
-      shown = static_cast<int>(std::lround(pose->time * frames->fps));
+      shown = scene::oneFrameAt(po, pose->time);
     } else {
       po.stillPose = pose->stillPose(m);
     }

@@ -35,13 +35,14 @@ int& sharedThreads() {
 }  // namespace
 
 std::string_view optionForField(std::string_view field) {
-  static constexpr std::array<std::pair<std::string_view, std::string_view>, 24> kOptions{{
+  static constexpr std::array<std::pair<std::string_view, std::string_view>, 26> kOptions{{
       {"benchmark frames", "--benchmark-frames"},
       {"benchmark hairs", "--benchmark-hairs"},
       {"camera", "--camera"},
       {"clip", "--clip"},
       {"dynamics", "--dynamics"},
       {"encoders", "--encoders"},
+      {"format", "--format"},
       {"fov", "--fov"},
       {"fps", "--fps"},
       {"frames", "--frames"},
@@ -50,6 +51,7 @@ std::string_view optionForField(std::string_view field) {
       {"no fur", "--no-fur"},
       {"out", "--out"},
       {"preroll", "--preroll"},
+      {"resume", "--resume"},
       {"samples", "--samples"},
       {"screenshot", "--screenshot"},
       {"shading", "--shading"},
@@ -346,9 +348,7 @@ void FrameOptions::validateFps() const {
 scene::FrameRange FrameOptions::range(const scene::Model& model, int clip) const {
   validateFps();
   if (!frames.empty()) return scene::parseFrameRange(frames);
-  if (clip < 0) return {0, 0};
-  const double duration = static_cast<double>(model.clips[static_cast<std::size_t>(clip)].duration);
-  return {0, static_cast<int>(std::lround(duration * fps))};
+  return scene::wholeClip(model, clip, fps);
 }
 
 // ---- ViewOptions ---------------------------------------------------------------------------

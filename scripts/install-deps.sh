@@ -10,6 +10,7 @@ packages=(
   libglfw3-dev libimgui-dev
   libegl-dev libopengl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
   xvfb xauth ffmpeg
+  pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib python3-pil
 )
 
 missing=()

@@ -1,6 +1,7 @@
 #include "pelage/anatomy/creature.h"
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -165,6 +166,9 @@ Creature parseCreature(const std::string& jsonText, const std::string& source) {
 }
 
 Creature loadCreature(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec))
+    throw MissingFileError(path + ": cannot open creature file (missing or unreadable)");
   std::ifstream in(path, std::ios::binary);
   if (!in) inputError(path, ": cannot open creature file (missing or unreadable)");
   std::ostringstream ss;

@@ -163,7 +163,7 @@ std::size_t componentsOf(int type) {
 tinygltf::Model loadModelFile(const std::string& path) {
   namespace fs = std::filesystem;
   std::error_code ec;
-  if (!fs::exists(path, ec)) inputError(path, ": file does not exist");
+  requireExistingFile(path);
   if (!fs::is_regular_file(path, ec)) inputError(path, ": not a regular file");
   const std::uintmax_t bytes = fs::file_size(path, ec);
   if (ec) inputError(path, ": cannot read the file size (", ec.message(), ")");

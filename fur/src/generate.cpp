@@ -306,7 +306,9 @@ void detail::generateFurWithDynamics(
     // Streaming needs 32-byte aligned rows: polyline-like layouts (P a multiple of 8) and lines
     // (a full 8-line block is six aligned vectors).
     // ... and coat 1's arrays start where coat 0's end: only at a 64-byte boundary.
-    const auto aligned = [](const float* p) { return reinterpret_cast<std::uintptr_t>(p) % 64 == 0; };
+    const auto aligned = [](const float* p) {
+      return reinterpret_cast<std::uintptr_t>(p) % 64 == 0;
+    };
     a.streamStores = emit && (shape.points % 8 == 0 || shape.style == HairStyle::Line) &&
                      bytes > kStreamStoreBytes && aligned(a.positions) && aligned(a.normals);
     auto run = path == KernelPath::Avx512 ? detail::runCoatRangeAvx512

@@ -255,9 +255,9 @@ inline void writePolylines8(float* base, const __m256* v, int lanes, bool stream
 }
 
 // 8 lines' 6 floats each. A full block's 48 floats are contiguous (and 32-byte aligned when the
-// coat's array is: blocks start at multiples of 8 hairs), so they leave as six whole vectors: rows r_l (6 floats each, from one
-// transpose) are packed as r0 r1[0,1] | r1[2..5] r2[0..3] | r2[4,5] r3 | r4 r5[0,1] | ...
-// A partial block stores each row's 6 floats.
+// coat's array is: blocks start at multiples of 8 hairs), so they leave as six whole vectors: rows
+// r_l (6 floats each, from one transpose) are packed as r0 r1[0,1] | r1[2..5] r2[0..3] | r2[4,5] r3
+// | r4 r5[0,1] | ... A partial block stores each row's 6 floats.
 inline void writeLines8(float* base, const __m256* v, int lanes, bool stream) {
   const __m256 cols[8] = {
       v[0], v[1], v[2], v[3], v[4], v[5], _mm256_setzero_ps(), _mm256_setzero_ps()};

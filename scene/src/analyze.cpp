@@ -560,7 +560,8 @@ std::vector<std::string> splitLine(const std::string& line) {
   std::size_t start = 0;
   for (;;) {
     const std::size_t comma = line.find(',', start);
-    cells.push_back(line.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
+    cells.push_back(
+        line.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
     if (comma == std::string::npos) return cells;
     start = comma + 1;
   }
@@ -610,7 +611,8 @@ std::string mergeSweepCsv(const std::vector<std::string>& texts,
       for (std::size_t r = 1; r < p.rows.size(); ++r)
         if (!std::equal(first.rows[r].begin(), first.rows[r].begin() + kShared, p.rows[r].begin()))
           inputError(sources[i], ": row ", r + 1, " (frame ", p.rows[r][0], ") differs from ",
-                     sources[0], " in frame, time or body orientation: not the same clip and frames");
+                     sources[0],
+                     " in frame, time or body orientation: not the same clip and frames");
       const std::string parameter = h[kShared].substr(0, h[kShared].find('='));
       const std::string firstParameter =
           first.rows[0][kShared].substr(0, first.rows[0][kShared].find('='));
@@ -633,8 +635,7 @@ std::string mergeSweepCsv(const std::vector<std::string>& texts,
   std::string out;
   for (std::size_t r = 0; r < parts.front().rows.size(); ++r) {
     std::string row;
-    for (std::size_t c = 0; c < kShared; ++c)
-      row += (c ? "," : "") + parts.front().rows[r][c];
+    for (std::size_t c = 0; c < kShared; ++c) row += (c ? "," : "") + parts.front().rows[r][c];
     for (int block = 0; block < 2; ++block)
       for (const Part& p : parts)
         for (std::size_t v = 0; v < p.values; ++v)

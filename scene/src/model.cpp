@@ -87,7 +87,7 @@ Model loadModel(const std::string& spec, const LoadOptions& options) {
     return m;
   }
   if (!std::filesystem::exists(spec))
-    inputError(spec, ": no such file, and not a built-in model (built-in: monkey)");
+    throw MissingFileError(spec + ": no such file, and not a built-in model (built-in: monkey)");
   inputError(spec, ": unsupported model format '", ext,
              "' (accepted: monkey, .json creature, .gltf/.glb, .obj .ply .off .stl mesh)");
 }

@@ -1,11 +1,30 @@
 #include "pelage/scene/playback.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "pelage/animation/clip.h"
 #include "pelage/util/error.h"
 
 namespace pelage::scene {
+
+FrameRange wholeClip(const Model& model, int clip, double fps) {
+  if (clip < 0) return {0, 0};
+  const double duration =
+      static_cast<double>(model.clips.at(static_cast<std::size_t>(clip)).duration);
+  return {0, static_cast<int>(std::lround(duration * fps))};
+}
+
+int oneFrameAt(PlaybackOptions& options, double seconds) {
+  if (!(seconds >= 0.0 && seconds <= 1e6))
+    fieldError("time", seconds, " is out of range [0, 1000000] seconds");
+  if (!options.dynamics) {
+    options.startSeconds = seconds;
+    return 0;
+  }
+  options.startSeconds = 0.0;
+  return static_cast<int>(std::lround(seconds * options.framesPerSecond));
+}
 
 void validatePlaybackOptions(const Model& model, const PlaybackOptions& o) {
   PELAGE_CHECK(o.clip >= -1 && o.clip < static_cast<int>(model.clips.size()), "clip ", o.clip,

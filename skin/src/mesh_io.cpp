@@ -584,7 +584,7 @@ void readOff(const std::string& path, TriMesh& mesh, std::uintmax_t fileSize) {
 SkinMesh readStaticMesh(const std::string& path, float furLengthMeters, float unitScale) {
   namespace fs = std::filesystem;
   std::error_code ec;
-  if (!fs::exists(path, ec)) inputError(path, ": mesh file does not exist");
+  requireExistingFile(path, "mesh file");
   if (!fs::is_regular_file(path, ec)) inputError(path, ": not a regular file");
   const std::string ext = lowerExtension(path);
   if (ext != ".obj" && ext != ".ply" && ext != ".off" && ext != ".stl")

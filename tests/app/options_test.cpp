@@ -38,19 +38,40 @@ const std::vector<std::string> kWriting = {"skin", "hair", "render", "export", "
 
 // Which commands take each shared option.
 const std::map<std::string, std::vector<std::string>>& sharedOptions() {
-  static const std::map<std::string, std::vector<std::string>> m = {
-      {"--threads", kAll},           {"--triangles", kAll},      {"--unit-scale", kAll},
-      {"--no-fur", kAll},            {"--directions", kAll},     {"--pose", kPosed},
-      {"--clip", kPosed},            {"--time", kPosed},         {"--fur", kFurred},
-      {"--hairs", kFurred},          {"--style", kFurred},       {"--seed", kFurred},
-      {"--undercoat-share", kFurred}, {"--length-scale", kFurred}, {"--stiffness", kFurred},
-      {"--fur-set", kFurred},        {"--dynamics", kDynamic},   {"--frequency", kDynamic},
-      {"--damping", kDynamic},       {"--preroll", kPreRolled},  {"--frames", kSequences},
-      {"--fps", kFps},               {"--size", kViewed},        {"--samples", kViewed},
-      {"--camera", kViewed},         {"--follow", kViewed},      {"--fov", kViewed},
-      {"--hair-source", kViewed},    {"--shading", kViewed},     {"--ribbons", kViewed},
-      {"--shadows", kViewed},        {"--no-culling", kViewed},  {"--skin-color", kViewed},
-      {"--quiet", kWriting}};
+  static const std::map<std::string, std::vector<std::string>> m = {{"--threads", kAll},
+                                                                    {"--triangles", kAll},
+                                                                    {"--unit-scale", kAll},
+                                                                    {"--no-fur", kAll},
+                                                                    {"--directions", kAll},
+                                                                    {"--pose", kPosed},
+                                                                    {"--clip", kPosed},
+                                                                    {"--time", kPosed},
+                                                                    {"--fur", kFurred},
+                                                                    {"--hairs", kFurred},
+                                                                    {"--style", kFurred},
+                                                                    {"--seed", kFurred},
+                                                                    {"--undercoat-share", kFurred},
+                                                                    {"--length-scale", kFurred},
+                                                                    {"--stiffness", kFurred},
+                                                                    {"--fur-set", kFurred},
+                                                                    {"--dynamics", kDynamic},
+                                                                    {"--frequency", kDynamic},
+                                                                    {"--damping", kDynamic},
+                                                                    {"--preroll", kPreRolled},
+                                                                    {"--frames", kSequences},
+                                                                    {"--fps", kFps},
+                                                                    {"--size", kViewed},
+                                                                    {"--samples", kViewed},
+                                                                    {"--camera", kViewed},
+                                                                    {"--follow", kViewed},
+                                                                    {"--fov", kViewed},
+                                                                    {"--hair-source", kViewed},
+                                                                    {"--shading", kViewed},
+                                                                    {"--ribbons", kViewed},
+                                                                    {"--shadows", kViewed},
+                                                                    {"--no-culling", kViewed},
+                                                                    {"--skin-color", kViewed},
+                                                                    {"--quiet", kWriting}};
   return m;
 }
 

@@ -1,6 +1,7 @@
 #include "pelage/util/json_reader.h"
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -17,6 +18,9 @@ JsonReader::JsonReader(const nlohmann::json& value, std::string file, std::strin
     : value_(&value), file_(std::move(file)), path_(std::move(path)) {}
 
 nlohmann::json JsonReader::parseFile(const std::string& file) {
+  std::error_code ec;
+  if (!std::filesystem::exists(file, ec))
+    throw MissingFileError(file + ": cannot open file (missing or unreadable)");
   std::ifstream in(file, std::ios::binary);
   if (!in) inputError(file, ": cannot open file (missing or unreadable)");
   std::ostringstream ss;

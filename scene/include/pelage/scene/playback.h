@@ -18,6 +18,7 @@
 #include <Eigen/Core>
 
 #include <cstdint>
+#include <utility>
 
 #include "pelage/anatomy/pose.h"
 #include "pelage/fur/dynamics.h"
@@ -25,6 +26,7 @@
 #include "pelage/scene/draw_list.h"
 #include "pelage/scene/dynamic_fur.h"
 #include "pelage/scene/frame.h"
+#include "pelage/scene/frame_range.h"
 #include "pelage/scene/light.h"
 #include "pelage/scene/model.h"
 
@@ -50,6 +52,16 @@ struct PlaybackOptions {
 // Checks the options against `model` (clip index, fps, pre-roll, dynamics parameters, dynamics
 // without a clip); InputError naming the field ("fps", "preroll", "dynamics", ...) otherwise.
 void validatePlaybackOptions(const Model& model, const PlaybackOptions& options);
+
+// The frames of clip `clip` played whole at `fps`: 0 to round(duration x fps) (the last frame shows
+// the clip's end); the still pose (clip -1): frame 0. The default frame range of every client.
+FrameRange wholeClip(const Model& model, int clip, double fps);
+
+// The one frame at clip time `seconds` (`pelage hair`, Python's Fur.hairs): without dynamics the
+// clip posed at `seconds` (frame 0 with startSeconds = seconds); with dynamics the clip played from
+// its start (startSeconds 0) to the frame nearest `seconds`. Sets `options` and returns the frame
+// to pose; InputError naming "time" when `seconds` is out of [0, 1000000].
+int oneFrameAt(PlaybackOptions& options, double seconds);
 
 class Playback {
  public:
@@ -89,10 +101,9 @@ class Playback {
   Framing framing() const;
   const Framing& firstFraming() const { return firstFraming_; }
 
-  // ---- 2. The fur
-  // --------------------------------------------------------------------------------- For a camera
-  // at `eye`: culling, and the CPU hairs or the GPU's counts; with dynamics, the springs' step to
-  // the posed frame (once per pose) and the hairs from their ends.
+  // ---- 2. The fur -------------------------------------------------------------------------------
+  // For a camera at `eye`: culling, and the CPU hairs or the GPU's counts; with dynamics, the
+  // springs' step to the posed frame (once per pose) and the hairs from their ends.
   void evaluateFur(const Eigen::Vector3f& eye);
   // The same for an explicit view (a viewing distance rather than a camera; `pelage hair`).
   void evaluateFur(const fur::FurView& view);
@@ -110,6 +121,10 @@ class Playback {
                                 const Material* skin = nullptr);
 
   const FrameState& state() const { return state_; }
+  // Moves the frame's CPU hairs out into `out` (swapping buffers): a client that keeps each frame's
+  // hairs (the Python package's frame iterator) takes them without a copy; the next frame sizes
+  // new buffers.
+  void takeHairs(fur::FurFrame& out) { std::swap(out, state_.fur); }
   const fur::FurDynamicsState& dynamicsState() const { return dynamics_; }
 
  private:

@@ -33,6 +33,15 @@ class InputError : public std::runtime_error {
   std::string field_, detail_;
 };
 
+// Bad user input that names a file which does not exist (Python raises FileNotFoundError for it).
+class MissingFileError : public InputError {
+ public:
+  using InputError::InputError;
+};
+
+// Throws MissingFileError "<path>: <what> does not exist" unless `path` exists.
+void requireExistingFile(const std::string& path, const std::string& what = "file");
+
 // A broken invariant inside pelage (a bug, never the user's fault).
 class InternalError : public std::logic_error {
  public:

@@ -1,0 +1,65 @@
+"""Models from Python: the same creature `pelage info` and `pelage skin` describe."""
+
+import json
+import os
+
+import numpy as np
+import pytest
+
+import pelage
+from conftest import bits
+
+SHARED = os.environ.get("PELAGE_SHARED_MODELS_DIR", "")
+
+
+def test_model_equals_info(monkey, cli):
+    info = json.loads(cli("info", "--json", quiet=False).stdout)
+    assert monkey.name == info["name"]
+    assert monkey.segments == [s["name"] for s in info["segments"]]
+    assert list(monkey.clips) == [c["name"] for c in info["clips"]]
+    for c in info["clips"]:
+        assert monkey.clips[c["name"]] == pytest.approx(c["durationSeconds"], rel=1e-7)
+    assert monkey.regions == [r["name"] if isinstance(r, dict) else r for r in info["regions"]]
+
+
+def test_skin_equals_the_command_line(monkey, cli, tmp_path):
+    positions, normals, triangles = monkey.skin(clip="walk", time=0.3)
+    out = tmp_path / "skin.ply"
+    cli("skin", "--clip", "walk", "--time", 0.3, "--out", out)
+    data = out.read_bytes()
+    end = data.index(b"end_header\n") + len(b"end_header\n")
+    vertices = np.frombuffer(data, dtype="<f4", count=positions.shape[0] * 6, offset=end)
+    vertices = vertices.reshape(-1, 6)
+    np.testing.assert_array_equal(bits(positions), bits(vertices[:, :3]))
+    np.testing.assert_array_equal(bits(normals), bits(vertices[:, 3:]))
+    faces = np.frombuffer(data, dtype=np.dtype([("n", "u1"), ("v", "<i4", 3)]),
+                          offset=end + vertices.nbytes)
+    assert np.all(faces["n"] == 3)
+    np.testing.assert_array_equal(faces["v"], triangles)
+
+
+def test_rest_skin_differs_from_a_posed_one(monkey):
+    rest, _, _ = monkey.skin()
+    posed, normals, _ = monkey.skin(clip="tumble", time=1.5)
+    assert rest.shape == posed.shape and not np.allclose(rest, posed)
+    np.testing.assert_allclose(np.linalg.norm(normals, axis=1), 1.0, atol=1e-4)
+
+
+def test_fur_params_round_trip(monkey):
+    fur = monkey.fur("fig9", hairs=1234, overcoat={"stiffness": 0.55})
+    params = fur.params
+    assert params["name"] == "fig9" and params["hairs"] == 1234
+    assert params["overcoat"]["stiffness"] == 0.55  # the float32 value, as its shortest decimal
+    again = monkey.fur("fig9", **{k: v for k, v in params.items() if k != "name"})
+    np.testing.assert_array_equal(fur.hairs().points, again.hairs().points)
+
+
+@pytest.mark.skipif(not os.path.exists(os.path.join(SHARED, "Fox", "Fox.glb")),
+                    reason="the shared glTF models are not here")
+def test_gltf_creature(cli):
+    fox = pelage.load(os.path.join(SHARED, "Fox", "Fox.glb"))
+    assert set(fox.clips) >= {"Survey", "Walk", "Run"}
+    hairs = fox.fur(hairs=5000).hairs(clip="Run", time=0.2)
+    assert len(hairs) > 4000
+    lo, hi = hairs.points.reshape(-1, 3).min(0), hairs.points.reshape(-1, 3).max(0)
+    assert 0.5 < (hi - lo).max() < 2.5  # a fox of about a metre and a half, in metres

@@ -1,0 +1,48 @@
+"""pelage.render equals `pelage render`'s PNG; pelage.export writes the files `pelage export`
+writes."""
+
+import os
+
+import numpy as np
+import pytest
+
+import pelage
+
+render = getattr(pelage, "render", None)
+
+
+@pytest.mark.skipif(render is None, reason="built without the renderer (PELAGE_BUILD_VIEWER)")
+@pytest.mark.parametrize("source", ["gpu", "cpu"])
+def test_render_equals_the_png(monkey, cli, tmp_path, source):
+    from PIL import Image
+
+    fur = monkey.fur(hairs=8000)
+    image = render(monkey, "walk", fur=fur, frame=3, size=(192, 108), hair_source=source,
+                   skin_color=(0.5, 0.4, 0.3))
+    assert image.shape == (108, 192, 3) and image.dtype == np.uint8
+    cli("render", "--clip", "walk", "--hairs", 8000, "--frames", 3, "--size", "192x108",
+        "--hair-source", source, "--skin-color", 0.5, 0.4, 0.3, "--out", tmp_path)
+    png = np.asarray(Image.open(tmp_path / "frame_00003.png").convert("RGB"))
+    np.testing.assert_array_equal(image, png)
+    # A creature is in the picture: the centre differs from the background corner.
+    assert np.abs(image[54, 96].astype(int) - image[2, 2].astype(int)).sum() > 30
+
+
+def _files(directory):
+    return sorted(os.listdir(directory))
+
+
+@pytest.mark.parametrize("fmt", ["ply", "glb"])
+def test_export_equals_the_command_line(monkey, cli, tmp_path, fmt):
+    fur = monkey.fur(hairs=3000)
+    py_dir, cli_dir = tmp_path / "py", tmp_path / "cli"
+    files = pelage.export(monkey, "walk", fur=fur, frames=(2, 4), format=fmt, out=str(py_dir))
+    assert [os.path.basename(f) for f in files] == [f"frame_0000{i}.{fmt}" for i in (2, 3, 4)]
+    cli("export", "--clip", "walk", "--hairs", 3000, "--frames", "2:4", "--format", fmt, "--out",
+        cli_dir)
+    assert _files(py_dir) == _files(cli_dir)
+    for name in _files(py_dir):
+        assert (py_dir / name).read_bytes() == (cli_dir / name).read_bytes(), name
+    # Resume keeps the complete frames and writes none again.
+    assert pelage.export(monkey, "walk", fur=fur, frames=(2, 4), format=fmt, out=str(py_dir),
+                         resume=True) == []

@@ -32,7 +32,8 @@ ExportFormat parseExportFormat(std::string_view name) {
 
 void validateExportOutput(const ExportOptions& o) {
   if (o.resume && o.format == ExportFormat::Usda)
-    fieldError("resume", "applies to the per-frame formats (ply, glb); a USD layer is written whole");
+    fieldError("resume",
+               "applies to the per-frame formats (ply, glb); a USD layer is written whole");
   if (o.format == ExportFormat::Usda) {
     if (fs::path(o.out).extension() != ".usda")
       fieldError("out", o.out, ": a USD ASCII layer must end in .usda");
@@ -41,8 +42,9 @@ void validateExportOutput(const ExportOptions& o) {
     return;
   }
   if (fs::path(o.out).has_extension() && !fs::is_directory(o.out))
-    fieldError("out", o.out, ": ", exportFormatName(o.format), " frames go into a directory (frame_NNNNN.",
-               exportFormatName(o.format), "), not a file");
+    fieldError("out", o.out, ": ", exportFormatName(o.format),
+               " frames go into a directory (frame_NNNNN.", exportFormatName(o.format),
+               "), not a file");
   ensureWritableDirectory(o.out);
 }
 

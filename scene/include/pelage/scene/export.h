@@ -38,9 +38,9 @@ struct ExportOptions {
 void validateExportOutput(const ExportOptions& options);
 
 struct ExportProgress {
-  int frame = 0;             // the frame just written
-  int done = 0, total = 0;   // frames finished (written or kept) of the range
-  std::int64_t hairs = 0;    // in the frame just written
+  int frame = 0;            // the frame just written
+  int done = 0, total = 0;  // frames finished (written or kept) of the range
+  std::int64_t hairs = 0;   // in the frame just written
   double elapsedSeconds = 0.0;
 };
 

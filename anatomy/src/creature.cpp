@@ -38,12 +38,24 @@ int segmentIndex(const Body& body, const JsonReader& r) {
 
 }  // namespace
 
+namespace {
+
+// An sRGB colour field: three numbers in [0, 1].
+Eigen::Vector3f colorField(const JsonReader& parent, const char* key) {
+  const Eigen::Vector3f c = parent.vec3(key);
+  if (!(c.array() >= 0.0f).all() || !(c.array() <= 1.0f).all())
+    parent.at(key).fail("colour components must lie in [0, 1]");
+  return c;
+}
+
+}  // namespace
+
 Creature parseCreature(const std::string& jsonText, const std::string& source) {
   const nlohmann::json doc = JsonReader::parseText(jsonText, source);
   const JsonReader root(doc, source);
   if (!root.isObject()) root.fail("a creature file must be a JSON object");
-  root.rejectUnknown(
-      {"name", "description", "units", "furLength", "skin", "segments", "shapes", "regions"});
+  root.rejectUnknown({"name", "description", "units", "furLength", "furColor", "skin", "segments",
+                      "shapes", "regions"});
   Creature c;
   c.source = source;
   c.name = root.string("name", "creature");
@@ -55,11 +67,15 @@ Creature parseCreature(const std::string& jsonText, const std::string& source) {
     skin->rejectUnknown({"triangles", "blendRadius", "color"});
     c.defaultTriangles = static_cast<int>(skin->integer("triangles", 130000, 2000, 2000000));
     c.blendRadiusMeters = static_cast<float>(skin->number("blendRadius", 0.02, 0.0, 10.0));
-    if (skin->has("color")) {
-      c.skinColor = skin->vec3("color");
-      if ((c.skinColor.array() < 0.0f).any() || (c.skinColor.array() > 1.0f).any())
-        skin->at("color").fail("colour components must lie in [0, 1]");
-    }
+    if (skin->has("color")) c.skinColor = colorField(*skin, "color");
+  }
+  if (auto fc = root.find("furColor")) {
+    fc->rejectUnknown({"back", "belly", "spread"});
+    CreatureFurColor f;
+    f.back = colorField(*fc, "back");
+    f.belly = colorField(*fc, "belly");
+    f.spread = static_cast<float>(fc->number("spread", 0.4, 0.01, 1.0));
+    c.furColor = f;
   }
 
   // Segments: joints in bind-pose world coordinates; the rest local transform is the offset from
@@ -128,13 +144,14 @@ Creature parseCreature(const std::string& jsonText, const std::string& source) {
   if (auto regions = root.find("regions")) {
     for (std::size_t i = 0; i < regions->size(); ++i) {
       const JsonReader r = regions->at(i);
-      r.rejectUnknown(
-          {"name", "lengthScale", "segments", "sphere", "spheres", "box", "boxes", "blend"});
+      r.rejectUnknown({"name", "lengthScale", "segments", "sphere", "spheres", "box", "boxes",
+                       "blend", "furColor"});
       FurRegion reg;
       reg.name = r.string("name");
       if (reg.name.empty() || reg.name == "body")
         r.at("name").fail("region name must be non-empty and not \"body\"");
       reg.lengthScale = static_cast<float>(r.number("lengthScale", 0.0, 100.0));
+      if (r.has("furColor")) reg.furColor = colorField(r, "furColor");
       if (auto segsSel = r.find("segments"))
         for (std::size_t k = 0; k < segsSel->size(); ++k)
           reg.segments.push_back(segmentIndex(c.body, segsSel->at(k)));

@@ -6,15 +6,19 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <set>
 #include <unordered_map>
 
 #include "gltf_reader.h"
+#include "pelage/util/color.h"
 #include "pelage/util/error.h"
+#include "pelage/util/image.h"
 #include "pelage/util/log.h"
 
 namespace pelage::animation {
@@ -108,6 +112,8 @@ struct RawVertex {
   Vec3d position;  // bind space, file units, glTF axes
   skin::Binding binding;
   int region = 0;
+  Eigen::Vector2f uv = Eigen::Vector2f::Zero();     // TEXCOORD_0 (0 without)
+  Eigen::Vector4f color = Eigen::Vector4f::Ones();  // COLOR_0, linear RGBA (1 without)
 };
 
 struct Primitives {
@@ -116,6 +122,8 @@ struct Primitives {
   std::vector<std::string> regionNames{"body"};
   std::vector<int> regionMaterial{-1};  // a material per region (for the skin colour), -1 none
   std::vector<std::int64_t> regionTriangles{0};
+  std::vector<int> triangleMaterial;     // per triangle: its primitive's glTF material, -1 none
+  bool hasUv = false, hasColor = false;  // some primitive has TEXCOORD_0 / COLOR_0
   int degenerate = 0, zeroWeights = 0, skippedPrimitives = 0;
   int region(const std::string& name, int material) {
     for (std::size_t i = 0; i < regionNames.size(); ++i)
@@ -244,6 +252,28 @@ void readPrimitive(const ImportContext& ctx, int meshIndex, std::size_t primInde
     }
   }
 
+  // Appearance: TEXCOORD_0 (FLOAT or normalised unsigned integers) and COLOR_0 (VEC3 or VEC4).
+  std::vector<float> uv, color;
+  std::size_t colorComponents = 0;
+  if (const int t = attr("TEXCOORD_0"); t >= 0) {
+    uv = ctx.acc.floats(t, TINYGLTF_TYPE_VEC2, true, what + " TEXCOORD_0");
+    if (uv.size() != 2 * n)
+      ctx.fail(what, ": TEXCOORD_0 has ", uv.size() / 2, " elements but POSITION has ", n);
+    out.hasUv = true;
+  }
+  if (const int c = attr("COLOR_0"); c >= 0) {
+    ctx.acc.count(c, what + " COLOR_0");
+    const int type = ctx.model.accessors[static_cast<std::size_t>(c)].type;
+    if (type != TINYGLTF_TYPE_VEC3 && type != TINYGLTF_TYPE_VEC4)
+      ctx.fail(what, ": COLOR_0 (accessor ", c, ") must be VEC3 or VEC4");
+    color = ctx.acc.floats(c, type, true, what + " COLOR_0");
+    colorComponents = type == TINYGLTF_TYPE_VEC3 ? 3 : 4;
+    if (color.size() != colorComponents * n)
+      ctx.fail(what, ": COLOR_0 has ", color.size() / colorComponents,
+               " elements but POSITION has ", n);
+    out.hasColor = true;
+  }
+
   const std::int32_t base = static_cast<std::int32_t>(out.vertices.size());
   std::vector<std::pair<float, int>> infl;
   for (std::size_t v = 0; v < n; ++v) {
@@ -251,6 +281,9 @@ void readPrimitive(const ImportContext& ctx, int meshIndex, std::size_t primInde
     const Vec3d p(pos[3 * v], pos[3 * v + 1], pos[3 * v + 2]);
     rv.region = region;
     rv.position = place * p;
+    if (!uv.empty()) rv.uv = Eigen::Vector2f(uv[2 * v], uv[2 * v + 1]);
+    for (std::size_t k = 0; k < colorComponents; ++k)
+      rv.color[static_cast<int>(k)] = std::clamp(color[colorComponents * v + k], 0.0f, 1.0f);
     if (joints) {
       infl.clear();
       for (std::size_t set = 0; set < jointSets.size(); ++set)
@@ -296,6 +329,7 @@ void readPrimitive(const ImportContext& ctx, int meshIndex, std::size_t primInde
   appendTriangles(ctx, mode, indices, base, what, out);
   out.regionTriangles[static_cast<std::size_t>(region)] +=
       static_cast<std::int64_t>(out.triangles.size() - before);
+  out.triangleMaterial.resize(out.triangles.size(), material);
 }
 
 // ---- The node tree -------------------------------------------------------------------------
@@ -719,9 +753,11 @@ Weld weldVertices(const Primitives& prims, const Units& units,
 }
 
 // 7. The triangles on welded vertices; degenerate ones dropped (counted in prims.degenerate).
+// `kept` receives, per triangle returned, its index in prims.triangles.
 std::vector<std::array<std::int32_t, 3>> weldedTriangles(const ImportContext& ctx,
                                                          Primitives& prims, const Weld& wd,
-                                                         const Units& units) {
+                                                         const Units& units,
+                                                         std::vector<std::size_t>& kept) {
   const std::string& path = ctx.path;
   const std::vector<Eigen::Vector3f>& conv = wd.conv;
   const std::vector<std::int32_t>& weldOf = wd.weldOf;
@@ -732,7 +768,9 @@ std::vector<std::array<std::int32_t, 3>> weldedTriangles(const ImportContext& ct
   const float minArea2 = 1e-12f * diag * diag;
   std::vector<std::array<std::int32_t, 3>> tris;
   tris.reserve(prims.triangles.size());
-  for (const auto& t : prims.triangles) {
+  kept.clear();
+  for (std::size_t ti = 0; ti < prims.triangles.size(); ++ti) {
+    const auto& t = prims.triangles[ti];
     const std::array<std::int32_t, 3> w = {weldOf[static_cast<std::size_t>(t[0])],
                                            weldOf[static_cast<std::size_t>(t[1])],
                                            weldOf[static_cast<std::size_t>(t[2])]};
@@ -747,6 +785,7 @@ std::vector<std::array<std::int32_t, 3>> weldedTriangles(const ImportContext& ct
       continue;
     }
     tris.push_back(w);
+    kept.push_back(ti);
   }
   if (prims.degenerate > 0)
     warn(str(path, ": dropped ", prims.degenerate, " degenerate triangles"));
@@ -757,10 +796,11 @@ std::vector<std::array<std::int32_t, 3>> weldedTriangles(const ImportContext& ct
 
 // 8. The OpenMesh skin: a triangle whose edge is already used in its direction, or whose addition
 // OpenMesh rejects (non-manifold), gets its own copies of its vertices. Returns, per mesh vertex,
-// its welded vertex.
+// its welded vertex; `faceVertices` receives each face's three mesh vertices in the order given.
 std::vector<std::int32_t> buildSkinMesh(const std::string& path,
                                         const std::vector<std::array<std::int32_t, 3>>& tris,
-                                        const Weld& wd, skin::SkinMesh& sk) {
+                                        const Weld& wd, skin::SkinMesh& sk,
+                                        std::vector<std::int32_t>& faceVertices) {
   const std::vector<Eigen::Vector3f>& conv = wd.conv;
   const std::vector<std::int32_t>& welded = wd.welded;
   std::vector<std::int32_t> source;  // mesh vertex -> welded vertex
@@ -786,14 +826,18 @@ std::vector<std::int32_t> buildSkinMesh(const std::string& path,
         clash = clash || directed.count({t[static_cast<std::size_t>(e)],
                                          t[static_cast<std::size_t>((e + 1) % 3)]}) > 0;
       skin::TriMesh::FaceHandle fh;
-      if (!clash)
-        fh = sk.mesh.add_face(vertexFor(t[0], false), vertexFor(t[1], false),
-                              vertexFor(t[2], false));
+      std::array<skin::TriMesh::VertexHandle, 3> vh;
+      if (!clash) {
+        vh = {vertexFor(t[0], false), vertexFor(t[1], false), vertexFor(t[2], false)};
+        fh = sk.mesh.add_face(vh[0], vh[1], vh[2]);
+      }
       if (!fh.is_valid()) {
-        fh = sk.mesh.add_face(vertexFor(t[0], true), vertexFor(t[1], true), vertexFor(t[2], true));
+        vh = {vertexFor(t[0], true), vertexFor(t[1], true), vertexFor(t[2], true)};
+        fh = sk.mesh.add_face(vh[0], vh[1], vh[2]);
         ++split;
       }
       PELAGE_CHECK(fh.is_valid(), "an isolated triangle was rejected");
+      for (const auto& v : vh) faceVertices.push_back(v.idx());
       if (!clash)
         for (int e = 0; e < 3; ++e)
           directed.insert(
@@ -805,6 +849,184 @@ std::vector<std::int32_t> buildSkinMesh(const std::string& path,
   }
 
   return source;
+}
+
+// 12. Appearance (after finalizeSkin): per-corner UVs, vertex colours, the materials' base colours
+// and their textures. Problems with an image (missing, corrupt, too large, a texture without UVs)
+// leave that material untextured with a warning naming the image; the geometry still loads.
+
+// Decoded image bytes allowed for one creature's textures, all images together.
+constexpr std::size_t kMaxTextureBytes = std::size_t{1} << 30;
+
+skin::Wrap wrapMode(int gl) {
+  if (gl == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE) return skin::Wrap::ClampToEdge;
+  if (gl == TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT) return skin::Wrap::MirroredRepeat;
+  return skin::Wrap::Repeat;
+}
+
+// The encoded bytes of image `i`: its bufferView (validated by loadModelFile), its data URI's bytes
+// (kept by the reader), or the file its uri names beside the .gltf. `bytes` may point into `file`.
+// InputError naming the image when it has none or its file cannot be used.
+void imageBytes(const ImportContext& ctx, int i, const std::string& what,
+                std::vector<std::uint8_t>& file, const std::uint8_t*& bytes, std::size_t& size) {
+  const tinygltf::Image& img = ctx.model.images[static_cast<std::size_t>(i)];
+  if (img.bufferView >= 0) {
+    if (static_cast<std::size_t>(img.bufferView) >= ctx.model.bufferViews.size())
+      inputError(what, ": bufferView ", img.bufferView, " does not exist");
+    const tinygltf::BufferView& bv =
+        ctx.model.bufferViews[static_cast<std::size_t>(img.bufferView)];
+    bytes = ctx.model.buffers[static_cast<std::size_t>(bv.buffer)].data.data() + bv.byteOffset;
+    size = bv.byteLength;
+    return;
+  }
+  if (!img.image.empty()) {
+    bytes = img.image.data();
+    size = img.image.size();
+    return;
+  }
+  if (img.uri.empty()) inputError(what, ": has neither a bufferView nor a uri");
+  // An external file, relative to the .gltf and inside its folder (no scheme, no absolute path,
+  // no '..'): a downloaded model cannot make pelage read files elsewhere.
+  const std::string uri = img.uri;
+  const std::filesystem::path rel(uri);
+  bool inside = uri.find("://") == std::string::npos && !rel.is_absolute();
+  for (const auto& part : rel) inside = inside && part != "..";
+  if (!inside)
+    inputError(what, ": uri '", uri,
+               "' is not a relative path inside the model's folder (only those are read)");
+  std::string decoded;  // %XX escapes (glTF uris are URI-encoded)
+  for (std::size_t k = 0; k < uri.size(); ++k) {
+    if (uri[k] == '%' && k + 2 < uri.size() &&
+        std::isxdigit(static_cast<unsigned char>(uri[k + 1])) &&
+        std::isxdigit(static_cast<unsigned char>(uri[k + 2]))) {
+      decoded += static_cast<char>(std::stoi(uri.substr(k + 1, 2), nullptr, 16));
+      k += 2;
+    } else {
+      decoded += uri[k];
+    }
+  }
+  const std::filesystem::path full = std::filesystem::path(ctx.path).parent_path() / decoded;
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(full, ec))
+    inputError(what, ": its file ", full.string(), " does not exist");
+  const std::uintmax_t n = std::filesystem::file_size(full, ec);
+  if (ec || n > (std::size_t{512} << 20))
+    inputError(what, ": its file ", full.string(), " is unreadable or over 512 MiB");
+  file.resize(static_cast<std::size_t>(n));
+  std::ifstream in(full, std::ios::binary);
+  in.read(reinterpret_cast<char*>(file.data()), static_cast<std::streamsize>(file.size()));
+  if (static_cast<std::size_t>(in.gcount()) != file.size())
+    inputError(what, ": cannot read its file ", full.string());
+  bytes = file.data();
+  size = file.size();
+}
+
+void readAppearance(const ImportContext& ctx, const Primitives& prims,
+                    const std::vector<std::size_t>& kept,
+                    const std::vector<std::int32_t>& faceVertices, const Weld& wd,
+                    const std::vector<std::int32_t>& source, skin::SkinMesh& sk) {
+  const tinygltf::Model& model = ctx.model;
+  const std::size_t nF = kept.size();
+  if (prims.hasUv) {
+    std::vector<Eigen::Vector2f> inputUv(3 * nF);
+    for (std::size_t f = 0; f < nF; ++f)
+      for (std::size_t j = 0; j < 3; ++j)
+        inputUv[3 * f + j] =
+            prims.vertices[static_cast<std::size_t>(prims.triangles[kept[f]][j])].uv;
+    skin::setCornerUvs(sk, faceVertices, inputUv);
+  }
+  if (prims.hasColor) {
+    sk.vertexColor.resize(source.size());
+    for (std::size_t v = 0; v < source.size(); ++v)
+      sk.vertexColor[v] =
+          prims.vertices[static_cast<std::size_t>(wd.welded[static_cast<std::size_t>(source[v])])]
+              .color;
+  }
+  bool anyMaterial = false, anyDefault = false;
+  for (std::size_t f = 0; f < nF; ++f) {
+    const bool has = prims.triangleMaterial[kept[f]] >= 0;
+    anyMaterial = anyMaterial || has;
+    anyDefault = anyDefault || !has;
+  }
+  if (!anyMaterial) return;
+  // Every glTF material in file order, then (if some triangle has none) a default of the skin's
+  // colour.
+  std::map<int, int> textureOf;  // glTF texture -> skin texture (-1: unusable)
+  std::size_t textureBytes = 0;
+  for (std::size_t m = 0; m < model.materials.size(); ++m) {
+    const tinygltf::Material& gm = model.materials[m];
+    skin::SkinMaterial sm;
+    sm.name = gm.name.empty() ? str("material", m) : gm.name;
+    const std::vector<double>& f = gm.pbrMetallicRoughness.baseColorFactor;
+    if (f.size() == 4 && finite(f))
+      for (int k = 0; k < 4; ++k)
+        sm.baseColor[k] = static_cast<float>(std::clamp(f[static_cast<std::size_t>(k)], 0.0, 1.0));
+    const tinygltf::TextureInfo& ti = gm.pbrMetallicRoughness.baseColorTexture;
+    const std::string what =
+        str(ctx.path, ": material ", m, " '", sm.name, "' base colour texture");
+    if (ti.index >= 0) {
+      if (ti.texCoord != 0) {
+        warn(str(what, " uses TEXCOORD_", ti.texCoord, "; only TEXCOORD_0 is read: not textured"));
+      } else if (!prims.hasUv) {
+        warn(str(what, ": the mesh has no TEXCOORD_0, so it cannot be textured"));
+      } else if (auto it = textureOf.find(ti.index); it != textureOf.end()) {
+        sm.texture = it->second;
+      } else {
+        int made = -1;
+        try {
+          if (static_cast<std::size_t>(ti.index) >= model.textures.size())
+            inputError(what, ": texture ", ti.index, " does not exist (", model.textures.size(),
+                       " textures)");
+          const tinygltf::Texture& gt = model.textures[static_cast<std::size_t>(ti.index)];
+          if (gt.source < 0 || static_cast<std::size_t>(gt.source) >= model.images.size())
+            inputError(what, ": texture ", ti.index, " has no image (source ", gt.source, ")");
+          const tinygltf::Image& gi = model.images[static_cast<std::size_t>(gt.source)];
+          const std::string imageName =
+              str(ctx.path, ": image ", gt.source, gi.name.empty() ? "" : " '" + gi.name + "'");
+          std::vector<std::uint8_t> file;
+          const std::uint8_t* bytes = nullptr;
+          std::size_t size = 0;
+          imageBytes(ctx, gt.source, imageName, file, bytes, size);
+          ImageLimits limits;
+          limits.maxBytes = std::min(limits.maxBytes, kMaxTextureBytes - textureBytes);
+          skin::Texture tex =
+              skin::makeTexture(decodeImage(bytes, size, imageName, limits), imageName, true);
+          if (gt.sampler >= 0 && static_cast<std::size_t>(gt.sampler) < model.samplers.size()) {
+            const tinygltf::Sampler& s = model.samplers[static_cast<std::size_t>(gt.sampler)];
+            tex.wrapS = wrapMode(s.wrapS);
+            tex.wrapT = wrapMode(s.wrapT);
+            tex.filter = s.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST ? skin::Filter::Nearest
+                                                                        : skin::Filter::Linear;
+          }
+          if (!ti.extensions.empty())
+            warn(
+                str(what, ": texture extensions (", ti.extensions.begin()->first, ") are ignored"));
+          textureBytes += tex.bytes();
+          made = static_cast<int>(sk.textures.size());
+          sk.textures.push_back(std::move(tex));
+        } catch (const InputError& e) {
+          warn(str(e.what(), "; the material is drawn with its base colour only"));
+        }
+        textureOf[ti.index] = made;
+        sm.texture = made;
+      }
+    }
+    sk.materials.push_back(std::move(sm));
+  }
+  const int fallback = static_cast<int>(sk.materials.size());
+  if (anyDefault) {
+    skin::SkinMaterial d;
+    d.name = "(no material)";
+    const Eigen::Vector3f linear = srgbToLinear(sk.color);
+    d.baseColor = Eigen::Vector4f(linear.x(), linear.y(), linear.z(), 1.0f);
+    sk.materials.push_back(d);
+  }
+  sk.triangleMaterial.resize(nF);
+  for (std::size_t f = 0; f < nF; ++f) {
+    const int m = prims.triangleMaterial[kept[f]];
+    sk.triangleMaterial[f] = m >= 0 ? m : fallback;
+  }
+  skin::checkAppearance(sk);
 }
 
 // 11. The clips: every animation, its root channels taken to pelage's axes and units.
@@ -975,9 +1197,12 @@ GltfCreature importGltf(const std::string& path, const GltfImportOptions& option
       }
     }
   const Weld weld = weldVertices(prims, units, bareRegion);
-  const std::vector<std::array<std::int32_t, 3>> tris = weldedTriangles(ctx, prims, weld, units);
+  std::vector<std::size_t> kept;
+  const std::vector<std::array<std::int32_t, 3>> tris =
+      weldedTriangles(ctx, prims, weld, units, kept);
   skin::SkinMesh& sk = out.skin;
-  const std::vector<std::int32_t> source = buildSkinMesh(path, tris, weld, sk);
+  std::vector<std::int32_t> faceVertices;
+  const std::vector<std::int32_t> source = buildSkinMesh(path, tris, weld, sk, faceVertices);
   const std::vector<std::int32_t>& welded = weld.welded;
   const std::vector<int>& weldRegion = weld.weldRegion;
   const float diag =
@@ -1023,9 +1248,10 @@ GltfCreature importGltf(const std::string& path, const GltfImportOptions& option
         body.segments[static_cast<std::size_t>(rv.binding.segment[0])].direction;
     sk.mesh.property(sk.segmentDirection, vh) = OpenMesh::Vec3f(d.x(), d.y(), d.z());
   }
-  // 10. Skin colour: the base colour of the furred region with the most triangles. A textured
-  // material's factor only tints its texture (the Fox: factor 1, colour in the texture), and pelage
-  // reads no textures, so such materials leave the skin's default colour.
+  // 10. Skin colour (the skin's one colour where it is drawn without materials, and the colour of
+  // triangles without a material): the base colour of the untextured furred region with the most
+  // triangles. A textured material's factor only tints its texture (the Fox: factor 1, colour in
+  // the texture), so such materials leave the skin's default colour.
   std::int64_t most = -1;
   for (std::size_t r = 0; r < prims.regionNames.size(); ++r) {
     const int mat = prims.regionMaterial[r];
@@ -1035,12 +1261,14 @@ GltfCreature importGltf(const std::string& path, const GltfImportOptions& option
     const std::vector<double>& f = pbr.baseColorFactor;
     if (f.size() >= 3 && finite(f)) {
       most = prims.regionTriangles[r];
-      sk.color = Eigen::Vector3f(static_cast<float>(std::clamp(f[0], 0.0, 1.0)),
-                                 static_cast<float>(std::clamp(f[1], 0.0, 1.0)),
-                                 static_cast<float>(std::clamp(f[2], 0.0, 1.0)));
+      // glTF factors are linear; skin.color is sRGB-encoded, as typed (util/color.h).
+      sk.color = Eigen::Vector3f(linearToSrgb(static_cast<float>(f[0])),
+                                 linearToSrgb(static_cast<float>(f[1])),
+                                 linearToSrgb(static_cast<float>(f[2])));
     }
   }
   skin::finalizeSkin(sk);
+  readAppearance(ctx, prims, kept, faceVertices, weld, source, sk);
 
   out.clips = readClips(ctx, skeleton, units, body);
   return out;

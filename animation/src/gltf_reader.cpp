@@ -69,9 +69,14 @@ void validateGlb(const std::string& path, const std::vector<unsigned char>& b) {
   if (chunk == 0) inputError(path, ": the GLB file has no JSON chunk");
 }
 
-// Textures are never decoded: pelage reads geometry, skins and animation only.
-bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int,
-               const unsigned char*, int, void*) {
+// tinygltf decodes no image: an image in a data URI keeps its encoded bytes in Image::image (its
+// width stays -1), one in a bufferView is read later from the validated view (gltf_import.cpp
+// decodes both with util/image.h), and an external one keeps its uri.
+bool keepEncodedImage(tinygltf::Image* image, const int, std::string*, std::string*, int, int,
+                      const unsigned char* bytes, int size, void*) {
+  if (image->bufferView >= 0 || bytes == nullptr || size <= 0) return true;
+  image->image.assign(bytes, bytes + size);
+  image->width = image->height = -1;
   return true;
 }
 
@@ -184,7 +189,7 @@ tinygltf::Model loadModelFile(const std::string& path) {
   if (glb) validateGlb(path, data);
 
   tinygltf::TinyGLTF loader;
-  loader.SetImageLoader(&skipImage, nullptr);
+  loader.SetImageLoader(&keepEncodedImage, nullptr);
   tinygltf::Model model;
   std::string err, warnings;
   const std::string baseDir = fs::path(path).parent_path().string();

@@ -1,7 +1,9 @@
 #include "pelage/fur/fur_params.h"
 
+#include <array>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "pelage/fur/roots.h"
 #include "pelage/util/error.h"
@@ -20,6 +22,14 @@ void checkColor(const std::string& source, const std::string& field, const Eigen
   for (int k = 0; k < 3; ++k) checkRange(source, str(field, "[", k, "]"), c[k], 0.0, 1.0);
 }
 
+constexpr std::array<std::pair<ColorSource, std::string_view>, 5> kColorSources{{
+    {ColorSource::Material, "material"},
+    {ColorSource::Creature, "creature"},
+    {ColorSource::Texture, "texture"},
+    {ColorSource::Vertex, "vertex"},
+    {ColorSource::Map, "map"},
+}};
+
 void checkCoat(const std::string& source, const std::string& name, const CoatParams& c) {
   checkRange(source, name + ".stiffness", c.stiffness, 0.0, 1.0);
   checkRange(source, name + ".normalRandomize", c.normalRandomize, 0.0, 1.0);
@@ -35,9 +45,32 @@ void checkCoat(const std::string& source, const std::string& name, const CoatPar
   checkColor(source, name + ".diffuse", c.material.diffuse);
   checkColor(source, name + ".specular", c.material.specular);
   checkRange(source, name + ".shininess", c.material.shininess, 1.0, 1000.0);
+  for (int k = 0; k < 3; ++k)
+    checkRange(source, str(name, ".color.tint[", k, "]"), c.color.tint[k], 0.0, 10.0);
+  checkRange(source, name + ".color.tipLightness", c.color.tipLightness, 0.0, 10.0);
+  checkColor(source, name + ".color.tipColor", c.color.tipColor);
+  checkRange(source, name + ".color.hueVariation", c.color.hueVariation, 0.0, 180.0);
+  checkRange(source, name + ".color.valueVariation", c.color.valueVariation, 0.0, 1.0);
 }
 
 }  // namespace
+
+std::string_view colorSourceName(ColorSource source) {
+  for (const auto& [s, name] : kColorSources)
+    if (s == source) return name;
+  return "material";
+}
+
+ColorSource parseColorSource(std::string_view name, const std::string& where) {
+  std::string list;
+  for (const auto& [s, n] : kColorSources) {
+    if (n == name) return s;
+    list += (list.empty() ? "" : ", ") + std::string(n);
+  }
+  inputError(where, ": unknown colour source '", name, "' (accepted: ", list, ")");
+}
+
+namespace {}  // namespace
 
 void validateFurParams(FurParams& p, const std::string& source) {
   checkRange(source, "hairs", p.hairs, 0.0, std::numeric_limits<double>::max());

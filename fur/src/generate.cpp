@@ -295,6 +295,7 @@ void detail::generateFurWithDynamics(
     a.rootTriangle = cr.triangle.data();
     a.tableIndex = cr.tableIndex.data();
     a.jitter = cr.jitter.data();
+    a.lengthScale = cr.lengthScale.empty() ? nullptr : cr.lengthScale.data();
     a.barycentric = roots.barycentric.data();
     a.twist = shape.twist ? ws.twist[ci].data() : nullptr;
     a.positions = emit ? hb.positions.data() : nullptr;
@@ -353,7 +354,8 @@ HairInput<float> rootInput(const skin::SkinMesh& skin, const FurRoots& roots,
     rec[8] = s.x(), rec[9] = s.y(), rec[10] = s.z(), rec[11] = 0.0f;
   }
   return interpolateRoot(roots.barycentric.data() + 4 * cr.tableIndex[r], records[0], records[1],
-                         records[2], cr.jitter.data() + 4 * r);
+                         records[2], cr.jitter.data() + 4 * r,
+                         cr.lengthScale.empty() ? 1.0f : cr.lengthScale[r]);
 }
 
 void referenceHair(const skin::SkinMesh& skin, const FurRoots& roots, const FurParams& params,

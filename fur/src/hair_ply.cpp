@@ -50,7 +50,7 @@ HairPlyCounts hairPlyCounts(const FurFrame& frame) {
 }
 
 HairPlyCounts writeHairPly(const std::string& path, const FurFrame& frame,
-                           const std::string& comment) {
+                           const std::string& comment, const FurColors* colors) {
   static_assert(std::numeric_limits<float>::is_iec559 && sizeof(float) == 4);
   static_assert(std::endian::native == std::endian::little,
                 "PLY writer assumes a little-endian host");
@@ -71,6 +71,7 @@ HairPlyCounts writeHairPly(const std::string& path, const FurFrame& frame,
   h << "element vertex " << n.vertices << "\nproperty float x\nproperty float y\nproperty float z\n"
     << "property float nx\nproperty float ny\nproperty float nz\nproperty int hair\nproperty uchar "
        "coat\n";
+  if (colors) h << "property uchar red\nproperty uchar green\nproperty uchar blue\n";
   if (anyStrand || !anyRings)
     h << "element edge " << n.edges << "\nproperty int vertex1\nproperty int vertex2\n";
   if (anyRings) h << "element face " << n.faces << "\nproperty list uchar int vertex_indices\n";
@@ -79,18 +80,22 @@ HairPlyCounts writeHairPly(const std::string& path, const FurFrame& frame,
   AtomicFileWriter w(path);
   w.write(h.str());
   Chunked out(w);
+  std::vector<std::uint8_t> rgb;
   for (int c = 0; c < kCoatCount; ++c) {
     const HairBuffers& hb = frame.coats[static_cast<std::size_t>(c)];
     const std::int64_t P = hb.layout.pointsPerHair();
     const auto coat = static_cast<std::uint8_t>(c);
+    if (colors) pointColorsSrgb8(colors->coats[static_cast<std::size_t>(c)], hb, rgb);
+    const std::size_t size = colors ? 32 : 29;
     for (std::int64_t i = 0; i < hb.drawn; ++i)
       for (std::int64_t k = 0; k < P; ++k) {
-        char rec[29];  // 6 floats, int, uchar: little-endian like the host
+        char rec[32];  // 6 floats, int, uchar (and 3 uchar): little-endian like the host
         std::memcpy(rec, hb.positions.data() + (i * P + k) * 3, 12);
         std::memcpy(rec + 12, hb.normals.data() + (i * P + k) * 3, 12);
         std::memcpy(rec + 24, &hb.hairIds[static_cast<std::size_t>(i)], 4);
         rec[28] = static_cast<char>(coat);
-        out.putBytes(rec, sizeof rec);
+        if (colors) std::memcpy(rec + 29, rgb.data() + 3 * (i * P + k), 3);
+        out.putBytes(rec, size);
       }
   }
   std::int32_t base = 0;
@@ -129,21 +134,28 @@ bool isCompleteHairPly(const std::string& path) {
   in.seekg(0);
   std::string line;
   if (!std::getline(in, line) || line != "ply") return false;
-  std::int64_t vertices = -1, edges = 0, faces = 0;
+  std::int64_t vertices = -1, edges = 0, faces = 0, vertexBytes = 0;
+  bool inVertex = false;
   while (std::getline(in, line) && line != "end_header") {
     std::istringstream words(line);
     std::string kind, what;
     std::int64_t n = -1;
-    if (!(words >> kind) || kind != "element") continue;
+    if (!(words >> kind)) continue;
+    if (kind == "property" && inVertex && words >> what)
+      vertexBytes += what == "uchar" ? 1 : 4;  // float, int or uchar: what writeHairPly writes
+    if (kind != "element") continue;
     if (!(words >> what >> n) || n < 0) return false;
+    inVertex = what == "vertex";
     if (what == "vertex") vertices = n;
     if (what == "edge") edges = n;
     if (what == "face") faces = n;
     if (in.tellg() > (1 << 16)) return false;
   }
   if (line != "end_header" || vertices < 0) return false;
-  // Body: 29 bytes per vertex (6 floats, int, uchar), 8 per edge, 13 per triangle face.
-  const std::int64_t body = vertices * 29 + edges * 8 + faces * 13;
+  // Body: 29 or 32 bytes per vertex (6 floats, int, uchar, and the colour), 8 per edge, 13 per
+  // triangle face.
+  if (vertexBytes != 29 && vertexBytes != 32) return false;
+  const std::int64_t body = vertices * vertexBytes + edges * 8 + faces * 13;
   return static_cast<std::int64_t>(in.tellg()) + body == size;
 }
 

@@ -19,6 +19,9 @@ struct Avx2Backend : avx2::Emission8 {
   static HairFrame<F> frameLanes(const HairFrame<FrameF>& f, int half) {
     return avx2::frameHalf(f, [half](const FrameF& x) { return x.v[half]; });
   }
+  static FrameF loadFrame(const float* p) {
+    return FrameF(_mm256_loadu_ps(p), _mm256_loadu_ps(p + 8));
+  }
 };
 
 }  // namespace

@@ -18,6 +18,7 @@ struct Avx512Backend : avx2::Emission8 {
   static HairFrame<F> frameLanes(const HairFrame<FrameF>& f, int half) {
     return avx2::frameHalf(f, [half](const FrameF& x) { return avx512::half(x.v, half); });
   }
+  static FrameF loadFrame(const float* p) { return FrameF(_mm512_loadu_ps(p)); }
 };
 
 }  // namespace

@@ -13,6 +13,11 @@ struct GenericBackend {
   static constexpr int kFrameLanes = detail::kLanes;
 
   static const HairFrame<F>& frameLanes(const HairFrame<F>& f, int) { return f; }
+  static FrameF loadFrame(const float* p) {
+    F r;
+    for (int l = 0; l < kLanes; ++l) r.v[l] = p[l];
+    return r;
+  }
 
   static void load(const CoatKernelArgs& a, const std::int32_t* roots, const std::int32_t* tris,
                    HairInput<F>& in) {

@@ -105,9 +105,16 @@ void runCoatRange(const CoatKernelArgs& a, std::int64_t begin, std::int64_t end)
     }
     const int blocks = (count + kLanes - 1) / kLanes;
     const int lastCount = count - (blocks - 1) * kLanes;
-    // 1. Gather: interpolate every hair's root data (sec. 3.2).
+    // 1. Gather: interpolate every hair's root data (sec. 3.2); a length map scales the
+    // interpolated length (interpolateRoot's lengthScale).
     for (int k = 0; k < frameBlocks; ++k)
       B::load(a, roots + k * kFrameLanes, tris + k * kFrameLanes, inputs[k]);
+    if (a.lengthScale)
+      for (int k = 0; k < frameBlocks; ++k) {
+        float s[kFrameLanes];
+        for (int l = 0; l < kFrameLanes; ++l) s[l] = a.lengthScale[roots[k * kFrameLanes + l]];
+        inputs[k].length = inputs[k].length * B::loadFrame(s);
+      }
     // 2. Frames: directions, gravity, hair plane (sec. 3.4, 3.5, 3.7).
     for (int k = 0; k < frameBlocks; ++k) hairFrame(shape, inputs[k], frames[k]);
     // 2b. Fur dynamics: damped ending points (dynamics_kernel.h), only when asked for.

@@ -27,10 +27,34 @@ Eigen::Vector3f color(const JsonReader& j, const char* key, const Eigen::Vector3
   return v;
 }
 
+CoatColor parseCoatColor(const JsonReader& j, const CoatColor& defaults) {
+  j.rejectUnknown({"source", "tint", "tipLightness", "tipColor", "hueVariation", "valueVariation"});
+  CoatColor c = defaults;
+  if (j.has("source")) c.source = parseColorSource(j.string("source"), j.at("source").where());
+  if (j.has("tint")) {
+    const JsonReader t = j.at("tint");
+    if (!t.isArray() || t.size() != 3) t.fail("expected an array of 3 numbers in [0, 10]");
+    for (std::size_t k = 0; k < 3; ++k)
+      c.tint[static_cast<int>(k)] = static_cast<float>(t.at(k).asNumber(0.0, 10.0));
+  }
+  c.tipLightness = num(j, "tipLightness", c.tipLightness, 0.0, 10.0);
+  if (j.has("tipColor")) {
+    if (j.at("tipColor").json().is_null()) {
+      c.hasTipColor = false;
+    } else {
+      c.hasTipColor = true;
+      c.tipColor = color(j, "tipColor", c.tipColor);
+    }
+  }
+  c.hueVariation = num(j, "hueVariation", c.hueVariation, 0.0, 180.0);
+  c.valueVariation = num(j, "valueVariation", c.valueVariation, 0.0, 1.0);
+  return c;
+}
+
 CoatParams parseCoat(const JsonReader& j, const CoatParams& defaults) {
   j.rejectUnknown({"style", "stiffness", "normalRandomize", "hairEndRandomize",
                    "segmentDirectionWeight", "relativeLength", "ambient", "diffuse", "specular",
-                   "shininess", "curvePoints", "tubeSides", "tubeRadius", "curl"});
+                   "shininess", "curvePoints", "tubeSides", "tubeRadius", "curl", "color"});
   CoatParams c = defaults;
   if (j.has("style")) c.style = parseStyle(j.string("style"), j.at("style").where());
   c.stiffness = num(j, "stiffness", c.stiffness, 0.0, 1.0);
@@ -50,7 +74,20 @@ CoatParams parseCoat(const JsonReader& j, const CoatParams& defaults) {
     c.curlRadius = num(*curl, "radius", c.curlRadius, 0.0, 0.5);
     c.curlTurns = num(*curl, "turns", c.curlTurns, 0.0, 20.0);
   }
+  if (auto col = j.find("color")) c.color = parseCoatColor(*col, c.color);
   return c;
+}
+
+// A groom map path, made absolute: relative ones resolve against the preset file's folder
+// (`baseDir`; built-in presets and keyword-made ones: the working directory), so a preset saved
+// elsewhere still names the same files.
+std::string mapPath(const JsonReader& j, const char* key, const std::string& baseDir) {
+  const std::string p = j.string(key);
+  if (p.empty()) j.at(key).fail("an image file name, or leave the field out");
+  std::error_code ec;
+  const std::filesystem::path full =
+      std::filesystem::absolute(std::filesystem::path(baseDir) / p, ec);
+  return ec ? p : full.lexically_normal().string();
 }
 
 LengthRegion parseRegion(const JsonReader& j) {
@@ -100,6 +137,13 @@ nlohmann::json coatJson(const CoatParams& c) {
   j["tubeSides"] = c.tubeSides;
   j["tubeRadius"] = c.tubeRadiusMeters;
   j["curl"] = {{"radius", c.curlRadius}, {"turns", c.curlTurns}};
+  const CoatColor& k = c.color;
+  j["color"] = {{"source", colorSourceName(k.source)},
+                {"tint", colorJson(k.tint)},
+                {"tipLightness", k.tipLightness},
+                {"tipColor", k.hasTipColor ? colorJson(k.tipColor) : nlohmann::json(nullptr)},
+                {"hueVariation", k.hueVariation},
+                {"valueVariation", k.valueVariation}};
   return j;
 }
 
@@ -116,11 +160,14 @@ std::vector<std::string> builtinPresetNames() {
 }
 
 namespace {
-FurParams parsePreset(const nlohmann::json& doc, const std::string& source) {
+// `baseDir`: the folder relative map paths resolve against ("" = the working directory).
+FurParams parsePreset(const nlohmann::json& doc, const std::string& source,
+                      const std::string& baseDir) {
   const JsonReader j(doc, source);
   if (!j.isObject()) j.fail("expected a JSON object with the fur parameters");
   j.rejectUnknown({"name", "description", "hairs", "density", "undercoatShare", "seed",
-                   "lengthScale", "lengthRegion", "up", "culling", "overcoat", "undercoat"});
+                   "lengthScale", "lengthRegion", "up", "culling", "overcoat", "undercoat",
+                   "maps"});
   FurParams p;
   p.name = j.string("name", std::filesystem::path(source).stem().string());
   if (j.has("description")) (void)j.string("description");
@@ -140,6 +187,12 @@ FurParams parsePreset(const nlohmann::json& doc, const std::string& source) {
         num(*c, "referenceDistance", p.culling.referenceDistance, 0.0, 1e4);
     p.culling.fovYDegrees = num(*c, "fovDegrees", p.culling.fovYDegrees, 1.0, 179.0);
   }
+  if (auto m = j.find("maps")) {
+    m->rejectUnknown({"density", "length", "color"});
+    if (m->has("density")) p.maps.density = mapPath(*m, "density", baseDir);
+    if (m->has("length")) p.maps.length = mapPath(*m, "length", baseDir);
+    if (m->has("color")) p.maps.color = mapPath(*m, "color", baseDir);
+  }
   if (auto c = j.find("overcoat")) p.coats[kOvercoat] = parseCoat(*c, p.coats[kOvercoat]);
   // The undercoat starts from the overcoat's values: a preset states only what differs.
   CoatParams under = p.coats[kOvercoat];
@@ -151,7 +204,7 @@ FurParams parsePreset(const nlohmann::json& doc, const std::string& source) {
 }  // namespace
 
 FurParams parseFurPreset(const std::string& jsonText, const std::string& source) {
-  return parsePreset(JsonReader::parseText(jsonText, source), source);
+  return parsePreset(JsonReader::parseText(jsonText, source), source, "");
 }
 
 FurParams loadFurPreset(const std::string& nameOrPath) {
@@ -159,7 +212,8 @@ FurParams loadFurPreset(const std::string& nameOrPath) {
                              std::filesystem::path(nameOrPath).extension() == ".json";
   if (!looksLikePath) {
     if (auto text = builtinPresetText(nameOrPath))
-      return parseFurPreset(*text, "built-in preset " + nameOrPath);
+      return parsePreset(JsonReader::parseText(*text, "built-in preset " + nameOrPath),
+                         "built-in preset " + nameOrPath, "");
     if (!std::filesystem::exists(nameOrPath)) {
       std::string list;
       for (const std::string& n : builtinPresetNames()) list += (list.empty() ? "" : ", ") + n;
@@ -167,7 +221,8 @@ FurParams loadFurPreset(const std::string& nameOrPath) {
                  "; or give a .json file)");
     }
   }
-  return parsePreset(JsonReader::parseFile(nameOrPath), nameOrPath);
+  return parsePreset(JsonReader::parseFile(nameOrPath), nameOrPath,
+                     std::filesystem::path(nameOrPath).parent_path().string());
 }
 
 std::string furPresetJson(const FurParams& p) {
@@ -191,6 +246,13 @@ std::string furPresetJson(const FurParams& p) {
   j["culling"] = {{"enabled", p.culling.enabled},
                   {"referenceDistance", p.culling.referenceDistance},
                   {"fovDegrees", p.culling.fovYDegrees}};
+  if (p.maps.any()) {
+    nlohmann::json m = nlohmann::json::object();
+    if (!p.maps.density.empty()) m["density"] = p.maps.density;
+    if (!p.maps.length.empty()) m["length"] = p.maps.length;
+    if (!p.maps.color.empty()) m["color"] = p.maps.color;
+    j["maps"] = m;
+  }
   j["overcoat"] = coatJson(p.coats[kOvercoat]);
   j["undercoat"] = coatJson(p.coats[kUndercoat]);
   return j.dump(2) + "\n";

@@ -33,8 +33,69 @@ std::string humanBytes(double bytes) {
 // Bytes one root of a coat keeps: triangle, table index, jitter; plus its drawn slot in the frame
 // buffers (the style's layout).
 double bytesPerHair(const CoatParams& coat) {
-  const double rootBytes = sizeof(std::int32_t) + sizeof(std::uint16_t) + 4 * sizeof(float);
+  // + a length-map scale and a root and tip colour (when the preset asks for them).
+  const double rootBytes =
+      sizeof(std::int32_t) + sizeof(std::uint16_t) + 4 * sizeof(float) + sizeof(float) + 8;
   return rootBytes + hairLayout(coat).frameBytesPerHair();
+}
+
+// The density map's mean and maximum over triangle t: at the centroids of its 4^L congruent
+// sub-triangles (n = 2^L per edge), L from the triangle's area in texels (at least 4 samples per
+// texel, 4 <= 4^L <= 4096), nearest texels.
+void triangleDensity(const skin::SkinMesh& skin, const skin::Texture& map, std::int32_t t,
+                     float& mean, float& max) {
+  const Eigen::Vector2f* uv = skin.cornerUv.data() + 3 * static_cast<std::size_t>(t);
+  const Eigen::Vector2f e1 = uv[1] - uv[0], e2 = uv[2] - uv[0];
+  const double texels = 0.5 * std::abs(static_cast<double>(e1.x() * e2.y() - e1.y() * e2.x())) *
+                        map.width * map.height;
+  int n = 2;
+  while (n < 64 && static_cast<double>(n) * n < 4.0 * texels) n *= 2;
+  double sum = 0.0;
+  float hi = 0.0f;
+  int samples = 0;
+  const auto at = [&](double b2, double b3) {
+    const float b[3] = {static_cast<float>(1.0 - b2 - b3), static_cast<float>(b2),
+                        static_cast<float>(b3)};
+    const float d = map.sample(skin.uvAt(t, b)).x();
+    sum += static_cast<double>(d);
+    hi = std::max(hi, d);
+    ++samples;
+  };
+  const double third = 1.0 / (3.0 * n);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; i + j < n; ++j) {
+      at((3 * i + 1) * third, (3 * j + 1) * third);                      // upward sub-triangle
+      if (i + j + 2 <= n) at((3 * i + 2) * third, (3 * j + 2) * third);  // downward
+    }
+  mean = static_cast<float>(sum / samples);
+  max = hi;
+}
+
+// The table entry of the next root of triangle t under a density map: candidates (first +
+// attempt) mod 2048 in turn, each accepted with probability density / max; after 4096 rejected
+// candidates the best one seen is taken.
+std::uint16_t acceptedEntry(const skin::SkinMesh& skin, const skin::Texture& map,
+                            const std::vector<float>& table, std::int32_t t, std::int64_t first,
+                            std::uint64_t seed, float max, std::int64_t& attempt) {
+  constexpr int kMaxTries = 4096;
+  std::uint16_t best = 0;
+  float bestDensity = -1.0f;
+  for (int tries = 0; tries < kMaxTries; ++tries, ++attempt) {
+    const auto entry = static_cast<std::uint16_t>((first + attempt) % kBarycentricTableSize);
+    const float d = map.sample(skin.uvAt(t, table.data() + 4 * entry)).x();
+    const float u = uniform01(seed, kStreamDensity,
+                              (static_cast<std::uint64_t>(t) << 20) +
+                                  static_cast<std::uint64_t>(attempt & ((1 << 20) - 1)));
+    if (u * max < d) {
+      ++attempt;
+      return entry;
+    }
+    if (d > bestDensity) {
+      bestDensity = d;
+      best = entry;
+    }
+  }
+  return best;
 }
 
 }  // namespace
@@ -109,7 +170,7 @@ bool triangleHasFur(const skin::SkinMesh& skin, std::int32_t t) {
   return len[v[0]] > 0.0f || len[v[1]] > 0.0f || len[v[2]] > 0.0f;
 }
 
-FurRoots growRoots(const skin::SkinMesh& skin, const FurParams& params) {
+FurRoots growRoots(const skin::SkinMesh& skin, const FurParams& params, const GroomMaps& maps) {
   const std::int32_t nT = skin.numTriangles();
   const std::vector<double> area = triangleAreas(skin);
   std::vector<char> furred(static_cast<std::size_t>(nT));
@@ -120,6 +181,26 @@ FurRoots growRoots(const skin::SkinMesh& skin, const FurParams& params) {
   }
   checkHairBudget(params, furredArea);
   const double total = requestedHairs(params, furredArea);
+  // The density map's mean and maximum over each furred triangle; weightedArea = sum area x mean.
+  const bool densityMap = !maps.density.empty();
+  std::vector<float> densityMean, densityMax;
+  double weightedArea = furredArea;
+  if (densityMap) {
+    PELAGE_CHECK(skin.hasUv(), "a density map on a skin without texture coordinates");
+    densityMean.assign(static_cast<std::size_t>(nT), 0.0f);
+    densityMax.assign(static_cast<std::size_t>(nT), 0.0f);
+    parallelFor(nT, 1024, [&](std::int64_t t) {
+      const auto ts = static_cast<std::size_t>(t);
+      if (!furred[ts]) return;
+      triangleDensity(skin, maps.density, static_cast<std::int32_t>(t), densityMean[ts],
+                      densityMax[ts]);
+    });
+    weightedArea = 0.0;
+    for (std::int32_t t = 0; t < nT; ++t)
+      if (furred[static_cast<std::size_t>(t)])
+        weightedArea += area[static_cast<std::size_t>(t)] *
+                        static_cast<double>(densityMean[static_cast<std::size_t>(t)]);
+  }
 
   FurRoots roots;
   roots.triangleCount = nT;
@@ -137,12 +218,21 @@ FurRoots growRoots(const skin::SkinMesh& skin, const FurParams& params) {
     // Van Gelder & Wilhelms 1997, sec. 3.2: floor(alpha N + u) hairs per triangle ("random
     // rounding"), alpha = area / furred area; no-fur triangles get none.
     std::vector<std::int32_t> count(static_cast<std::size_t>(nT), 0);
-    if (furredArea > 0.0 && nc > 0.0) {
+    if (!densityMap && furredArea > 0.0 && nc > 0.0) {
       parallelFor(nT, 8192, [&](std::int64_t t) {
         const auto ts = static_cast<std::size_t>(t);
         if (!furred[ts]) return;
         const double u = uniform01(seed, kStreamAllocation, static_cast<std::uint64_t>(t));
         count[ts] = static_cast<std::int32_t>(std::floor(area[ts] / furredArea * nc + u));
+      });
+    }
+    if (densityMap && weightedArea > 0.0 && nc > 0.0) {
+      parallelFor(nT, 8192, [&](std::int64_t t) {
+        const auto ts = static_cast<std::size_t>(t);
+        if (!furred[ts] || !(densityMean[ts] > 0.0f)) return;
+        const double u = uniform01(seed, kStreamAllocation, static_cast<std::uint64_t>(t));
+        const double alpha = area[ts] * static_cast<double>(densityMean[ts]) / weightedArea;
+        count[ts] = static_cast<std::int32_t>(std::floor(alpha * nc + u));
       });
     }
     cr.triangleStart.assign(static_cast<std::size_t>(nT) + 1, 0);
@@ -156,14 +246,29 @@ FurRoots growRoots(const skin::SkinMesh& skin, const FurParams& params) {
     cr.triangle.resize(n);
     cr.tableIndex.resize(n);
     cr.jitter.resize(4 * n);
+    if (!maps.length.empty()) {
+      PELAGE_CHECK(skin.hasUv(), "a length map on a skin without texture coordinates");
+      cr.lengthScale.resize(n);
+    }
     parallelForChunks(nT, 4096, [&](std::int64_t tb, std::int64_t te) {
-      for (std::int64_t t = tb; t < te; ++t)
-        for (std::int64_t k = cr.triangleStart[static_cast<std::size_t>(t)];
-             k < cr.triangleStart[static_cast<std::size_t>(t) + 1]; ++k) {
+      for (std::int64_t t = tb; t < te; ++t) {
+        const std::int64_t first = cr.triangleStart[static_cast<std::size_t>(t)];
+        std::int64_t attempt = 0;  // density map: candidates tried in this triangle
+        for (std::int64_t k = first; k < cr.triangleStart[static_cast<std::size_t>(t) + 1]; ++k) {
           const auto ks = static_cast<std::size_t>(k);
           cr.triangle[ks] = static_cast<std::int32_t>(t);
           // Sec. 3.2: "generated by cycling through the values in this table".
-          cr.tableIndex[ks] = static_cast<std::uint16_t>(k % kBarycentricTableSize);
+          if (!densityMap) {
+            cr.tableIndex[ks] = static_cast<std::uint16_t>(k % kBarycentricTableSize);
+          } else {
+            cr.tableIndex[ks] =
+                acceptedEntry(skin, maps.density, roots.barycentric, static_cast<std::int32_t>(t),
+                              first, seed, densityMax[static_cast<std::size_t>(t)], attempt);
+          }
+          if (!cr.lengthScale.empty()) {
+            const float* b = roots.barycentric.data() + 4 * cr.tableIndex[ks];
+            cr.lengthScale[ks] = maps.length.sample(skin.uvAt(static_cast<std::int32_t>(t), b)).x();
+          }
           // Sec. 3.5 hair end randomize: xi uniform in the unit ball (direction uniform on the
           // sphere, radius cbrt(u3)).
           const auto uk = static_cast<std::uint64_t>(k);
@@ -180,6 +285,7 @@ FurRoots growRoots(const skin::SkinMesh& skin, const FurParams& params) {
           j[2] = static_cast<float>(rad * z);
           j[3] = uniform01(seed, kStreamHairEnd + kPhaseStreamOffset, uk);
         }
+      }
     });
   }
   return roots;

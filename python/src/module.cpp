@@ -25,6 +25,7 @@
 #include <nlohmann/json.hpp>
 
 #include "pelage/animation/clip.h"
+#include "pelage/fur/colors.h"
 #include "pelage/fur/dynamics.h"
 #include "pelage/fur/preset.h"
 #include "pelage/scene/analyze.h"
@@ -268,7 +269,8 @@ struct PyHairs {
   fur::FurFrame frame;
   std::vector<std::uint8_t> coat;
   std::vector<std::int32_t> hair, triangle;
-  std::vector<float> barycentric;  // n x 3
+  std::vector<float> barycentric;    // n x 3
+  std::vector<std::uint8_t> colors;  // n x 2 x 3: root and tip, 8-bit sRGB
   int clip = -1;
   int frameNumber = 0;
   double seconds = 0.0;
@@ -280,6 +282,7 @@ struct PyHairs {
     hair.resize(static_cast<std::size_t>(n));
     triangle.resize(static_cast<std::size_t>(n));
     barycentric.resize(static_cast<std::size_t>(3 * n));
+    colors.resize(static_cast<std::size_t>(6 * n));
     std::size_t i = 0;
     for (int c = 0; c < fur::kCoatCount; ++c) {
       const fur::HairBuffers& b = frame.coats[static_cast<std::size_t>(c)];
@@ -291,6 +294,14 @@ struct PyHairs {
         triangle[i] = cr.triangle[r];
         const float* bc = fur->roots.barycentric.data() + 4 * cr.tableIndex[r];
         std::copy(bc, bc + 3, barycentric.begin() + static_cast<std::ptrdiff_t>(3 * i));
+        const fur::CoatColors& cc = fur->colors.coats[static_cast<std::size_t>(c)];
+        for (int end = 0; end < 2; ++end) {
+          const std::uint32_t packed = cc.perHair ? b.colors[static_cast<std::size_t>(2 * h + end)]
+                                                  : fur::packSrgb8(cc.diffuse);
+          for (int k = 0; k < 3; ++k)
+            colors[6 * i + static_cast<std::size_t>(3 * end + k)] =
+                static_cast<std::uint8_t>(packed >> (8 * k));
+        }
       }
     }
   }
@@ -707,6 +718,16 @@ PYBIND11_MODULE(_pelage, m) {
           "barycentric",
           [](py::object self) { return rowsView(self.cast<PyHairs&>().barycentric, 3, self); },
           "(n, 3) float32: the root's barycentric coordinates in its triangle (sec. 3.2)")
+      .def_property_readonly(
+          "colors",
+          [](py::object self) {
+            PyHairs& h = self.cast<PyHairs&>();
+            return py::array_t<std::uint8_t>(
+                {static_cast<py::ssize_t>(h.count()), py::ssize_t{2}, py::ssize_t{3}},
+                {py::ssize_t{6}, py::ssize_t{3}, py::ssize_t{1}}, h.colors.data(), self);
+          },
+          "(n, 2, 3) uint8: each hair's root and tip colour, 8-bit sRGB (its points are graded "
+          "between them, in linear light)")
       .def_property_readonly("styles", [](const PyHairs& h) {
         return py::make_tuple(fur::styleName(h.frame.coats[0].layout.style),
                               fur::styleName(h.frame.coats[1].layout.style));

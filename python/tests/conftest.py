@@ -39,15 +39,22 @@ def monkey():
 
 def read_hair_ply(path):
     """The vertex element of a hair PLY (fur/hair_ply.h): a structured array with x, y, z, nx, ny,
-    nz (float32), hair (int32), coat (uint8)."""
+    nz (float32), hair (int32), coat (uint8) and, when written, red, green, blue (uint8)."""
     with open(path, "rb") as f:
         data = f.read()
     end = data.index(b"end_header\n") + len(b"end_header\n")
     header = data[:end].decode("ascii").splitlines()
     assert header[1] == "format binary_little_endian 1.0"
     count = next(int(line.split()[2]) for line in header if line.startswith("element vertex"))
-    vertex = np.dtype([("x", "<f4"), ("y", "<f4"), ("z", "<f4"), ("nx", "<f4"), ("ny", "<f4"),
-                       ("nz", "<f4"), ("hair", "<i4"), ("coat", "u1")])
+    types = {"float": "<f4", "int": "<i4", "uchar": "u1"}
+    fields, in_vertex = [], False
+    for line in header:
+        words = line.split()
+        if words[0] == "element":
+            in_vertex = words[1] == "vertex"
+        elif words[0] == "property" and in_vertex:
+            fields.append((words[2], types[words[1]]))
+    vertex = np.dtype(fields)
     return np.frombuffer(data, dtype=vertex, count=count, offset=end)
 
 

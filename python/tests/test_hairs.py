@@ -40,6 +40,13 @@ def test_hairs_equal_the_command_line(monkey, cli, tmp_path, style):
     np.testing.assert_array_equal(np.repeat(hairs.hair, P), ply["hair"])
     np.testing.assert_array_equal(np.repeat(hairs.coat, P), ply["coat"])
     assert hairs.styles == (style, style)
+    # Colours: the PLY's root and tip points carry the hairs' root and tip colours (8-bit sRGB;
+    # the monkey's creature colours vary from hair to hair).
+    rgb = np.stack([ply["red"], ply["green"], ply["blue"]], 1).reshape(len(hairs), P, 3)
+    assert hairs.colors.shape == (len(hairs), 2, 3) and hairs.colors.dtype == np.uint8
+    np.testing.assert_array_equal(hairs.colors[:, 0], rgb[:, 0])
+    np.testing.assert_array_equal(hairs.colors[:, 1], rgb[:, -1])
+    assert len(np.unique(hairs.colors[:, 0], axis=0)) > 100
 
 
 def test_dynamic_hairs_equal_the_command_line(monkey, cli, tmp_path):

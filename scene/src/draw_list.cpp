@@ -1,6 +1,7 @@
 #include "pelage/scene/draw_list.h"
 
 #include "pelage/scene/frame.h"
+#include "pelage/util/color.h"
 #include "pelage/util/error.h"
 
 namespace pelage::scene {
@@ -48,6 +49,8 @@ void buildDrawList(const Model& model, const FrameState& frame, const Fur* fur,
                    const Camera& camera, const Light& light, const DrawOptions& options,
                    DrawList& list) {
   buildDrawList(model, frame, fur, camera, light, options, skinMaterial(model.skin.color), list);
+  if (list.skin.positions && (model.skin.hasSurfaceColor() || model.skin.hasUv()))
+    list.skin.appearance = &model.skin;
 }
 
 void buildDrawList(const Model& model, const FrameState& frame, const Fur* fur,
@@ -75,8 +78,8 @@ void buildDrawList(const Model& model, const FrameState& frame, const Fur* fur,
   const bool cpu = options.hairSource == HairSource::Cpu;
   PELAGE_CHECK(!cpu || frame.cpuFur, "CPU hair source without evaluateFur(..., cpuHairs = true)");
   if (!cpu)
-    list.gpuFur =
-        GpuFurInputs{&fur->params, &fur->roots, fur->generation, &model.skin, &frame.skin};
+    list.gpuFur = GpuFurInputs{&fur->params,         &fur->roots, fur->generation, &fur->colors,
+                               fur->colorGeneration, &model.skin, &frame.skin};
   const float pad = maxHairLength(model, fur->params);
   list.bounds.extend(frame.skinBounds.min() - Eigen::Vector3f::Constant(pad));
   list.bounds.extend(frame.skinBounds.max() + Eigen::Vector3f::Constant(pad));
@@ -88,7 +91,14 @@ void buildDrawList(const Model& model, const FrameState& frame, const Fur* fur,
     FurDrawItem item;
     item.coat = c;
     item.layout = fur::hairLayout(cp);
-    item.material = cp.material;
+    const fur::CoatColors& colors = fur->colors.coats[ci];
+    item.material = linearMaterial(cp.material);
+    item.perHairColor = colors.perHair;
+    item.ambientRatio = colors.ambientRatio;
+    if (!colors.perHair) {
+      item.material.diffuse = colors.diffuse;
+      item.material.ambient = colors.ambient;
+    }
     item.rootCount = roots;
     item.drawnHairs = frame.drawnHairs[ci];
     item.cullFactor = frame.cullFactor;
@@ -99,6 +109,11 @@ void buildDrawList(const Model& model, const FrameState& frame, const Fur* fur,
                    hb.layout.pointsPerHair(), " points, the parameters ", item.pointsPerHair());
       item.positions = hb.positions.data();
       item.normals = hb.normals.data();
+      if (colors.perHair) {
+        PELAGE_CHECK(hb.colors.size() == static_cast<std::size_t>(2 * hb.drawn), "coat ", c,
+                     " has per-hair colours but the frame's are not filled");
+        item.colors = hb.colors.data();
+      }
     }
     list.fur.push_back(item);
   }

@@ -43,6 +43,7 @@ void stepClipDynamics(const Model& model, const Fur& fur, const fur::DynamicsPar
   frame.cullFactor = fur::cullingFactor(frame.furView);
   fur::generateDynamicFur(model.skin, fur.roots, fur.params, dynamics, frame.skin, dt,
                           frame.furView, state, frame.furWorkspace, frame.fur);
+  fur::fillHairColors(fur.colors, frame.fur);
   for (int c = 0; c < fur::kCoatCount; ++c)
     frame.drawnHairs[static_cast<std::size_t>(c)] =
         frame.fur.coats[static_cast<std::size_t>(c)].drawn;

@@ -66,7 +66,7 @@ ExportReport exportClip(const Model& model, const Fur& fur, const ExportOptions&
         str("pelage export: ", model.name, ", ",
             clip >= 0 ? model.clips[static_cast<std::size_t>(clip)].name : "rest pose", ", fur ",
             fur.params.name, " (seed ", fur.params.seed, "), ", fur.roots.total(), " hairs");
-    usd = std::make_unique<UsdaWriter>(options.out, model, fur.params, uo);
+    usd = std::make_unique<UsdaWriter>(options.out, model, fur, uo);
     report.removedTemporaries = usd->removedTemporaries();
   }
   Playback playback(model, fur, po);
@@ -99,11 +99,12 @@ ExportReport exportClip(const Model& model, const Fur& fur, const ExportOptions&
         fur::writeHairPly(framePath(f), state.fur,
                           str("model ", model.name, ", frame ", f, " (",
                               po.startSeconds + static_cast<double>(f) / po.framesPerSecond,
-                              " s), fur ", fur.params.name, ", seed ", fur.params.seed));
+                              " s), fur ", fur.params.name, ", seed ", fur.params.seed),
+                          &fur.colors);
         report.files.push_back(framePath(f));
         break;
       case ExportFormat::Glb:
-        writeFrameGlb(framePath(f), model, fur.params, state, options.generator);
+        writeFrameGlb(framePath(f), model, fur, state, options.generator);
         report.files.push_back(framePath(f));
         break;
     }

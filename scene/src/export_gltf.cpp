@@ -4,18 +4,21 @@
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
 #include <fstream>
 #include <limits>
 #include <vector>
 
 #include "hair_curves.h"
+#include "pelage/fur/colors.h"
 #include "pelage/util/atomic_file.h"
+#include "pelage/util/color.h"
 #include "pelage/util/error.h"
 
 namespace pelage::scene {
 namespace {
 
-constexpr int kFloat = 5126, kUint = 5125;
+constexpr int kFloat = 5126, kUint = 5125, kUnsignedByte = 5121;
 constexpr int kArrayBuffer = 34962, kElementArrayBuffer = 34963;
 constexpr int kModeLines = 1, kModeTriangles = 4;
 
@@ -123,8 +126,9 @@ GlbCounts glbCounts(const Model& model, const fur::FurParams& params, const Fram
   return n;
 }
 
-GlbCounts writeFrameGlb(const std::string& path, const Model& model, const fur::FurParams& params,
+GlbCounts writeFrameGlb(const std::string& path, const Model& model, const Fur& fur,
                         const FrameState& state, const std::string& generator) {
+  const fur::FurParams& params = fur.params;
   static_assert(std::endian::native == std::endian::little &&
                 std::numeric_limits<float>::is_iec559);
   const skin::SkinMesh& skin = model.skin;
@@ -155,7 +159,7 @@ GlbCounts writeFrameGlb(const std::string& path, const Model& model, const fur::
 
   nlohmann::json meshes = nlohmann::json::array(), nodes = nlohmann::json::array();
   nlohmann::json materials = nlohmann::json::array();
-  materials.push_back(material("skin", skin.color));
+  materials.push_back(material("skin", srgbToLinear(skin.color)));  // glTF factors are linear
   const int skinPos =
       addAccessor(addView(nV * 12, kArrayBuffer), kFloat, static_cast<std::int64_t>(nV), "VEC3");
   setBounds(skinPos, toGltfAxes(state.skinBounds));
@@ -175,7 +179,6 @@ GlbCounts writeFrameGlb(const std::string& path, const Model& model, const fur::
   std::vector<float> line;
   for (const CoatPart& p : parts) {
     const fur::HairBuffers& b = state.fur.coats[static_cast<std::size_t>(p.coat)];
-    const fur::CoatParams& cp = params.coats[static_cast<std::size_t>(p.coat)];
     const int K = p.layout.strandPoints;
     line.resize(static_cast<std::size_t>(K) * 3);
     Eigen::AlignedBox3f box;
@@ -196,10 +199,14 @@ GlbCounts writeFrameGlb(const std::string& path, const Model& model, const fur::
     const int idx =
         addAccessor(addView(static_cast<std::uint64_t>(p.segments) * 8, kElementArrayBuffer), kUint,
                     p.segments * 2, "SCALAR");
-    materials.push_back(material(name, cp.material.diffuse));
+    // Each point's colour (linear, as COLOR_0 is; the material's factor is white).
+    const int col = addAccessor(addView(static_cast<std::uint64_t>(p.vertices) * 4, kArrayBuffer),
+                                kUnsignedByte, p.vertices, "VEC4");
+    accessors[static_cast<std::size_t>(col)]["normalized"] = true;
+    materials.push_back(material(name, Eigen::Vector3f::Ones()));
     meshes.push_back({{"name", name},
                       {"primitives",
-                       {{{"attributes", {{"POSITION", pos}}},
+                       {{{"attributes", {{"POSITION", pos}, {"COLOR_0", col}}},
                          {"indices", idx},
                          {"material", static_cast<int>(materials.size()) - 1},
                          {"mode", kModeLines}}}}});
@@ -273,6 +280,25 @@ GlbCounts writeFrameGlb(const std::string& path, const Model& model, const fur::
       }
     }
     bin.put(idx.data(), idx.size() * 4);
+    // COLOR_0: the hair's root and tip colours graded along its centre line, RGBA8 linear.
+    const fur::CoatColors& cc = fur.colors.coats[static_cast<std::size_t>(p.coat)];
+    std::vector<std::uint8_t> rgba(static_cast<std::size_t>(K) * 4);
+    for (std::int64_t h = 0; h < p.hairs; ++h) {
+      const Eigen::Vector3f rootColor =
+          cc.perHair ? fur::unpackSrgb8(b.colors[static_cast<std::size_t>(2 * h)]) : cc.diffuse;
+      const Eigen::Vector3f tipColor =
+          cc.perHair ? fur::unpackSrgb8(b.colors[static_cast<std::size_t>(2 * h + 1)]) : cc.diffuse;
+      for (int k = 0; k < K; ++k) {
+        const float t = K > 1 ? static_cast<float>(k) / static_cast<float>(K - 1) : 0.0f;
+        const Eigen::Vector3f c =
+            (rootColor + t * (tipColor - rootColor)).cwiseMax(0.0f).cwiseMin(1.0f);
+        for (int j = 0; j < 3; ++j)
+          rgba[static_cast<std::size_t>(4 * k + j)] =
+              static_cast<std::uint8_t>(std::lround(c[j] * 255.0f));
+        rgba[static_cast<std::size_t>(4 * k + 3)] = 255;
+      }
+      bin.put(rgba.data(), rgba.size());
+    }
   }
   bin.flush();
   w.commit();

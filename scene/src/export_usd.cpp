@@ -13,7 +13,9 @@
 #include <vector>
 
 #include "hair_curves.h"
+#include "pelage/fur/colors.h"
 #include "pelage/util/atomic_file.h"
+#include "pelage/util/color.h"
 #include "pelage/util/error.h"
 
 namespace pelage::scene {
@@ -174,6 +176,7 @@ struct UsdaWriter::Impl {
   std::string path;
   const Model* model = nullptr;
   const fur::FurParams* params = nullptr;
+  const fur::FurColors* colors = nullptr;  // root k's colours (no culling: hair k is root k)
   UsdExportOptions options;
   std::unique_ptr<Spool> skinPoints, skinNormals, skinExtent;
   std::vector<CoatOut> coats;  // coats with hairs, known from the first frame
@@ -184,13 +187,14 @@ struct UsdaWriter::Impl {
   std::vector<float> curve, scratch;
 };
 
-UsdaWriter::UsdaWriter(std::string path, const Model& model, const fur::FurParams& params,
+UsdaWriter::UsdaWriter(std::string path, const Model& model, const Fur& fur,
                        const UsdExportOptions& options)
     : impl_(std::make_unique<Impl>()) {
   Impl& m = *impl_;
   m.path = std::move(path);
   m.model = &model;
-  m.params = &params;
+  m.params = &fur.params;
+  m.colors = &fur.colors;
   m.options = options;
   PELAGE_CHECK(options.firstFrame <= options.lastFrame && options.framesPerSecond > 0.0);
   // Spools and temporaries an earlier run of the same output left when it was killed.
@@ -332,7 +336,7 @@ UsdExportCounts UsdaWriter::finish() {
     t.num(std::int64_t{skin.triangles[i]});
     if (t.str().size() > (1u << 20)) emit();
   }
-  t << "]\n        color3f[] primvars:displayColor = [" << vec3Text(skin.color)
+  t << "]\n        color3f[] primvars:displayColor = [" << vec3Text(srgbToLinear(skin.color))
     << "] (\n            interpolation = \"constant\"\n        )\n";
   t << "        float3[] extent.timeSamples = {\n";
   emit();
@@ -366,8 +370,30 @@ UsdExportCounts UsdaWriter::finish() {
       t.num(std::int64_t{V});
       if (t.str().size() > (1u << 20)) emit();
     }
-    t << "]\n        color3f[] primvars:displayColor = [" << vec3Text(cp.material.diffuse)
-      << "] (\n            interpolation = \"constant\"\n        )\n";
+    // Colours (linear, as USD's are): the coat's one colour, or each hair's root and tip colours
+    // graded over its V curve vertices.
+    const fur::CoatColors& cc = m.colors->coats[static_cast<std::size_t>(co.coat)];
+    t << "]\n        color3f[] primvars:displayColor = [";
+    if (!cc.perHair) {
+      t.tuple(cc.diffuse);
+    } else {
+      PELAGE_CHECK(cc.packed.size() == static_cast<std::size_t>(2 * co.curves),
+                   "every root's hair is exported");
+      for (std::int64_t h = 0; h < co.curves; ++h) {
+        const Eigen::Vector3f rootColor =
+            fur::unpackSrgb8(cc.packed[static_cast<std::size_t>(2 * h)]);
+        const Eigen::Vector3f tipColor =
+            fur::unpackSrgb8(cc.packed[static_cast<std::size_t>(2 * h + 1)]);
+        for (int k = 0; k < V; ++k) {
+          if (h > 0 || k > 0) t << ((k == 0 && h % 8 == 0) ? ",\n            " : ", ");
+          const float a = V > 1 ? static_cast<float>(k) / static_cast<float>(V - 1) : 0.0f;
+          t.tuple(Eigen::Vector3f(rootColor + a * (tipColor - rootColor)));
+        }
+        if (t.str().size() > (1u << 20)) emit();
+      }
+    }
+    t << "] (\n            interpolation = \"" << (cc.perHair ? "vertex" : "constant")
+      << "\"\n        )\n";
     if (co.layout.topology == fur::HairTopology::Rings) {
       // The tube's diameter at each segment end ("varying"): 2 r_k, tapering to the tip.
       const int ends = (V - 1) / 3 + 1;

@@ -8,19 +8,57 @@
 
 namespace pelage::scene {
 
+namespace {
+std::uint64_t nextGeneration() {
+  static std::atomic<std::uint64_t> next{1};
+  return next.fetch_add(1);
+}
+}  // namespace
+
 Fur growFur(const Model& model, fur::FurParams params, const std::string& source) {
-  static std::atomic<std::uint64_t> nextGeneration{1};
   fur::validateFurParams(params, source);
   Fur f;
-  f.roots = fur::growRoots(model.skin, params);
+  f.maps = fur::loadGroomMaps(params.maps, model.skin, model.name);
+  f.roots = fur::growRoots(model.skin, params, f.maps);
+  f.colors = fur::colorRoots(model.skin, f.roots, params, f.maps);
   f.params = std::move(params);
-  f.generation = nextGeneration.fetch_add(1);
+  f.generation = nextGeneration();
+  f.colorGeneration = nextGeneration();
   return f;
+}
+
+void recolorFur(const Model& model, Fur& fur, fur::FurParams params, const std::string& source) {
+  fur::validateFurParams(params, source);
+  PELAGE_CHECK(!rootsDiffer(fur.params, params), "recolorFur with parameters that need new roots");
+  if (params.maps.color != fur.params.maps.color) {
+    fur::GroomMapPaths colorOnly;
+    colorOnly.color = params.maps.color;
+    fur.maps.color = fur::loadGroomMaps(colorOnly, model.skin, model.name).color;
+  }
+  fur.colors = fur::colorRoots(model.skin, fur.roots, params, fur.maps);
+  fur.params = std::move(params);
+  fur.colorGeneration = nextGeneration();
 }
 
 bool rootsDiffer(const fur::FurParams& a, const fur::FurParams& b) {
   return a.hairs != b.hairs || a.densityPerM2 != b.densityPerM2 ||
-         a.undercoatShare != b.undercoatShare || a.seed != b.seed;
+         a.undercoatShare != b.undercoatShare || a.seed != b.seed ||
+         a.maps.density != b.maps.density || a.maps.length != b.maps.length;
+}
+
+bool colorsDiffer(const fur::FurParams& a, const fur::FurParams& b) {
+  if (a.maps.color != b.maps.color) return true;
+  for (int c = 0; c < fur::kCoatCount; ++c) {
+    const fur::CoatParams& x = a.coats[static_cast<std::size_t>(c)];
+    const fur::CoatParams& y = b.coats[static_cast<std::size_t>(c)];
+    const fur::CoatColor &p = x.color, &q = y.color;
+    if (p.source != q.source || p.tint != q.tint || p.tipLightness != q.tipLightness ||
+        p.hasTipColor != q.hasTipColor || p.tipColor != q.tipColor ||
+        p.hueVariation != q.hueVariation || p.valueVariation != q.valueVariation ||
+        x.material.diffuse != y.material.diffuse || x.material.ambient != y.material.ambient)
+      return true;
+  }
+  return false;
 }
 
 float maxHairLength(const Model& model, const fur::FurParams& params) {
@@ -73,6 +111,7 @@ void evaluateFur(const Model& model, const Fur& fur, const fur::FurView& view, b
     // Van Gelder & Wilhelms 1997, sec. 3.2 to 3.8 on the CPU (fur::generateFur).
     fur::generateFur(model.skin, fur.roots, fur.params, frame.skin, frame.furView,
                      frame.furWorkspace, frame.fur);
+    fur::fillHairColors(fur.colors, frame.fur);
     for (int c = 0; c < fur::kCoatCount; ++c)
       frame.drawnHairs[static_cast<std::size_t>(c)] =
           frame.fur.coats[static_cast<std::size_t>(c)].drawn;

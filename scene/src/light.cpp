@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "pelage/util/color.h"
+
 namespace pelage::scene {
 
 Eigen::Vector3f lightDirection(float azimuthDegrees, float elevationDegrees) {
@@ -16,7 +18,7 @@ Material skinMaterial(const Eigen::Vector3f& color) {
   m.diffuse = color;
   m.specular = Eigen::Vector3f::Constant(0.08f);
   m.shininess = 24.0f;
-  return m;
+  return linearMaterial(m);
 }
 
 }  // namespace pelage::scene

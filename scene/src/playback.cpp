@@ -153,8 +153,10 @@ const DrawList& Playback::drawList(const Camera& camera, const Light& light,
                                    const DrawOptions& options, const Material* skin) {
   DrawOptions o = options;
   o.hairSource = hairSource();
-  buildDrawList(*model_, state_, fur_, camera, light, o,
-                skin ? *skin : skinMaterial(model_->skin.color), list_);
+  if (skin)
+    buildDrawList(*model_, state_, fur_, camera, light, o, *skin, list_);
+  else
+    buildDrawList(*model_, state_, fur_, camera, light, o, list_);
   return list_;
 }
 

@@ -94,4 +94,60 @@ SkinStats skinStats(const SkinMesh& skin) {
   return s;
 }
 
+Eigen::Vector2f SkinMesh::uvAt(std::int32_t t, const float b[3]) const {
+  if (cornerUv.empty()) return Eigen::Vector2f::Zero();
+  const Eigen::Vector2f* c = cornerUv.data() + 3 * static_cast<std::size_t>(t);
+  return (c[0] * b[0] + c[1] * b[1]) + c[2] * b[2];
+}
+
+Eigen::Vector4f SkinMesh::surfaceColorAt(std::int32_t t, const float b[3]) const {
+  if (!hasSurfaceColor()) return {color.x(), color.y(), color.z(), 1.0f};
+  Eigen::Vector4f c = Eigen::Vector4f::Ones();
+  if (!materials.empty()) {
+    const SkinMaterial& m =
+        materials[static_cast<std::size_t>(triangleMaterial[static_cast<std::size_t>(t)])];
+    c = m.baseColor;
+    if (m.texture >= 0)
+      c = c.cwiseProduct(textures[static_cast<std::size_t>(m.texture)].sample(uvAt(t, b)));
+  }
+  if (!vertexColor.empty()) {
+    const std::int32_t* v = triangles.data() + 3 * static_cast<std::size_t>(t);
+    const Eigen::Vector4f vc = (vertexColor[static_cast<std::size_t>(v[0])] * b[0] +
+                                vertexColor[static_cast<std::size_t>(v[1])] * b[1]) +
+                               vertexColor[static_cast<std::size_t>(v[2])] * b[2];
+    c = c.cwiseProduct(vc);
+  }
+  return c;
+}
+
+void setCornerUvs(SkinMesh& skin, const std::vector<std::int32_t>& inputTriangles,
+                  const std::vector<Eigen::Vector2f>& inputUv) {
+  const std::size_t n = skin.triangles.size();
+  PELAGE_CHECK(inputTriangles.size() == n && inputUv.size() == n, "corner UVs for ",
+               inputTriangles.size() / 3, " faces, skin has ", n / 3);
+  skin.cornerUv.assign(n, Eigen::Vector2f::Zero());
+  for (std::size_t f = 0; f < n / 3; ++f)
+    for (std::size_t j = 0; j < 3; ++j) {
+      const std::int32_t v = skin.triangles[3 * f + j];
+      std::size_t k = 0;
+      while (k < 3 && inputTriangles[3 * f + k] != v) ++k;
+      PELAGE_CHECK(k < 3, "face ", f, " has vertex ", v, " that its input corners lack");
+      skin.cornerUv[3 * f + j] = inputUv[3 * f + k];
+    }
+}
+
+void checkAppearance(const SkinMesh& skin) {
+  const auto nT = static_cast<std::size_t>(skin.numTriangles());
+  const auto nV = static_cast<std::size_t>(skin.numVertices());
+  PELAGE_CHECK(skin.cornerUv.empty() || skin.cornerUv.size() == 3 * nT, "corner UVs");
+  PELAGE_CHECK(skin.vertexColor.empty() || skin.vertexColor.size() == nV, "vertex colours");
+  PELAGE_CHECK(skin.furColor.empty() || skin.furColor.size() == nV, "fur colours");
+  if (skin.materials.empty()) return;
+  PELAGE_CHECK(skin.triangleMaterial.size() == nT, "triangle materials");
+  for (std::int32_t m : skin.triangleMaterial)
+    PELAGE_CHECK(m >= 0 && static_cast<std::size_t>(m) < skin.materials.size(), "material ", m);
+  for (const SkinMaterial& m : skin.materials)
+    PELAGE_CHECK(m.texture < static_cast<int>(skin.textures.size()), "texture ", m.texture);
+}
+
 }  // namespace pelage::skin

@@ -12,6 +12,7 @@
 #include "pelage/animation/gltf_import.h"
 #include "pelage/scene/model.h"
 #include "pelage/skin/deform.h"
+#include "pelage/util/color.h"
 #include "pelage/util/error.h"
 #include "test_support.h"
 
@@ -405,14 +406,16 @@ TEST(GltfImport, RegionsAndFurLengths) {
   EXPECT_GT(mainBare, 100);
 }
 
-// Skin colour: an untextured material's base colour (the Wolf's largest furred region "Main"); a
-// textured one (the Fox: factor 1, colour in its texture, which pelage does not read) keeps the
-// default skin colour rather than turning white.
+// Skin colour: an untextured material's base colour (the Wolf's largest furred region "Main";
+// glTF's linear factor, sRGB-encoded as skin.color is typed); a textured one (the Fox: factor 1,
+// colour in its texture) keeps the default skin colour rather than turning white.
 TEST(GltfImport, SkinColourFromUntexturedMaterialsOnly) {
   PELAGE_REQUIRE_SHARED_MODELS();
   EXPECT_TRUE(
       model("Wolf/Wolf.gltf")
-          .skin.color.isApprox(Eigen::Vector3f(0.18424858f, 0.19017477f, 0.16846527f), 1e-5f));
+          .skin.color.isApprox(Eigen::Vector3f(linearToSrgb(0.18424858f), linearToSrgb(0.19017477f),
+                                               linearToSrgb(0.16846527f)),
+                               1e-5f));
   const skin::SkinMesh untouched;
   EXPECT_TRUE(model("Fox/Fox.glb").skin.color.isApprox(untouched.color));
 }

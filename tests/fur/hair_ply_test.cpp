@@ -6,6 +6,7 @@
 
 #include "fur/fur_test_support.h"
 #include "pelage/fur/hair_ply.h"
+#include "pelage/util/color.h"
 #include "pelage/util/error.h"
 #include "test_support.h"
 
@@ -44,6 +45,53 @@ T at(const std::string& s, std::size_t offset) {
   T v;
   std::memcpy(&v, s.data() + offset, sizeof(T));
   return v;
+}
+
+// With colours: red, green, blue after the coat, each point's colour graded from its hair's root
+// colour to its tip colour (uniform coat: the material's diffuse, encoded), and still complete.
+TEST(HairPly, ColoursPerVertexReadBackEqual) {
+  const skin::SkinMesh s = test::makeGrid(6, 0.01f, 0.02f);
+  FurParams p = test::simpleParams(HairStyle::Polyline, 400);
+  p.undercoatShare = 0.5f;
+  p.coats[kOvercoat].color.valueVariation = 0.3f;  // per hair
+  p.coats[kOvercoat].color.tipLightness = 2.0f;
+  p.coats[kUndercoat].style = HairStyle::Line;  // uniform
+  const test::RestFur rf = test::restFur(s, p);
+  FurFrame f = test::furFrame(s, rf.roots, p, rf.rest);
+  const FurColors colors = colorRoots(s, rf.roots, p, GroomMaps{});
+  fillHairColors(colors, f);
+  test::TempDir dir;
+  const HairPlyCounts n = writeHairPly(dir.file("c.ply"), f, "", &colors);
+  EXPECT_TRUE(isCompleteHairPly(dir.file("c.ply")));
+  const Ply ply = readPly(dir.file("c.ply"));
+  for (const char* name : {"property uchar red", "property uchar green", "property uchar blue"})
+    EXPECT_NE(std::find(ply.header.begin(), ply.header.end(), name), ply.header.end()) << name;
+  ASSERT_EQ(ply.body.size(), static_cast<std::size_t>(n.vertices * 32 + n.edges * 8));
+  std::int64_t v = 0;
+  int graded = 0;
+  for (int c = 0; c < kCoatCount; ++c) {
+    const HairBuffers& hb = f.coats[static_cast<std::size_t>(c)];
+    const int P = hb.layout.pointsPerHair();
+    const CoatColors& cc = colors.coats[static_cast<std::size_t>(c)];
+    EXPECT_EQ(cc.perHair, c == kOvercoat);
+    for (std::int64_t h = 0; h < hb.drawn; ++h)
+      for (int k = 0; k < P; ++k, ++v) {
+        const auto o = static_cast<std::size_t>(v * 32 + 29);
+        const Eigen::Vector3f want =
+            cc.perHair ? unpackSrgb8(hb.colors[static_cast<std::size_t>(2 * h)]) +
+                             hb.layout.along(k) *
+                                 (unpackSrgb8(hb.colors[static_cast<std::size_t>(2 * h + 1)]) -
+                                  unpackSrgb8(hb.colors[static_cast<std::size_t>(2 * h)]))
+                       : cc.diffuse;
+        for (int j = 0; j < 3; ++j)
+          ASSERT_EQ(at<std::uint8_t>(ply.body, o + static_cast<std::size_t>(j)),
+                    linearToSrgb8(want[j]))
+              << c << " " << h << " " << k;
+        graded += cc.perHair && k == P - 1 &&
+                  at<std::uint8_t>(ply.body, o) != at<std::uint8_t>(ply.body, o - (P - 1) * 32);
+      }
+  }
+  EXPECT_GT(graded, 50);  // tips lighter than roots
 }
 
 TEST(HairPly, VerticesAndEdgesOfBothCoats) {

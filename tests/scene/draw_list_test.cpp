@@ -6,6 +6,7 @@
 #include <random>
 
 #include "pelage/scene/frame.h"
+#include "pelage/util/color.h"
 #include "pelage/util/error.h"
 #include "scene_fixture.h"
 
@@ -209,7 +210,7 @@ TEST(BuildDrawList, SkinAndOneItemPerCoat) {
   EXPECT_EQ(list.skin.vertices, m.skin.numVertices());
   EXPECT_EQ(list.skin.triangleCount, m.skin.numTriangles());
   EXPECT_EQ(list.skin.positions, &f.skin.positions);
-  EXPECT_TRUE(list.skin.material.diffuse.isApprox(m.skin.color));
+  EXPECT_TRUE(list.skin.material.diffuse.isApprox(srgbToLinear(m.skin.color)));  // drawn linear
   ASSERT_EQ(list.fur.size(), 2u);
   for (int c = 0; c < 2; ++c) {
     const FurDrawItem& item = list.fur[static_cast<std::size_t>(c)];
@@ -221,7 +222,7 @@ TEST(BuildDrawList, SkinAndOneItemPerCoat) {
     EXPECT_EQ(item.drawnHairs, f.fur.coats[static_cast<std::size_t>(c)].drawn);
     EXPECT_EQ(item.positions, f.fur.coats[static_cast<std::size_t>(c)].positions.data());
     EXPECT_TRUE(item.material.diffuse.isApprox(
-        fur.params.coats[static_cast<std::size_t>(c)].material.diffuse));
+        srgbToLinear(fur.params.coats[static_cast<std::size_t>(c)].material.diffuse)));
     EXPECT_EQ(item.source, HairSource::Cpu);
   }
   EXPECT_EQ(list.drawnHairs(), f.drawnHairs[0] + f.drawnHairs[1]);

@@ -8,6 +8,7 @@
 #include <cstring>
 #include <filesystem>
 
+#include "pelage/fur/colors.h"
 #include "pelage/util/error.h"
 #include "scene/export_test_support.h"
 #include "test_support.h"
@@ -52,8 +53,7 @@ void checkFrame(fur::HairStyle style) {
   exportFrame(fur, 2, state);
   TempDir dir;
   const std::string path = dir.file("frame.glb");
-  const scene::GlbCounts n =
-      scene::writeFrameGlb(path, sceneCritter(), fur.params, state, "pelage test");
+  const scene::GlbCounts n = scene::writeFrameGlb(path, sceneCritter(), fur, state, "pelage test");
   EXPECT_EQ(n.bytes, std::filesystem::file_size(path));
   const tinygltf::Model g = load(path);
   EXPECT_EQ(g.asset.version, "2.0");
@@ -119,11 +119,28 @@ void checkFrame(fur::HairStyle style) {
       ASSERT_EQ(idx[s + 1], idx[s] + 1);
       ASSERT_NE(idx[s + 1] % static_cast<std::uint32_t>(K), 0u);
     }
+    // Colours: COLOR_0, normalized RGBA8, linear: each hair's root colour at its first point and
+    // tip colour at its last; the material is white so they show unchanged.
     const tinygltf::Material& mat = g.materials[static_cast<std::size_t>(p.material)];
-    EXPECT_FLOAT_EQ(static_cast<float>(mat.pbrMetallicRoughness.baseColorFactor[0]),
-                    cp.material.diffuse.x());
-    EXPECT_FLOAT_EQ(static_cast<float>(mat.pbrMetallicRoughness.baseColorFactor[2]),
-                    cp.material.diffuse.z());
+    EXPECT_EQ(mat.pbrMetallicRoughness.baseColorFactor, (std::vector<double>{1.0, 1.0, 1.0, 1.0}));
+    const tinygltf::Accessor& ca =
+        g.accessors[static_cast<std::size_t>(p.attributes.at("COLOR_0"))];
+    ASSERT_EQ(ca.componentType, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE);
+    ASSERT_EQ(ca.type, TINYGLTF_TYPE_VEC4);
+    ASSERT_TRUE(ca.normalized);
+    ASSERT_EQ(static_cast<std::int64_t>(ca.count), b.drawn * K);
+    const tinygltf::BufferView& cv = g.bufferViews[static_cast<std::size_t>(ca.bufferView)];
+    const unsigned char* rgba = g.buffers[0].data.data() + cv.byteOffset + ca.byteOffset;
+    const fur::CoatColors& cc = fur.colors.coats[static_cast<std::size_t>(c)];
+    for (std::int64_t h = 0; h < b.drawn; h += 5)
+      for (const int k : {0, K - 1}) {
+        const Eigen::Vector3f want =
+            cc.perHair ? fur::unpackSrgb8(b.colors[static_cast<std::size_t>(2 * h + (k > 0))])
+                       : cc.diffuse;
+        for (int j = 0; j < 3; ++j)
+          ASSERT_EQ(rgba[(h * K + k) * 4 + j], std::lround(want[j] * 255.0f)) << h << " " << k;
+        ASSERT_EQ(rgba[(h * K + k) * 4 + 3], 255);
+      }
   }
 }
 
@@ -145,7 +162,7 @@ TEST(ExportGltf, UnwritableDirectoryNamesTheFile) {
   scene::FrameState state;
   exportFrame(fur, 0, state);
   try {
-    scene::writeFrameGlb("/nonexistent-dir/f.glb", sceneCritter(), fur.params, state);
+    scene::writeFrameGlb("/nonexistent-dir/f.glb", sceneCritter(), fur, state);
     FAIL() << "no error";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("/nonexistent-dir/f.glb"), std::string::npos) << e.what();

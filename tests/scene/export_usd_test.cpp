@@ -6,6 +6,7 @@
 
 #include <filesystem>
 
+#include "pelage/fur/colors.h"
 #include "pelage/fur/generate.h"
 #include "pelage/util/error.h"
 #include "scene/export_test_support.h"
@@ -22,7 +23,7 @@ std::string exportLayer(const scene::Fur& fur, int first, int frames, const Temp
   o.firstFrame = first;
   o.lastFrame = first + frames - 1;
   o.comment = "test \"layer\"";
-  scene::UsdaWriter w(path, sceneCritter(), fur.params, o);
+  scene::UsdaWriter w(path, sceneCritter(), fur, o);
   scene::FrameState state;
   for (int i = 0; i < frames; ++i) {
     exportFrame(fur, i, state);
@@ -102,10 +103,25 @@ TEST(ExportUsd, LayerStructureCountsAndTimeSamples) {
     ASSERT_EQ(widths.size(), 1u);
     EXPECT_FLOAT_EQ(static_cast<float>(widths[0]),
                     2.0f * fur.params.coats[static_cast<std::size_t>(c)].tubeRadiusMeters);
+    // Colours (linear): per hair, root to tip over the 8 vertices; or the coat's one colour.
     const std::vector<double> color = usdArray(curves, "color3f[] primvars:displayColor");
-    ASSERT_EQ(color.size(), 3u);
-    EXPECT_FLOAT_EQ(static_cast<float>(color[0]),
-                    fur.params.coats[static_cast<std::size_t>(c)].material.diffuse.x());
+    const fur::CoatColors& cc = fur.colors.coats[static_cast<std::size_t>(c)];
+    if (cc.perHair) {
+      EXPECT_NE(curves.find("interpolation = \"vertex\""), std::string::npos);
+      ASSERT_EQ(static_cast<std::int64_t>(color.size()), n * 8 * 3);
+      for (std::int64_t h = 0; h < n; h += 13) {
+        const Eigen::Vector3f root = fur::unpackSrgb8(cc.packed[static_cast<std::size_t>(2 * h)]);
+        const Eigen::Vector3f tip =
+            fur::unpackSrgb8(cc.packed[static_cast<std::size_t>(2 * h + 1)]);
+        for (int j = 0; j < 3; ++j) {
+          EXPECT_NEAR(color[static_cast<std::size_t>(h * 24 + j)], root[j], 1e-6);
+          EXPECT_NEAR(color[static_cast<std::size_t>(h * 24 + 21 + j)], tip[j], 1e-6);
+        }
+      }
+    } else {
+      ASSERT_EQ(color.size(), 3u);
+      EXPECT_FLOAT_EQ(static_cast<float>(color[0]), cc.diffuse.x());
+    }
   }
 }
 
@@ -206,14 +222,14 @@ TEST(ExportUsd, UnwritableDirectoryAndUnfinishedLayersLeaveNothing) {
   scene::UsdExportOptions o;
   o.lastFrame = 1;
   try {
-    scene::UsdaWriter w("/nonexistent-dir/x.usda", sceneCritter(), fur.params, o);
+    scene::UsdaWriter w("/nonexistent-dir/x.usda", sceneCritter(), fur, o);
     FAIL() << "no error";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("/nonexistent-dir/x.usda"), std::string::npos) << e.what();
   }
   TempDir dir;
   {
-    scene::UsdaWriter w(dir.file("x.usda"), sceneCritter(), fur.params, o);
+    scene::UsdaWriter w(dir.file("x.usda"), sceneCritter(), fur, o);
     scene::FrameState state;
     exportFrame(fur, 0, state);
     w.addFrame(0, state);

@@ -175,7 +175,7 @@ TEST(EvaluateFur, DoublingTheDistanceHalvesTheDrawnHairs) {
     EXPECT_NEAR(static_cast<double>(near) / static_cast<double>(fur.roots.total()), ref / d, 0.02);
   }
   // Culling off: every hair at any distance.
-  Fur all{fur.params, fur.roots, fur.generation};
+  Fur all = fur;
   all.params.culling.enabled = false;
   evaluateFur(m, all, center + dir * (100.0f * ref), false, f);
   EXPECT_EQ(f.drawnHairs[0] + f.drawnHairs[1], fur.roots.total());

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "pelage/scene/model.h"
+#include "pelage/util/color.h"
 #include "pelage/viewer/gl_context.h"
 #include "pelage/viewer/gl_debug.h"
 #include "pelage/viewer/image.h"
@@ -62,11 +63,20 @@ inline const scene::Model& testCritter() {
   return m;
 }
 
-// True when pixel (x, y) differs from `bg` (0..1 RGB) by more than `tol` (0..255) in any channel.
+// Frames are stored sRGB-encoded: the 0..255 value a linear colour channel is written as, as a
+// real number (no rounding), and the linear value of a stored one.
+inline float encoded255(float linear) {
+  return linearToSrgb(linear) * 255.0f;
+}
+inline float decoded(std::uint8_t stored) {
+  return srgbToLinear(stored / 255.0f);
+}
+
+// True when pixel (x, y) differs from `bg` (linear RGB) by more than `tol` (0..255) in any channel.
 inline bool differsFrom(const viewer::Image& img, int x, int y, const float bg[3], int tol = 6) {
   const std::uint8_t* p = img.pixel(x, y);
   for (int c = 0; c < 3; ++c)
-    if (std::abs(static_cast<int>(p[c]) - static_cast<int>(std::lround(bg[c] * 255.0f))) > tol)
+    if (std::abs(static_cast<int>(p[c]) - static_cast<int>(linearToSrgb8(bg[c]))) > tol)
       return true;
   return false;
 }

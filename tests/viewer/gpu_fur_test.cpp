@@ -69,6 +69,10 @@ fur::FurParams paramsFor(const StyleCase& sc, double hairs) {
     cp.tubeSides = 5;
     cp.curlRadius = sc.curl;
     cp.curlTurns = sc.curl > 0.0f ? 2.5f : 0.0f;
+    // Per-hair colours (fur/colors.h): the GPU copies each drawn hair's root and tip colour.
+    cp.color.hueVariation = c == 0 ? 12.0f : 0.0f;
+    cp.color.valueVariation = 0.2f;
+    cp.color.tipLightness = 1.4f;
   }
   // The 3D length region: a sphere around the head doubles its hairs.
   p.lengthRegion.shape = fur::LengthRegion::Shape::Sphere;
@@ -130,7 +134,8 @@ TEST_P(GpuFurParity, MatchesTheCpuModel) {
     scene::Camera cam = scene::presetCamera(framing, scene::CameraPreset::ThreeQuarter, 64, 64);
     cam.eye = framing.center + (cam.eye - framing.center).normalized() * 0.75f;
     fur::FurParams params = fur.params;
-    scene::Fur f2{params, fur.roots, fur.generation};
+    scene::Fur f2 = fur;
+    f2.params = params;
     f2.params.culling.enabled = culling;
     scene::evaluateFur(model, f2, cam.eye, true, frame);
     if (culling) {
@@ -173,6 +178,11 @@ TEST_P(GpuFurParity, MatchesTheCpuModel) {
           if (culling) {
             EXPECT_LT(cpu.drawn, fur.roots.coats[static_cast<std::size_t>(c)].size() / 2);
           }
+          // Colours: the CPU frame's, exactly (the same packed words, culled or not).
+          ASSERT_EQ(cpu.colors.size(), static_cast<std::size_t>(2 * cpu.drawn));
+          std::vector<std::uint32_t> gc;
+          gpu.readBackColors(gc);
+          EXPECT_EQ(gc, cpu.colors);
           std::vector<float> gp, gs;
           gpu.readBack(gp, gs);
           const std::size_t floats =

@@ -36,7 +36,8 @@ class RenderSequenceTest : public GlTest {
     return dir.file(scene::frameFileName(f, ".png"));
   }
   static const float* background() {
-    static const float bg[3] = {0.80f, 0.82f, 0.86f};
+    static const float bg[3] = {scene::kDefaultBackground.x(), scene::kDefaultBackground.y(),
+                                scene::kDefaultBackground.z()};
     return bg;
   }
 };

@@ -143,7 +143,7 @@ TEST_F(RendererTest, RowsAreTopFirstAndTheBackgroundIsExact) {
   EXPECT_NEAR(lowest, lowRow, 1.5);
   EXPECT_NEAR(highest, highRow, 1.5);
   const std::uint8_t* corner = img.pixel(0, 0);
-  for (int c = 0; c < 3; ++c) EXPECT_EQ(corner[c], static_cast<int>(std::lround(bg[c] * 255.0f)));
+  for (int c = 0; c < 3; ++c) EXPECT_EQ(corner[c], linearToSrgb8(bg[c]));
   EXPECT_EQ(corner[3], 255);
 }
 
@@ -157,7 +157,7 @@ TEST_F(RendererTest, SkinIsLitWithItsMaterialColour) {
   const float bg[3] = {list.background.x(), list.background.y(), list.background.z()};
   // Every skin pixel lies between ambient-only and fully lit (diffuse + specular), channel by
   // channel; their mean hue follows the skin colour (red > green > blue for the critter).
-  const Eigen::Vector3f k = critter().skin.color;
+  const Eigen::Vector3f k = srgbToLinear(critter().skin.color);
   double sum[3] = {0, 0, 0};
   int n = 0;
   for (int y = 0; y < img.height; ++y)
@@ -167,8 +167,8 @@ TEST_F(RendererTest, SkinIsLitWithItsMaterialColour) {
       for (int c = 0; c < 3; ++c) {
         const float lo = k[c] * list.light.ambient[c];
         const float hi = k[c] * list.light.ambient[c] + k[c] + list.skin.material.specular[c];
-        EXPECT_GE(p[c] + 2, std::floor(lo * 255.0f)) << x << "," << y;
-        EXPECT_LE(p[c] - 2, std::ceil(std::min(hi, 1.0f) * 255.0f)) << x << "," << y;
+        EXPECT_GE(p[c] + 2, std::floor(test::encoded255(lo))) << x << "," << y;
+        EXPECT_LE(p[c] - 2, std::ceil(test::encoded255(std::min(hi, 1.0f)))) << x << "," << y;
         sum[c] += p[c];
       }
       ++n;
@@ -201,8 +201,8 @@ TEST_F(RendererTest, ShadowsDarkenTheSkin) {
       ++skin;
       darker += q < p;
       brighter += q > p;
-      a += p;
-      b += q;
+      a += test::decoded(static_cast<std::uint8_t>(p));  // light adds up in linear values
+      b += test::decoded(static_cast<std::uint8_t>(q));
     }
   ASSERT_GT(skin, 2000);
   EXPECT_EQ(brighter, 0);  // a shadow only takes the key light away

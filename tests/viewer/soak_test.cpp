@@ -130,7 +130,7 @@ TEST_F(Soak, ExportFrameLoopWithAChangeEveryFrame) {
     scene::evaluateFur(model, fur, state.skinBounds.center(), true, state);
     ASSERT_EQ(state.fur.drawn(), fur.roots.total());
     fur::writeHairPly(dir.file("frame.ply"), state.fur, "soak");
-    if (i % 10 == 0) scene::writeFrameGlb(dir.file("frame.glb"), model, fur.params, state, "soak");
+    if (i % 10 == 0) scene::writeFrameGlb(dir.file("frame.glb"), model, fur, state, "soak");
     if (i == frames / 10) report("export", i, early = memory());
   }
   const Memory end = memory();

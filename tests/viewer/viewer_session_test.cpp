@@ -13,6 +13,7 @@
 #include "gl_fixture.h"
 #include "pelage/animation/clip.h"
 #include "pelage/fur/preset.h"
+#include "pelage/util/color.h"
 #include "test_support.h"
 
 namespace pelage::viewer::detail {
@@ -74,11 +75,12 @@ TEST_F(ViewerSessionTest, EditsApplyOnTheNextFrame) {
   s.edit.coats[1].stiffness = 0.5f;
   s.frame(0.0, 96, 64);
   EXPECT_TRUE(s.editError.empty());
-  // The skin colour: the model's, then the panel's.
-  EXPECT_TRUE(s.drawList().skin.material.diffuse.isApprox(s.model().skin.color));
+  // The skin colour: the model's, then the panel's (typed sRGB, drawn linear).
+  EXPECT_TRUE(s.drawList().skin.material.diffuse.isApprox(srgbToLinear(s.model().skin.color)));
   s.skinColor = Eigen::Vector3f(0.1f, 0.2f, 0.3f);
   s.frame(0.0, 96, 64);
-  EXPECT_TRUE(s.drawList().skin.material.diffuse.isApprox(Eigen::Vector3f(0.1f, 0.2f, 0.3f)));
+  EXPECT_TRUE(
+      s.drawList().skin.material.diffuse.isApprox(srgbToLinear(Eigen::Vector3f(0.1f, 0.2f, 0.3f))));
 }
 
 // The dynamics switch: on, hairs come from the CPU's damped ends: they start on the quasi-static

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cstddef>
 #include <cstring>
 #include <string>
@@ -122,11 +123,14 @@ struct GpuFur::Impl {
   const fur::FurRoots* roots = nullptr;
   const fur::FurParams* params = nullptr;
   std::uint64_t generation = ~std::uint64_t{0};
+  std::uint64_t colorGeneration = ~std::uint64_t{0};
   float cullFactor = 1.0f;
 
   struct Coat {
     std::int64_t rootCount = 0;
     Buffer rootData, jitter, triangleStart, drawnStart, cullU, blockSums, twist, shape;
+    Buffer colors;  // per root: root and tip colours
+    bool perHairColor = false;
     float twistAmount = -1.0f;
     std::uint64_t twistSeed = 0;
     std::vector<float> twistTable;
@@ -173,10 +177,15 @@ struct GpuFur::Impl {
       const fur::CoatRoots& cr = r.coats[static_cast<std::size_t>(c)];
       Coat& g = coats[static_cast<std::size_t>(c)];
       g.rootCount = cr.size();
-      std::vector<std::int32_t> packed(static_cast<std::size_t>(2 * g.rootCount));
+      // Per root (triangle, table index, length-map scale as float bits, 0): one storage block,
+      // as GL guarantees few per compute shader.
+      const bool hasLengthScale = !cr.lengthScale.empty();
+      std::vector<std::int32_t> packed(static_cast<std::size_t>(4 * g.rootCount));
       for (std::int64_t j = 0; j < g.rootCount; ++j) {
-        packed[static_cast<std::size_t>(2 * j)] = cr.triangle[static_cast<std::size_t>(j)];
-        packed[static_cast<std::size_t>(2 * j + 1)] = cr.tableIndex[static_cast<std::size_t>(j)];
+        const auto k = static_cast<std::size_t>(j);
+        packed[4 * k] = cr.triangle[k];
+        packed[4 * k + 1] = cr.tableIndex[k];
+        packed[4 * k + 2] = std::bit_cast<std::int32_t>(hasLengthScale ? cr.lengthScale[k] : 1.0f);
       }
       g.rootData = makeBuffer(static_cast<GLsizeiptr>(packed.size() * 4), packed.data());
       g.jitter = makeBuffer(static_cast<GLsizeiptr>(cr.jitter.size() * 4), cr.jitter.data());
@@ -194,6 +203,19 @@ struct GpuFur::Impl {
           makeBuffer(static_cast<GLsizeiptr>((triangleCount + 255) / 256 + 1) * 4, nullptr);
       g.shape = makeBuffer(sizeof(fur::CoatShape), nullptr);
       g.twistAmount = -1.0f;
+    }
+  }
+
+  void uploadColors(const fur::FurColors* colors) {
+    for (int c = 0; c < fur::kCoatCount; ++c) {
+      Coat& g = coats[static_cast<std::size_t>(c)];
+      const fur::CoatColors* cc = colors ? &colors->coats[static_cast<std::size_t>(c)] : nullptr;
+      g.perHairColor = cc && cc->perHair;
+      if (g.perHairColor)
+        PELAGE_CHECK(cc->packed.size() == static_cast<std::size_t>(2 * g.rootCount), "colours of ",
+                     cc->packed.size() / 2, " roots for ", g.rootCount);
+      g.colors = makeBuffer(g.perHairColor ? static_cast<GLsizeiptr>(cc->packed.size() * 4) : 0,
+                            g.perHairColor ? cc->packed.data() : nullptr);
     }
   }
 
@@ -224,6 +246,12 @@ void GpuFur::beginFrame(const GpuFurFrame& f) {
   if (m.generation != f.rootsGeneration || m.roots != f.roots) {
     m.uploadRoots(*f.roots);
     m.generation = f.rootsGeneration;
+    m.colorGeneration = ~std::uint64_t{0};
+  }
+  const std::uint64_t colorGeneration = f.colors ? f.colorGeneration : 0;
+  if (m.colorGeneration != colorGeneration) {
+    m.uploadColors(f.colors);
+    m.colorGeneration = colorGeneration;
   }
   m.roots = f.roots;
   m.params = f.params;
@@ -292,9 +320,15 @@ void GpuFur::generate(int coat, const fur::HairLayout& layout, bool tangents,
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 11, m.lengths.get());
   glUniform1i(uniform(hp, "uTangents"), tangents ? 1 : 0);
   glUniform1i(uniform(hp, "uStrandStride"), layout.ringSides);
+  glUniform1i(uniform(hp, "uColors"), g.perHairColor ? 1 : 0);
+  // (Unused bindings still need a buffer bound.)
+  if (!g.perHairColor) {
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 16, m.barycentric.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 17, out.colors());
+  }
   const std::int64_t P = layout.pointsPerHair();
   const std::int64_t pointBytes = P * 3 * static_cast<std::int64_t>(sizeof(float));
-  // Roots per window: the jitter (16 bytes per root) is the widest root-indexed input.
+  // Roots per window: the root data and jitter (16 bytes per root) are the widest root inputs.
   std::int64_t window = m.maxBinding / 16;
   window -= window % std::max<std::int64_t>(m.alignment, 256);
   PELAGE_CHECK(window > 0, "binding size ", m.maxBinding, " too small");
@@ -304,14 +338,19 @@ void GpuFur::generate(int coat, const fur::HairLayout& layout, bool tangents,
                       chunk.capacity * pointBytes);
     glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 13, out.shading(), chunk.firstHair * pointBytes,
                       chunk.capacity * pointBytes);
+    if (g.perHairColor)
+      glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 17, out.colors(), chunk.firstHair * 8,
+                        chunk.capacity * 8);
     glUniform1i(uniform(hp, "uChunkFirst"), static_cast<GLint>(chunk.firstHair));
     glUniform1i(uniform(hp, "uChunkCount"), static_cast<GLint>(chunk.capacity));
     const std::int64_t rootEnd =
         culling ? g.rootCount : std::min(g.rootCount, chunk.firstHair + chunk.capacity);
     for (std::int64_t first = chunk.firstHair; first < rootEnd; first += window) {
       const std::int64_t count = std::min(window, rootEnd - first);
-      glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 4, g.rootData.get(), first * 8, count * 8);
+      glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 4, g.rootData.get(), first * 16, count * 16);
       glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 5, g.jitter.get(), first * 16, count * 16);
+      if (g.perHairColor)
+        glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 16, g.colors.get(), first * 8, count * 8);
       glUniform1i(uniform(hp, "uWindowFirst"), static_cast<GLint>(first));
       glUniform1i(uniform(hp, "uWindowCount"), static_cast<GLint>(count));
       dispatch1d(count, 64, m.options.maxGroupsPerDimension);

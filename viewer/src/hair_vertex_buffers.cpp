@@ -34,6 +34,8 @@ HairVertexBuffers::HairVertexBuffers() {
 
 HairVertexBuffers::~HairVertexBuffers() {
   deleteAll(positions_, shading_, indices_, commands_);
+  if (colors_) glDeleteBuffers(1, &colors_);
+  if (colorTexture_) glDeleteTextures(1, &colorTexture_);
   glDeleteVertexArrays(1, &vao_);
 }
 
@@ -57,6 +59,9 @@ void HairVertexBuffers::reserve(std::int64_t hairs, const HairLayout& layout,
       std::max<std::int64_t>(layoutChanged ? hairs : hairs + hairs / 4, 1);
 
   deleteAll(positions_, shading_, indices_, commands_);
+  if (colors_) glDeleteBuffers(1, &colors_);
+  if (colorTexture_) glDeleteTextures(1, &colorTexture_);
+  colors_ = colorTexture_ = 0;
   layout_ = layout;
   capacity_ = capacity;
   chunks_.clear();
@@ -68,6 +73,15 @@ void HairVertexBuffers::reserve(std::int64_t hairs, const HairLayout& layout,
   glNamedBufferStorage(positions_, bytes, nullptr, GL_DYNAMIC_STORAGE_BIT);
   glCreateBuffers(1, &shading_);
   glNamedBufferStorage(shading_, bytes, nullptr, GL_DYNAMIC_STORAGE_BIT);
+  GLint maxTexels = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
+  PELAGE_CHECK(capacity <= maxTexels, capacity, " hairs exceed the texture buffer limit of ",
+               maxTexels, " (GL_MAX_TEXTURE_BUFFER_SIZE)");
+  glCreateBuffers(1, &colors_);
+  glNamedBufferStorage(colors_, static_cast<GLsizeiptr>(capacity * 8), nullptr,
+                       GL_DYNAMIC_STORAGE_BIT);
+  glCreateTextures(GL_TEXTURE_BUFFER, 1, &colorTexture_);
+  glTextureBuffer(colorTexture_, GL_RG32UI, colors_);
 
   // The index pattern of one hair, repeated for the largest chunk; chunks reuse it through
   // baseVertex, so the indices stay below 2^32 whatever the total hair count.
@@ -117,6 +131,26 @@ void HairVertexBuffers::upload(const float* positions, const float* shading, std
   }
   glNamedBufferSubData(commands_, 0, static_cast<GLsizeiptr>(cmds.size() * sizeof(DrawCommand)),
                        cmds.data());
+}
+
+void HairVertexBuffers::uploadColors(const std::uint32_t* colors, std::int64_t hairs) {
+  PELAGE_CHECK(hairs <= capacity_, hairs, " hairs > capacity ", capacity_);
+  if (hairs > 0) glNamedBufferSubData(colors_, 0, static_cast<GLsizeiptr>(hairs * 8), colors);
+}
+
+void HairVertexBuffers::readBackColors(std::vector<std::uint32_t>& colors) const {
+  std::vector<DrawCommand> cmds(chunks_.size());
+  glGetNamedBufferSubData(commands_, 0, static_cast<GLsizeiptr>(cmds.size() * sizeof(DrawCommand)),
+                          cmds.data());
+  colors.clear();
+  for (std::size_t c = 0; c < chunks_.size(); ++c) {
+    const std::int64_t n = cmds[c].count / static_cast<std::uint32_t>(layout_.indicesPerHair());
+    const std::size_t at = colors.size();
+    colors.resize(at + static_cast<std::size_t>(2 * n));
+    if (n > 0)
+      glGetNamedBufferSubData(colors_, chunks_[c].firstHair * 8, static_cast<GLsizeiptr>(n * 8),
+                              colors.data() + at);
+  }
 }
 
 std::int64_t HairVertexBuffers::drawnHairsOnGpu() const {

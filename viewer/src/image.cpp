@@ -1,6 +1,5 @@
 #include "pelage/viewer/image.h"
 
-#include <stb_image.h>
 #include <stb_image_write.h>
 
 #include <cstring>
@@ -8,6 +7,7 @@
 
 #include "pelage/util/atomic_file.h"
 #include "pelage/util/error.h"
+#include "pelage/util/image.h"
 
 namespace pelage::viewer {
 
@@ -66,14 +66,11 @@ void writeImage(const std::string& path, const Image& image) {
 }
 
 Image readPng(const std::string& path) {
-  int w = 0, h = 0, channels = 0;
-  stbi_uc* data = stbi_load(path.c_str(), &w, &h, &channels, 4);
-  if (!data) inputError(path, ": cannot read PNG (", stbi_failure_reason(), ")");
+  Rgba8Image decoded = readImageFile(path);
   Image img;
-  img.width = w;
-  img.height = h;
-  img.rgba.assign(data, data + static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 4);
-  stbi_image_free(data);
+  img.width = decoded.width;
+  img.height = decoded.height;
+  img.rgba = std::move(decoded.rgba);
   return img;
 }
 

@@ -1,10 +1,12 @@
 #include "pelage/viewer/renderer.h"
+#include "pelage/util/color.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 
 #include "gl_program.h"
+#include "pelage/skin/texture.h"
 #include "pelage/util/error.h"
 #include "pelage/viewer/gl_context.h"
 #include "pelage/viewer/gpu_fur.h"
@@ -70,7 +72,7 @@ struct Renderer::Impl {
   int samples = 0;
   int width = 0, height = 0;
 
-  Program skinProgram, hairProgram, ribbonProgram, depthProgram;
+  Program skinProgram, skinTexturedProgram, hairProgram, ribbonProgram, depthProgram;
 
   Framebuffer msaaFbo, resolveFbo, shadowFbo;
   Renderbuffer msaaColor, msaaDepth, resolveDepth;
@@ -83,6 +85,21 @@ struct Renderer::Impl {
   const std::vector<std::int32_t>* skinTrianglesSource = nullptr;
   std::size_t skinTrianglesSize = 0;
   int skinTriangleCount = 0;
+
+  // The skin in its own colours: one vertex per corner (uv, colour, skin vertex), grouped by
+  // material, and the materials' textures (built once per skin).
+  struct CornerGroup {
+    GLint first = 0;
+    GLsizei count = 0;
+    int texture = -1;  // index into appearanceTextures, or -1
+  };
+  const skin::SkinMesh* appearanceSource = nullptr;
+  int appearanceTriangles = -1;
+  detail::VertexArray appearanceVao;
+  Buffer appearanceCorners;
+  std::vector<CornerGroup> appearanceGroups;
+  std::vector<Texture> appearanceTextures;
+  Texture whiteTexture;  // bound where a coat or group has nothing of its own
 
   std::array<HairVertexBuffers, 2> coats;
   std::vector<float> tangentScratch;
@@ -104,12 +121,16 @@ struct Renderer::Impl {
     skinProgram.reset(detail::buildProgram(
         "skin", {ShaderStage{GL_VERTEX_SHADER, {"skin.vert"}},
                  ShaderStage{GL_FRAGMENT_SHADER, {"lighting.glsl", "skin.frag"}}}));
+    skinTexturedProgram.reset(detail::buildProgram(
+        "skin (textured)",
+        {ShaderStage{GL_VERTEX_SHADER, {"skin_textured.vert"}},
+         ShaderStage{GL_FRAGMENT_SHADER, {"lighting.glsl", "skin_textured.frag"}}}));
     hairProgram.reset(detail::buildProgram(
-        "hair", {ShaderStage{GL_VERTEX_SHADER, {"hair.vert"}},
+        "hair", {ShaderStage{GL_VERTEX_SHADER, {"color.glsl", "hair.vert"}},
                  ShaderStage{GL_FRAGMENT_SHADER, {"lighting.glsl", "hair.frag"}}}));
     ribbonProgram.reset(
         detail::buildProgram("hair ribbons",
-                             {ShaderStage{GL_VERTEX_SHADER, {"hair.vert"}},
+                             {ShaderStage{GL_VERTEX_SHADER, {"color.glsl", "hair.vert"}},
                               ShaderStage{GL_GEOMETRY_SHADER, {"hair_ribbon.geom"}},
                               ShaderStage{GL_FRAGMENT_SHADER, {"lighting.glsl", "hair.frag"}}},
                              "#define RIBBON 1"));
@@ -120,6 +141,122 @@ struct Renderer::Impl {
     GLuint vao = 0;
     glCreateVertexArrays(1, &vao);
     skinVao.reset(vao);
+    glCreateVertexArrays(1, &vao);
+    appearanceVao.reset(vao);
+    GLuint tex = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &tex);
+    whiteTexture.reset(tex);
+    glTextureStorage2D(tex, 1, GL_RGBA8, 1, 1);
+    const std::uint8_t white[4] = {255, 255, 255, 255};
+    glTextureSubImage2D(tex, 0, 0, 0, 1, 1, GL_RGBA, GL_UNSIGNED_BYTE, white);
+  }
+
+  // A texture of the skin as a GL sRGB texture with mipmaps, its wrap modes and filter.
+  static Texture uploadTexture(const skin::Texture& t) {
+    GLuint id = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &id);
+    Texture tex(id);
+    int levels = 1;
+    while ((std::max(t.width, t.height) >> levels) > 0) ++levels;
+    glTextureStorage2D(id, levels, t.srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, t.width, t.height);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glTextureSubImage2D(id, 0, 0, 0, t.width, t.height, GL_RGBA, GL_UNSIGNED_BYTE, t.rgba.data());
+    glGenerateTextureMipmap(id);
+    const auto wrap = [](skin::Wrap w) {
+      return w == skin::Wrap::ClampToEdge      ? GL_CLAMP_TO_EDGE
+             : w == skin::Wrap::MirroredRepeat ? GL_MIRRORED_REPEAT
+                                               : GL_REPEAT;
+    };
+    glTextureParameteri(id, GL_TEXTURE_WRAP_S, wrap(t.wrapS));
+    glTextureParameteri(id, GL_TEXTURE_WRAP_T, wrap(t.wrapT));
+    const bool nearest = t.filter == skin::Filter::Nearest;
+    glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, nearest ? GL_NEAREST : GL_LINEAR);
+    glTextureParameteri(id, GL_TEXTURE_MIN_FILTER,
+                        nearest ? GL_NEAREST_MIPMAP_NEAREST : GL_LINEAR_MIPMAP_LINEAR);
+    return tex;
+  }
+
+  // The per-corner arrays and textures of `s` (once per skin): corners grouped by material, each
+  // corner's colour = its material's base colour (the skin's colour without materials) x its
+  // vertex colour.
+  void uploadAppearance(const skin::SkinMesh& s) {
+    if (appearanceSource == &s && appearanceTriangles == s.numTriangles()) return;
+    appearanceSource = &s;
+    appearanceTriangles = s.numTriangles();
+    struct Corner {
+      float u, v;
+      float r, g, b, a;
+      std::int32_t vertex;
+    };
+    static_assert(sizeof(Corner) == 28);
+    const int nT = s.numTriangles();
+    const int groups = std::max<int>(1, static_cast<int>(s.materials.size()));
+    std::vector<std::vector<std::int32_t>> byMaterial(static_cast<std::size_t>(groups));
+    for (int t = 0; t < nT; ++t)
+      byMaterial[s.materials.empty()
+                     ? 0
+                     : static_cast<std::size_t>(s.triangleMaterial[static_cast<std::size_t>(t)])]
+          .push_back(t);
+    std::vector<Corner> corners;
+    corners.reserve(static_cast<std::size_t>(nT) * 3);
+    appearanceGroups.clear();
+    appearanceTextures.clear();
+    for (const skin::Texture& t : s.textures) appearanceTextures.push_back(uploadTexture(t));
+    for (int m = 0; m < groups; ++m) {
+      CornerGroup g;
+      g.first = static_cast<GLint>(corners.size());
+      Eigen::Vector4f base(s.color.x(), s.color.y(), s.color.z(), 1.0f);
+      if (!s.materials.empty()) {
+        base = s.materials[static_cast<std::size_t>(m)].baseColor;
+        g.texture = s.hasUv() ? s.materials[static_cast<std::size_t>(m)].texture : -1;
+      } else if (!s.vertexColor.empty()) {
+        base = Eigen::Vector4f::Ones();
+      }
+      for (std::int32_t t : byMaterial[static_cast<std::size_t>(m)])
+        for (int j = 0; j < 3; ++j) {
+          const auto k = static_cast<std::size_t>(3 * t + j);
+          const std::int32_t v = s.triangles[k];
+          const Eigen::Vector2f uv = s.hasUv() ? s.cornerUv[k] : Eigen::Vector2f::Zero();
+          const Eigen::Vector4f c =
+              s.vertexColor.empty()
+                  ? base
+                  : Eigen::Vector4f(base.cwiseProduct(s.vertexColor[static_cast<std::size_t>(v)]));
+          corners.push_back({uv.x(), uv.y(), c.x(), c.y(), c.z(), c.w(), v});
+        }
+      g.count = static_cast<GLsizei>(corners.size()) - g.first;
+      if (g.count > 0) appearanceGroups.push_back(g);
+    }
+    appearanceCorners = detail::createBuffer();
+    glNamedBufferStorage(
+        appearanceCorners.get(),
+        static_cast<GLsizeiptr>(std::max<std::size_t>(corners.size(), 1) * sizeof(Corner)),
+        corners.empty() ? nullptr : corners.data(), 0);
+    const GLuint vao = appearanceVao.get();
+    glVertexArrayVertexBuffer(vao, 0, appearanceCorners.get(), 0, sizeof(Corner));
+    glEnableVertexArrayAttrib(vao, 0);
+    glVertexArrayAttribFormat(vao, 0, 2, GL_FLOAT, GL_FALSE, 0);
+    glVertexArrayAttribBinding(vao, 0, 0);
+    glEnableVertexArrayAttrib(vao, 1);
+    glVertexArrayAttribFormat(vao, 1, 4, GL_FLOAT, GL_FALSE, 8);
+    glVertexArrayAttribBinding(vao, 1, 0);
+    glEnableVertexArrayAttrib(vao, 2);
+    glVertexArrayAttribIFormat(vao, 2, 1, GL_INT, 24);
+    glVertexArrayAttribBinding(vao, 2, 0);
+  }
+
+  void drawSkinAppearance(GLuint program) {
+    glUseProgram(program);
+    glBindVertexArray(appearanceVao.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, skinPositions.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, skinNormals.get());
+    for (const CornerGroup& g : appearanceGroups) {
+      const bool textured =
+          g.texture >= 0 && appearanceTextures[static_cast<std::size_t>(g.texture)];
+      setInt(program, "uTextured", textured ? 1 : 0);
+      glBindTextureUnit(2, textured ? appearanceTextures[static_cast<std::size_t>(g.texture)].get()
+                                    : whiteTexture.get());
+      glDrawArrays(GL_TRIANGLES, g.first, g.count);
+    }
   }
 
   void resize(int w, int h) {
@@ -137,7 +274,9 @@ struct Renderer::Impl {
 
     glCreateTextures(GL_TEXTURE_2D, 1, &id);
     resolveColor.reset(id);
-    glTextureStorage2D(id, 1, GL_RGBA8, w, h);
+    // sRGB colour: shading is in linear space, the framebuffer encodes (GL_FRAMEBUFFER_SRGB while
+    // drawing), and read-back pixels are sRGB bytes, as image files and displays expect.
+    glTextureStorage2D(id, 1, GL_SRGB8_ALPHA8, w, h);
     glCreateFramebuffers(1, &id);
     resolveFbo.reset(id);
     glNamedFramebufferTexture(id, GL_COLOR_ATTACHMENT0, resolveColor.get(), 0);
@@ -153,7 +292,7 @@ struct Renderer::Impl {
     if (samples > 0) {
       glCreateRenderbuffers(1, &id);
       msaaColor.reset(id);
-      glNamedRenderbufferStorageMultisample(id, samples, GL_RGBA8, w, h);
+      glNamedRenderbufferStorageMultisample(id, samples, GL_SRGB8_ALPHA8, w, h);
       glCreateRenderbuffers(1, &id);
       msaaDepth.reset(id);
       glNamedRenderbufferStorageMultisample(id, samples, GL_DEPTH_COMPONENT24, w, h);
@@ -240,6 +379,10 @@ struct Renderer::Impl {
       shade = tangentScratch.data();
     }
     b.upload(f.positions, shade, f.drawnHairs);
+    if (f.perHairColor) {
+      PELAGE_CHECK(f.colors || f.drawnHairs == 0, "per-hair colours without the frame's colours");
+      b.uploadColors(f.colors, f.drawnHairs);
+    }
   }
 
   void drawSkin(GLuint program) {
@@ -312,6 +455,8 @@ struct Renderer::Impl {
           g.roots = in.roots;
           g.params = in.params;
           g.rootsGeneration = in.rootsGeneration;
+          g.colors = in.colors;
+          g.colorGeneration = in.colorGeneration;
           g.deformed = in.deformed;
           g.skinPositions = skinPositions.get();
           g.skinNormals = skinNormals.get();
@@ -358,18 +503,28 @@ struct Renderer::Impl {
     const GLuint target = samples > 0 ? msaaFbo.get() : resolveFbo.get();
     glBindFramebuffer(GL_FRAMEBUFFER, target);
     glViewport(0, 0, width, height);
-    glClearColor(list.background.x(), list.background.y(), list.background.z(), 1.0f);
+    // The background's sRGB code, written as it is (whether a driver encodes clear colours under
+    // GL_FRAMEBUFFER_SRGB varies); everything drawn after is encoded by the framebuffer.
+    glDisable(GL_FRAMEBUFFER_SRGB);
+    glClearColor(linearToSrgb(list.background.x()), linearToSrgb(list.background.y()),
+                 linearToSrgb(list.background.z()), 1.0f);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    glEnable(GL_FRAMEBUFFER_SRGB);
 
     const float bias = 3.0f / static_cast<float>(std::max(shadowSize, 1));
     if (list.skin.positions) {
-      const GLuint p = skinProgram.get();
+      const bool own = list.skin.appearance != nullptr;
+      if (own) uploadAppearance(*list.skin.appearance);
+      const GLuint p = own ? skinTexturedProgram.get() : skinProgram.get();
       setLighting(p, list, lightViewProj, bias * 0.5f);
       setMaterial(p, list.skin.material);
       // Hairs start on the skin: push the skin back a little so their roots are not hidden.
       glEnable(GL_POLYGON_OFFSET_FILL);
       glPolygonOffset(1.0f, 2.0f);
-      drawSkin(p);
+      if (own)
+        drawSkinAppearance(p);
+      else
+        drawSkin(p);
       glDisable(GL_POLYGON_OFFSET_FILL);
     }
     const bool ribbons = list.hairWidth == scene::HairWidth::Ribbons;
@@ -380,6 +535,9 @@ struct Renderer::Impl {
       setLighting(p, list, lightViewProj, bias * 2.0f);
       setMaterial(p, f.material);
       setInt(p, "uKajiyaKay", list.hairShading == scene::HairShading::KajiyaKay ? 1 : 0);
+      setInt(p, "uPerHairColor", f.perHairColor ? 1 : 0);
+      setFloat(p, "uAmbientRatio", f.ambientRatio);
+      glBindTextureUnit(1, b.colorTexture());
       glProgramUniform2f(p, uniform(p, "uViewport"), static_cast<float>(width),
                          static_cast<float>(height));
       setFloat(p, "uRootWidth", list.ribbonRootWidthPixels);
@@ -390,9 +548,10 @@ struct Renderer::Impl {
     glDisable(
         GL_PRIMITIVE_RESTART_FIXED_INDEX);  // others (the UI) draw 16-bit indices up to 0xFFFF
 
-    if (samples > 0)
+    if (samples > 0)  // (resolved in linear space where the driver follows GL 4.4+)
       glBlitNamedFramebuffer(msaaFbo.get(), resolveFbo.get(), 0, 0, width, height, 0, 0, width,
                              height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    glDisable(GL_FRAMEBUFFER_SRGB);  // the window and the UI draw unencoded
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     return stats;
   }

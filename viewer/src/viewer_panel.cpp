@@ -6,6 +6,8 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <iterator>
+#include <string>
 
 #include "pelage/fur/preset.h"
 
@@ -14,6 +16,41 @@ namespace {
 
 bool color(const char* label, Eigen::Vector3f& c) {
   return ImGui::ColorEdit3(label, c.data(), ImGuiColorEditFlags_Float);
+}
+
+// A file path field, applied when Enter is pressed (an empty path: no map).
+void pathField(const char* label, std::string& path) {
+  char buffer[1024];
+  std::snprintf(buffer, sizeof buffer, "%s", path.c_str());
+  if (ImGui::InputText(label, buffer, sizeof buffer, ImGuiInputTextFlags_EnterReturnsTrue))
+    path = buffer;
+}
+
+// The colour model of a coat (fur_params.h: CoatColor).
+void coatColorPanel(fur::CoatColor& k) {
+  if (!ImGui::TreeNode("colour")) return;
+  constexpr fur::ColorSource kSources[] = {fur::ColorSource::Material, fur::ColorSource::Creature,
+                                           fur::ColorSource::Texture, fur::ColorSource::Vertex,
+                                           fur::ColorSource::Map};
+  const char* names[std::size(kSources)];
+  int current = 0;
+  for (std::size_t i = 0; i < std::size(kSources); ++i) {
+    names[i] = fur::colorSourceName(kSources[i]).data();
+    if (kSources[i] == k.source) current = static_cast<int>(i);
+  }
+  if (ImGui::Combo("source", &current, names, static_cast<int>(std::size(kSources))))
+    k.source = kSources[current];
+  ImGui::DragFloat3("tint", k.tint.data(), 0.01f, 0.0f, 10.0f, "%.2f");
+  ImGui::SliderFloat("tip lightness", &k.tipLightness, 0.0f, 10.0f, "%.2f",
+                     ImGuiSliderFlags_Logarithmic);
+  ImGui::Checkbox("tip colour", &k.hasTipColor);
+  if (k.hasTipColor) {
+    ImGui::SameLine();
+    color("##tip", k.tipColor);
+  }
+  ImGui::SliderFloat("hue variation (deg)", &k.hueVariation, 0.0f, 180.0f);
+  ImGui::SliderFloat("value variation", &k.valueVariation, 0.0f, 1.0f);
+  ImGui::TreePop();
 }
 
 void coatPanel(const char* title, fur::CoatParams& c, bool undercoat) {
@@ -46,6 +83,7 @@ void coatPanel(const char* title, fur::CoatParams& c, bool undercoat) {
   color("specular", c.material.specular);
   ImGui::SliderFloat("shininess", &c.material.shininess, 1.0f, 1000.0f, "%.0f",
                      ImGuiSliderFlags_Logarithmic);
+  coatColorPanel(c.color);
   ImGui::PopID();
   ImGui::TreePop();
 }
@@ -70,6 +108,13 @@ void furPanel(ViewerSession& s) {
   if (s.regrowing()) ImGui::TextColored(ImVec4(1, 0.8f, 0.3f, 1), "growing new roots...");
   ImGui::SliderFloat("length scale (all)", &p.lengthScale, 0.0f, 10.0f, "%.3f",
                      ImGuiSliderFlags_Logarithmic);
+
+  if (ImGui::TreeNode("groom maps (images on the skin's UVs; Enter applies)")) {
+    pathField("density map", p.maps.density);
+    pathField("length map", p.maps.length);
+    pathField("colour map", p.maps.color);
+    ImGui::TreePop();
+  }
 
   if (ImGui::TreeNode("length scale in a 3D region")) {
     const char* shapes[] = {"none", "sphere", "box"};

@@ -153,6 +153,26 @@ void ViewerSession::applyEdits() {
     candidate.densityPerM2 = grown.densityPerM2;
     candidate.undercoatShare = grown.undercoatShare;
     candidate.seed = grown.seed;
+    candidate.maps.density = grown.maps.density;
+    candidate.maps.length = grown.maps.length;
+  }
+  // Colour edits recolour the roots in place (no new roots); a source the creature lacks or an
+  // unreadable colour map is reported and the colours stay as they were.
+  if (scene::colorsDiffer(fur_.params, candidate)) {
+    try {
+      scene::recolorFur(model_, fur_, candidate, "fur panel");
+    } catch (const InputError& e) {
+      editError = e.what();
+      const fur::FurParams& kept = fur_.params;
+      candidate.maps.color = edit.maps.color = kept.maps.color;
+      for (std::size_t c = 0; c < candidate.coats.size(); ++c) {
+        for (fur::CoatParams* p : {&candidate.coats[c], &edit.coats[c]}) {
+          p->color = kept.coats[c].color;
+          p->material.diffuse = kept.coats[c].material.diffuse;
+          p->material.ambient = kept.coats[c].material.ambient;
+        }
+      }
+    }
   }
   fur_.params = candidate;
 }

@@ -7,7 +7,7 @@ layout(local_size_x = 64) in;
 layout(std430, binding = 1) readonly buffer Triangles { int triangles[]; };          // nT x 3
 layout(std430, binding = 2) readonly buffer TriangleStart { int triangleStart[]; };  // nT + 1
 layout(std430, binding = 3) readonly buffer DrawnStart { int drawnStart[]; };        // nT + 1
-layout(std430, binding = 4) readonly buffer Roots { ivec2 roots[]; };                // window: (triangle, table index)
+layout(std430, binding = 4) readonly buffer Roots { ivec4 roots[]; };  // window: (triangle, table index, length scale bits, 0)
 layout(std430, binding = 5) readonly buffer Jitter { vec4 jitter[]; };               // window: (xi, phase)
 layout(std430, binding = 6) readonly buffer Barycentric { vec4 barycentric[]; };     // 2048: (b1, b2, b3, 0)
 layout(std430, binding = 7) readonly buffer Twist { vec2 twist[]; };                 // 2048 x 8: (cos, sin)
@@ -17,6 +17,8 @@ layout(std430, binding = 10) readonly buffer Directions { float directions[]; };
 layout(std430, binding = 11) readonly buffer Lengths { float lengths[]; };           // nV
 layout(std430, binding = 12) buffer OutPositions { float outPositions[]; };          // chunk: C x P x 3
 layout(std430, binding = 13) buffer OutShading { float outShading[]; };              // chunk: C x P x 3
+layout(std430, binding = 16) readonly buffer RootColors { uvec2 rootColors[]; };     // window: (root, tip)
+layout(std430, binding = 17) buffer OutColors { uvec2 outColors[]; };                // chunk: C
 
 uniform int uWindowFirst;   // first root of the window (roots[0] is root uWindowFirst)
 uniform int uWindowCount;   // roots in the window
@@ -24,6 +26,7 @@ uniform int uChunkFirst;    // first drawn slot of the output chunk
 uniform int uChunkCount;    // drawn slots in the chunk
 uniform bool uTangents;     // shading = unit tangents (Kajiya-Kay) instead of the style's normals
 uniform int uStrandStride;  // 1, or M for tubes
+uniform bool uColors;       // per-hair colours: copy each drawn hair's root and tip colour
 
 int gOut = 0;  // first float of this hair's points in the chunk
 
@@ -48,12 +51,13 @@ void main() {
                   gl_LocalInvocationID.x);
   if (local >= uWindowCount) return;
   int j = uWindowFirst + local;
-  ivec2 r = roots[local];
+  ivec4 r = roots[local];
   int t = r.x;
   int slot = drawnStart[t] + (j - triangleStart[t]);
   if (slot >= drawnStart[t + 1]) return;  // culled (sec. 3.3)
   if (slot < uChunkFirst || slot >= uChunkFirst + uChunkCount) return;  // another chunk's
   gOut = (slot - uChunkFirst) * cs.points * 3;
+  if (uColors) outColors[slot - uChunkFirst] = rootColors[local];
 
   // Sec. 3.2: interpolate at the root with the table's barycentric coordinates.
   int v1 = triangles[3 * t], v2 = triangles[3 * t + 1], v3 = triangles[3 * t + 2];
@@ -61,7 +65,7 @@ void main() {
                                   vertexArray3(0, v3), lengths[v1], lengths[v2], lengths[v3],
                                   vertexArray3(1, v1), vertexArray3(1, v2), vertexArray3(1, v3),
                                   vertexArray3(2, v1), vertexArray3(2, v2), vertexArray3(2, v3),
-                                  jitter[local]);
+                                  jitter[local], intBitsToFloat(r.z));
   for (int i = 0; i < POLYLINE_POINTS; ++i) {
     vec2 cs2 = cs.twist != 0 ? twist[r.y * POLYLINE_POINTS + i] : vec2(1.0, 0.0);
     hin.twistCos[i] = cs2.x;

@@ -65,15 +65,16 @@ float barycentricMix(float b1, float b2, float b3, float v1, float v2, float v3)
 }
 
 // Sec. 3.2: one hair's inputs at its root, interpolated from its triangle's three vertices (deformed
-// position p, fur length len, normal n, segment direction sd) with the barycentric entry b, and the
-// root's jitter j = (xi, phase) (hair_math.h: interpolateRoot).
+// position p, fur length len, normal n, segment direction sd) with the barycentric entry b, the
+// root's jitter j = (xi, phase) and its length-map scale (hair_math.h: interpolateRoot).
 HairInput interpolateRoot(vec3 b, vec3 p1, vec3 p2, vec3 p3, float len1, float len2, float len3,
-                          vec3 n1, vec3 n2, vec3 n3, vec3 sd1, vec3 sd2, vec3 sd3, vec4 j) {
+                          vec3 n1, vec3 n2, vec3 n3, vec3 sd1, vec3 sd2, vec3 sd3, vec4 j,
+                          float lengthScale) {
   HairInput hin;
   hin.root = vec3(barycentricMix(b.x, b.y, b.z, p1.x, p2.x, p3.x),
                   barycentricMix(b.x, b.y, b.z, p1.y, p2.y, p3.y),
                   barycentricMix(b.x, b.y, b.z, p1.z, p2.z, p3.z));
-  hin.length = barycentricMix(b.x, b.y, b.z, len1, len2, len3);
+  hin.length = barycentricMix(b.x, b.y, b.z, len1, len2, len3) * lengthScale;
   hin.normalSum = vec3(barycentricMix(b.x, b.y, b.z, n1.x, n2.x, n3.x),
                        barycentricMix(b.x, b.y, b.z, n1.y, n2.y, n3.y),
                        barycentricMix(b.x, b.y, b.z, n1.z, n2.z, n3.z));

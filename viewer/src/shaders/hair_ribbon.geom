@@ -5,8 +5,10 @@ layout(triangle_strip, max_vertices = 4) out;
 in vec3 vPosition[];
 in vec3 vShading[];
 in float vAlong[];
+in vec3 vColor[];
 out vec3 gPosition;
 out vec3 gShading;
+out vec3 gColor;
 uniform vec2 uViewport;    // pixels
 uniform float uRootWidth;  // pixels
 void main() {
@@ -22,10 +24,10 @@ void main() {
   float w1 = max(uRootWidth * (1.0 - vAlong[1]), 0.5) * 0.5;
   vec2 o0 = n * w0 / (uViewport * 0.5) * c0.w;
   vec2 o1 = n * w1 / (uViewport * 0.5) * c1.w;
-  gPosition = vPosition[0]; gShading = vShading[0];
+  gPosition = vPosition[0]; gShading = vShading[0]; gColor = vColor[0];
   gl_Position = vec4(c0.xy + o0, c0.zw); EmitVertex();
   gl_Position = vec4(c0.xy - o0, c0.zw); EmitVertex();
-  gPosition = vPosition[1]; gShading = vShading[1];
+  gPosition = vPosition[1]; gShading = vShading[1]; gColor = vColor[1];
   gl_Position = vec4(c1.xy + o1, c1.zw); EmitVertex();
   gl_Position = vec4(c1.xy - o1, c1.zw); EmitVertex();
   EndPrimitive();

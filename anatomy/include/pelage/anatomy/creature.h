@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -41,6 +42,15 @@ struct FurRegion {
   std::vector<Eigen::Vector4f> spheres;  // centre xyz, radius
   std::vector<Eigen::AlignedBox3f> boxes;
   float blend = 0.0f;
+  std::optional<Eigen::Vector3f> furColor;  // sRGB as typed; replaces the body's fur colour here
+};
+
+// A creature's fur colours (sRGB as typed): countershading, `back` where the skin faces up (+Z),
+// `belly` where it faces down, blended over normals whose up component lies in [-spread, spread].
+struct CreatureFurColor {
+  Eigen::Vector3f back{0.5f, 0.5f, 0.5f};
+  Eigen::Vector3f belly{0.5f, 0.5f, 0.5f};
+  float spread = 0.4f;  // (0, 1]
 };
 
 struct Creature {
@@ -52,7 +62,8 @@ struct Creature {
   float furLengthMeters = 0.02f;                   // default overcoat fur length at a skin vertex
   float blendRadiusMeters = 0.02f;                 // default smooth-union radius between shapes
   int defaultTriangles = 130000;                   // skin triangle count when the user gives none
-  Eigen::Vector3f skinColor{0.45f, 0.32f, 0.26f};  // skin material diffuse colour (linear RGB)
+  Eigen::Vector3f skinColor{0.45f, 0.32f, 0.26f};  // skin diffuse colour (sRGB as typed)
+  std::optional<CreatureFurColor> furColor;        // absent: the fur presets' materials colour it
 };
 
 // Parses a creature from JSON text; `source` names it in error messages.

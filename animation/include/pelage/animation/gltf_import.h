@@ -42,6 +42,17 @@
 // side file is LoadOptions' `segmentDirections`, else `<model path without
 // extension>.directions.json` when it exists.
 //
+// Appearance (skin/skin_mesh.h): TEXCOORD_0 becomes per-corner UVs (so welding keeps UV seams),
+// COLOR_0 (VEC3 or VEC4, float or normalised integers) a per-vertex linear colour (a welded vertex
+// takes its first copy's), and every material a SkinMaterial: pbrMetallicRoughness.baseColorFactor
+// and baseColorTexture (TEXCOORD_0 only; its sampler's wrap modes, NEAREST or LINEAR
+// magnification). Images are decoded by util/image.h (PNG, JPEG, ...; sRGB), from a bufferView
+// (.glb), a data URI, or a file beside the .gltf (relative paths inside its folder only). An image
+// over 16384 pixels per side or 256 MiB decoded, the creature's images over 1 GiB together, or a
+// missing, truncated or corrupt image: a warning naming the image and the problem, and the material
+// keeps its base colour (the model still loads). Triangles without a material get one of the skin's
+// colour.
+//
 // Clips: each animation becomes a looping clip named after it ("clip<i>" when unnamed), duration =
 // its last key time. Channels that drive nodes outside the body have no effect on the skin and are
 // dropped; morph-target ("weights") channels are skipped with a warning.

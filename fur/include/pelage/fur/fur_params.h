@@ -16,6 +16,45 @@
 
 namespace pelage::fur {
 
+// Where a coat's hair colour (the diffuse of its material, per hair) comes from:
+//  Material: the coat's material (the paper's: one colour per coat);
+//  Creature: the creature's own colours: its fur colours (a creature file's regions), else its
+//    surface (glTF base colour x texture x vertex colour), else the coat's material;
+//  Texture: the surface colour (base colour x texture x vertex colour; needs a textured or coloured
+//    skin); Vertex: the vertex colours (COLOR_0, or a creature file's fur colours);
+//  Map: the preset's colour map at the root's texture coordinates.
+enum class ColorSource { Material, Creature, Texture, Vertex, Map };
+// "material", "creature", "texture", "vertex", "map".
+std::string_view colorSourceName(ColorSource source);
+// Parses a colour source name; InputError naming `where` and the accepted names.
+ColorSource parseColorSource(std::string_view name, const std::string& where);
+
+// A coat's colour model (Van Gelder & Wilhelms 1997, sec. 1: fur "may vary widely in color on
+// different parts of the body, or even on a single hair"): the source colour at the root, times
+// the tint, varied per hair (hue and value, seeded), graded from root to tip.
+struct CoatColor {
+  ColorSource source = ColorSource::Material;
+  Eigen::Vector3f tint{1.0f, 1.0f, 1.0f};      // multiplies the source colour, [0, 10] each
+  float tipLightness = 1.0f;                   // tip = root x this, [0, 10] (without a tip colour)
+  bool hasTipColor = false;                    // the tip blends to tipColor instead
+  Eigen::Vector3f tipColor{1.0f, 1.0f, 1.0f};  // sRGB-encoded, as typed (util/color.h), [0, 1]
+  float hueVariation = 0.0f;    // per-hair hue shift, uniform in +- this many degrees [0, 180]
+  float valueVariation = 0.0f;  // per-hair brightness factor 1 + v (2u - 1), v in [0, 1]
+  // True when every hair of a coat with this model on a given source colour has one colour.
+  bool uniformOver(ColorSource resolved) const {
+    return resolved == ColorSource::Material && tipLightness == 1.0f && !hasTipColor &&
+           hueVariation == 0.0f && valueVariation == 0.0f;
+  }
+};
+
+// Groom maps (images on the skin's UV layout; paths as given, relative ones resolved against the
+// preset file's folder when read from a file): density scales the hairs a triangle gets, length
+// multiplies each hair's length (grey 0.5: half), color is the Map colour source. "" = none.
+struct GroomMapPaths {
+  std::string density, length, color;
+  bool any() const { return !density.empty() || !length.empty() || !color.empty(); }
+};
+
 // One coat (sec. 3.1): "different material characteristics, stiffness, randomness, and hair style".
 struct CoatParams {
   HairStyle style = HairStyle::Polyline;
@@ -30,6 +69,7 @@ struct CoatParams {
   float tubeRadiusMeters = 0.0002f;     // tube radius at the root [1e-6, 0.01] m
   float curlRadius = 0.0f;              // helix radius as a fraction of the length [0, 0.5]
   float curlTurns = 0.0f;               // helix turns along the hair [0, 20]
+  CoatColor color;                      // where each hair's colour comes from
 };
 
 // A 3D region whose hairs' lengths are scaled at run time (sec. 3.2: "scale the length of ... all
@@ -69,6 +109,7 @@ struct FurParams {
   LengthRegion lengthRegion;
   Eigen::Vector3f up{0.0f, 0.0f, 1.0f};  // U = -gravity direction (unit); paper: Z up
   CullingParams culling;
+  GroomMapPaths maps;
 };
 
 // The largest hair count accepted: 20 million (40 times the paper's 500,000).

@@ -63,6 +63,9 @@ struct HairBuffers {
   FloatSpan positions;                // (capacity * P) x 3
   FloatSpan normals;                  // (capacity * P) x 3
   std::vector<std::int32_t> hairIds;  // capacity
+  // Per drawn hair, its root and tip colour (fur/colors.h packing: 2 per hair), filled by
+  // fillHairColors when the coat's hairs have colours of their own; empty otherwise.
+  std::vector<std::uint32_t> colors;
 };
 
 // One frame's hairs, both coats in one allocation: coat 0's roots, then coat 1's (each coat's slots

@@ -66,6 +66,13 @@ struct HairLayout {
   // Control points an exporter writes for the centre line: Linear, the strand points; Bezier, 4
   // (one cubic), or 3 (K - 1) + 1 when curled.
   int curveVertices() const;
+  // Where point k (0 <= k < P) lies along its hair: 0 at the root, 1 at the tip (its strand point
+  // over K - 1; every point of a ring shares its strand point's value).
+  float along(int k) const {
+    return strandPoints > 1
+               ? static_cast<float>(k / ringSides) / static_cast<float>(strandPoints - 1)
+               : 0.0f;
+  }
 
   bool operator==(const HairLayout&) const = default;
 };

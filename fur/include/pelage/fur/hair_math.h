@@ -267,14 +267,15 @@ inline constexpr int kVertexRecordFloats = 12;
 
 // Sec. 3.2: one hair's inputs at its root, interpolated from its triangle's three vertex records
 // (kVertexRecordFloats each) with the barycentric entry b = (b1, b2, b3), and the root's jitter
-// j = (xi x, y, z, helix phase). The scalar form of every kernel's gather (and of the GPU's
-// interpolateRoot in hair_math.glsl).
+// j = (xi x, y, z, helix phase); a length map's value at the root multiplies the interpolated
+// length (1 without one: x * 1 = x exactly). The scalar form of every kernel's gather (and of the
+// GPU's interpolateRoot in hair_math.glsl).
 inline HairInput<float> interpolateRoot(const float* b, const float* v1, const float* v2,
-                                        const float* v3, const float* j) {
+                                        const float* v3, const float* j, float lengthScale = 1.0f) {
   const auto mix = [&](int k) { return barycentricMix(b[0], b[1], b[2], v1[k], v2[k], v3[k]); };
   HairInput<float> in{};
   in.root = {mix(0), mix(1), mix(2)};
-  in.length = mix(3);
+  in.length = mix(3) * lengthScale;
   in.normalSum = {mix(4), mix(5), mix(6)};
   in.directionSum = {mix(8), mix(9), mix(10)};
   in.xi = {j[0], j[1], j[2]};

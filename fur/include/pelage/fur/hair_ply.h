@@ -1,6 +1,7 @@
 // One frame of hairs as a binary little-endian PLY file, written atomically:
 //   element vertex: float x, y, z, nx, ny, nz; int hair (index into the coat's roots);
-//                   uchar coat (0 overcoat, 1 undercoat)
+//                   uchar coat (0 overcoat, 1 undercoat); with colours, uchar red, green,
+//                   blue (8-bit sRGB, graded root to tip: colors.h pointColorsSrgb8)
 //   element edge:   int vertex1, vertex2 joining consecutive points of each strand hair
 //                   (line, polyline, curve)
 //   element face:   list uchar int vertex_indices, the triangles of each ring hair (tube)
@@ -11,6 +12,7 @@
 #include <cstdint>
 #include <string>
 
+#include "pelage/fur/colors.h"
 #include "pelage/fur/generate.h"
 
 namespace pelage::fur {
@@ -29,8 +31,9 @@ bool isCompleteHairPly(const std::string& path);
 HairPlyCounts hairPlyCounts(const FurFrame& frame);
 
 // Writes `frame` to `path` (via a temporary file renamed on success; InputError naming the file on
-// any failure, leaving no partial file). `comment` lines go into the header.
+// any failure, leaving no partial file). `comment` lines go into the header. With `colors` (the
+// roots' colours; frame colours filled by fillHairColors), every vertex carries its colour.
 HairPlyCounts writeHairPly(const std::string& path, const FurFrame& frame,
-                           const std::string& comment = "");
+                           const std::string& comment = "", const FurColors* colors = nullptr);
 
 }  // namespace pelage::fur

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "pelage/fur/fur_params.h"
+#include "pelage/fur/groom_maps.h"
 #include "pelage/skin/skin_mesh.h"
 
 namespace pelage::fur {
@@ -33,6 +34,9 @@ struct CoatRoots {
   // sec. 3.5) from uniform01(coatSeed, kStreamHairEnd, 3 k + {0, 1, 2}); phase in [0, 1) (helix
   // start angle, in turns) from uniform01(coatSeed, kStreamHairEnd + kPhaseStreamOffset, k).
   std::vector<float> jitter;
+  // nRoots: the length map's value at the root (multiplies its interpolated length, sec. 3.2);
+  // empty without a length map.
+  std::vector<float> lengthScale;
   double expectedHairs = 0.0;  // N_coat, before random rounding
   std::int64_t size() const { return static_cast<std::int64_t>(triangle.size()); }
 };
@@ -69,8 +73,14 @@ void checkHairBudget(const FurParams& params, double furredArea);
 // triangle's fraction of the furred skin area, u_t = uniform01(coatSeed, kStreamAllocation, t)
 // ("random rounding"). Triangles whose three vertex fur lengths are 0 get none and do not count
 // in the area. Coat c's roots cycle through the table: root k uses entry k mod 2048.
+// With a density map (maps.density), alpha_t is the triangle's share of the furred area weighted
+// by the map's mean over it (sampled at the centroids of its 4^L sub-triangles, L from its size in
+// texels), so the total stays N and random rounding still holds; inside the triangle, candidate
+// table entries (k mod 2048 onwards) are accepted with probability density / the triangle's
+// sampled maximum (u = uniform01(coatSeed, kStreamDensity, t 2^20 + attempt)), so no root grows
+// where the map is zero. With a length map, each root keeps the map's value at its point.
 // Calls checkHairBudget first.
-FurRoots growRoots(const skin::SkinMesh& skin, const FurParams& params);
+FurRoots growRoots(const skin::SkinMesh& skin, const FurParams& params, const GroomMaps& maps = {});
 
 // Rest-pose area of each triangle (m^2), nT.
 std::vector<double> triangleAreas(const skin::SkinMesh& skin);

@@ -12,6 +12,7 @@
 #include <string_view>
 #include <vector>
 
+#include "pelage/fur/colors.h"
 #include "pelage/fur/fur_params.h"
 #include "pelage/fur/hair_layout.h"
 #include "pelage/fur/roots.h"
@@ -47,7 +48,10 @@ HairSource parseHairSource(std::string_view name, std::string_view field = "hair
 
 // The skin: the deformed arrays of the frame (non-owning; they live in the FrameState).
 struct SkinDrawItem {
+  // The skin's material; with `appearance` its diffuse and ambient are the surface's own colour
+  // at each point (the materials' base colour x texture x vertex colour, skin/skin_mesh.h).
   Material material;
+  const skin::SkinMesh* appearance = nullptr;
   const std::vector<Eigen::Vector3f>* positions = nullptr;  // nV
   const std::vector<Eigen::Vector3f>* normals = nullptr;    // nV
   const std::vector<std::int32_t>* triangles = nullptr;     // nT x 3
@@ -59,7 +63,14 @@ struct SkinDrawItem {
 struct FurDrawItem {
   int coat = 0;            // fur::kOvercoat or fur::kUndercoat
   fur::HairLayout layout;  // the coat's style's points and topology (fur/hair_layout.h)
+  // The coat's material; its diffuse and ambient are the hairs' colour when they share one (tinted,
+  // fur/colors.h). With per-hair colours each hair's diffuse is its colour, graded root to tip,
+  // and its ambient that colour times ambientRatio.
   Material material;
+  bool perHairColor = false;
+  float ambientRatio = 0.0f;
+  const std::uint32_t* colors =
+      nullptr;                  // CPU source, per-hair colours: drawnHairs x 2 (root, tip)
   std::int64_t rootCount = 0;   // hairs grown on the skin
   std::int64_t drawnHairs = 0;  // after distance culling (sec. 3.3)
   float cullFactor = 1.0f;      // c of sec. 3.3 (1 = all hairs)
@@ -76,12 +87,14 @@ struct GpuFurInputs {
   const fur::FurParams* params = nullptr;
   const fur::FurRoots* roots = nullptr;
   std::uint64_t rootsGeneration = 0;
+  const fur::FurColors* colors = nullptr;  // each root's colours (copied per drawn hair on the GPU)
+  std::uint64_t colorGeneration = 0;
   const skin::SkinMesh* skin = nullptr;
   const skin::DeformedSkin* deformed = nullptr;
 };
 
-// The background colour of every frame (linear RGB).
-inline const Eigen::Vector3f kDefaultBackground{0.80f, 0.82f, 0.86f};
+// The background colour of every frame (linear RGB; sRGB 0.80, 0.82, 0.86: a pale blue-grey).
+inline const Eigen::Vector3f kDefaultBackground{0.604f, 0.637f, 0.708f};
 
 // Everything one frame draws.
 struct DrawList {
@@ -110,15 +123,17 @@ struct DrawOptions {
   Eigen::Vector3f background = kDefaultBackground;
 };
 
-// Fills `list` for one evaluated frame: skin item from the frame's deformed skin drawn with
-// `skinMaterial`, one fur item per coat with roots (when `fur` is given and options.drawFur),
-// camera and light as given. With the CPU source the fur items point at the frame's hair buffers
-// (evaluateFur must have run with cpuHairs); with the GPU source, at the roots and parameters in
-// `fur`.
+// Fills `list` for one evaluated frame: skin item from the frame's deformed skin drawn in the
+// model's own colours (its appearance when it has materials, textures or vertex colours, else
+// skinMaterial(model.skin.color)), one fur item per coat with roots (when `fur` is given and
+// options.drawFur), camera and light as given. With the CPU source the fur items point at the
+// frame's hair buffers (evaluateFur must have run with cpuHairs); with the GPU source, at the roots
+// and parameters in `fur`.
 void buildDrawList(const Model& model, const FrameState& frame, const Fur* fur,
                    const Camera& camera, const Light& light, const DrawOptions& options,
                    DrawList& list);
-// The same with the model's skin colour.
+// The same with the skin drawn in one material (a colour the user chose) instead of the model's
+// own colours.
 void buildDrawList(const Model& model, const FrameState& frame, const Fur* fur,
                    const Camera& camera, const Light& light, const DrawOptions& options,
                    const Material& skinMaterial, DrawList& list);

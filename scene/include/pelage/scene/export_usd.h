@@ -42,10 +42,9 @@ struct UsdExportCounts {
 class UsdaWriter {
  public:
   // Opens the spool files beside `path`; InputError naming `path` when its directory is not
-  // writable. `params` are the fur's (styles, materials, widths); they must stay valid until
-  // finish().
-  UsdaWriter(std::string path, const Model& model, const fur::FurParams& params,
-             const UsdExportOptions& options);
+  // writable. `fur` gives the styles, widths and each hair's colours (primvars:displayColor,
+  // linear); it must stay valid until finish().
+  UsdaWriter(std::string path, const Model& model, const Fur& fur, const UsdExportOptions& options);
   ~UsdaWriter();  // removes the spool files (and writes nothing) if finish() was not reached
   UsdaWriter(const UsdaWriter&) = delete;
   UsdaWriter& operator=(const UsdaWriter&) = delete;

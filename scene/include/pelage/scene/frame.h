@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "pelage/anatomy/pose.h"
+#include "pelage/fur/colors.h"
 #include "pelage/fur/culling.h"
 #include "pelage/fur/fur_params.h"
 #include "pelage/fur/generate.h"
@@ -27,17 +28,28 @@ namespace pelage::scene {
 // seed change. Other parameters (styles, lengths, stiffness, materials...) apply per frame.
 struct Fur {
   fur::FurParams params;
+  fur::GroomMaps maps;  // the images params.maps names
   fur::FurRoots roots;
-  std::uint64_t generation =
-      0;  // unique per growFur call: renderers re-upload roots when it changes
+  fur::FurColors colors;              // each hair's colour (fur/colors.h)
+  std::uint64_t generation = 0;       // unique per growFur call: renderers re-upload roots
+  std::uint64_t colorGeneration = 0;  // unique per growFur and recolorFur: re-upload colours
 };
 
-// Validates `params` (InputError naming `source`, the field and the range) and grows the roots.
+// Validates `params` (InputError naming `source`, the field and the range), reads the groom maps,
+// grows the roots and colours them.
 Fur growFur(const Model& model, fur::FurParams params,
             const std::string& source = "fur parameters");
 
-// True when going from `a` to `b` needs new roots (count, density, undercoat share or seed).
+// New hair colours for `params`, whose only changes from fur.params are in the coats' colour
+// models, materials or maps.color (!rootsDiffer): the roots stay (no new generation).
+void recolorFur(const Model& model, Fur& fur, fur::FurParams params,
+                const std::string& source = "fur parameters");
+
+// True when going from `a` to `b` needs new roots (count, density, undercoat share, seed, or the
+// density and length maps).
 bool rootsDiffer(const fur::FurParams& a, const fur::FurParams& b);
+// True when going from `a` to `b` needs new hair colours (colour models, materials, maps.color).
+bool colorsDiffer(const fur::FurParams& a, const fur::FurParams& b);
 
 // Longest hair the parameters can produce on the model (m): the largest vertex fur length times
 // the global, coat and region scales. Used to pad bounds for camera framing.

@@ -25,7 +25,8 @@ struct Light {
   int shadowMapSize = 2048;
 };
 
-// The skin's material for a diffuse colour (the same ambient, small specular terms).
+// The skin's lighting material (linear) for a typed, sRGB-encoded diffuse colour (the same ambient,
+// small specular terms).
 Material skinMaterial(const Eigen::Vector3f& color);
 
 }  // namespace pelage::scene

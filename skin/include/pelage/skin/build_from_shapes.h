@@ -29,4 +29,9 @@ void bindToSegments(const anatomy::Creature& creature, SkinMesh& skin);
 // Sets furLength and region of every vertex from the creature's fur-length regions.
 void assignFurRegions(const anatomy::Creature& creature, SkinMesh& skin);
 
+// Sets furColor (linear) of every vertex from the creature's fur colours: back or belly by the rest
+// normal's up (Z) component, then each region with a colour blended in by its membership, as
+// lengths are. Leaves furColor empty when the creature has none. After finalizeSkin.
+void assignFurColors(const anatomy::Creature& creature, SkinMesh& skin);
+
 }  // namespace pelage::skin

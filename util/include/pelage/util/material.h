@@ -1,6 +1,8 @@
-// A Phong material, linear RGB: Van Gelder & Wilhelms 1997, sec. 3.2: each coat has "ambient,
-// diffuse, and specular reflectivity" (and a shininess, Figure 2). The one material type: each fur
-// coat has one (fur::CoatParams), and the skin is drawn with one (scene::skinMaterial).
+// A Phong material as typed (sRGB-encoded colours, util/color.h: linearMaterial gives the linear
+// values lighting uses; a draw list's materials are linear): Van Gelder & Wilhelms 1997, sec. 3.2:
+// each coat has "ambient, diffuse, and specular reflectivity" (and a shininess, Figure 2). The one
+// material type: each fur coat has one (fur::CoatParams), and the skin is drawn with one
+// (scene::skinMaterial).
 #pragma once
 
 #include <Eigen/Core>

@@ -38,6 +38,8 @@ enum RandomStream : std::uint64_t {
   kStreamHairEnd = 4,
   kStreamNormal = 5,
   kStreamCoatSplit = 6,
+  kStreamColor = 7,    // per-hair colour variation
+  kStreamDensity = 8,  // density-map placement of roots inside a triangle
   kStreamUser = 1000,
 };
 

@@ -17,6 +17,7 @@
 #include <memory>
 #include <vector>
 
+#include "pelage/fur/colors.h"
 #include "pelage/fur/fur_params.h"
 #include "pelage/fur/hair_layout.h"
 #include "pelage/fur/roots.h"
@@ -44,6 +45,8 @@ struct GpuFurFrame {
   const fur::FurRoots* roots = nullptr;
   const fur::FurParams* params = nullptr;
   std::uint64_t rootsGeneration = 0;             // changes whenever `roots` are regrown (re-upload)
+  const fur::FurColors* colors = nullptr;        // per-hair colours of the roots, or null
+  std::uint64_t colorGeneration = 0;             // changes whenever `colors` change (re-upload)
   const skin::DeformedSkin* deformed = nullptr;  // its directions are uploaded by beginFrame
   GLuint skinPositions =
       0;  // the deformed positions and normals already on the GPU (nV x 3 floats)

@@ -49,6 +49,10 @@ class HairVertexBuffers {
   void reserve(std::int64_t hairs, const HairLayout& layout, std::int64_t maxChunkBytes = 0);
   // Uploads `hairs` hairs from CPU arrays (hairs * P * 3 floats each) and sets the draw commands.
   void upload(const float* positions, const float* shading, std::int64_t hairs);
+  // Uploads `hairs` hairs' root and tip colours (2 packed values each, fur/colors.h).
+  void uploadColors(const std::uint32_t* colors, std::int64_t hairs);
+  // Reads back the drawn hairs' colours in hair order (tests: GPU/CPU parity). Uses the commands.
+  void readBackColors(std::vector<std::uint32_t>& colors) const;
 
   // Reads back the drawn hairs' points in hair order (tests: GPU/CPU parity). Uses the commands.
   void readBack(std::vector<float>& positions, std::vector<float>& shading) const;
@@ -60,6 +64,10 @@ class HairVertexBuffers {
   std::int64_t capacity() const { return capacity_; }
   GLuint positions() const { return positions_; }
   GLuint shading() const { return shading_; }
+  // Per hair slot, its root and tip colour (8 bytes; written by uploadColors or the GPU pass), and
+  // the same as a GL_RG32UI texture buffer the hair vertex shader reads.
+  GLuint colors() const { return colors_; }
+  GLuint colorTexture() const { return colorTexture_; }
   GLuint indices() const { return indices_; }
   GLuint commands() const { return commands_; }
   GLuint vertexArray() const { return vao_; }
@@ -72,6 +80,7 @@ class HairVertexBuffers {
   std::vector<HairChunk> chunks_;
   std::vector<DrawCommand> commandScratch_;
   GLuint positions_ = 0, shading_ = 0, indices_ = 0, commands_ = 0, vao_ = 0;
+  GLuint colors_ = 0, colorTexture_ = 0;
 };
 
 // Unit tangents along each strand (Kajiya-Kay's T) of `hairs` hairs of `layout` from their points

@@ -27,7 +27,8 @@ void writePng(const std::string& path, const Image& image);
 // Writes a PNG (.png) or a JPEG (.jpg, .jpeg; quality 95, alpha dropped), chosen by the
 // extension, atomically; InputError naming the file for another extension or a failed write.
 void writeImage(const std::string& path, const Image& image);
-// Reads a PNG as RGBA8; throws InputError naming the file if it is missing or not a PNG.
+// Reads a PNG (or any image util/image.h reads) as RGBA8; InputError naming the file if it is
+// missing or not an image.
 Image readPng(const std::string& path);
 // True when `path` is a complete PNG file: the signature, an IHDR chunk first and an IEND chunk at
 // the very end (what a run killed mid-write cannot leave under the final name anyway).

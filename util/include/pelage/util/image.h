@@ -1,0 +1,41 @@
+// Reading images: PNG, JPEG and the other formats stb_image decodes (BMP, TGA, PSD, PNM, GIF's
+// first frame), 8 or 16 bits per channel, into RGBA8. The one image reader of pelage: glTF
+// textures, groom maps, PNG read-back in tests. Limits are checked from the file's header before a
+// pixel is decoded, so a corrupt or hostile size never allocates; stb_image is compiled into this
+// library (static, instrumented by the sanitizer and fuzz builds).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace pelage {
+
+struct ImageLimits {
+  int maxSide = 16384;                            // pixels per side
+  std::size_t maxBytes = std::size_t{256} << 20;  // decoded RGBA8 bytes (256 MiB: 8192 x 8192)
+};
+
+// An RGBA8 image, top row first.
+struct Rgba8Image {
+  int width = 0;
+  int height = 0;
+  int fileChannels = 0;            // channels stored in the file: 1 grey, 2 grey + alpha, 3, 4
+  std::vector<std::uint8_t> rgba;  // height x width x 4
+  std::size_t bytes() const { return rgba.size(); }
+};
+
+// Decodes an image held in memory; `source` names it in messages ("Fox.glb: image 0 'Texture'").
+// InputError naming `source` and the problem: empty, not a supported image (stb_image's reason),
+// truncated or corrupt, or larger than `limits` (with its size and the limit).
+Rgba8Image decodeImage(const std::uint8_t* data, std::size_t size, const std::string& source,
+                       const ImageLimits& limits = {});
+
+// Reads and decodes an image file (MissingFileError when it does not exist).
+Rgba8Image readImageFile(const std::string& path, const ImageLimits& limits = {});
+
+// "8192x8192 (256.0 MiB as RGBA8)".
+std::string describeImageSize(long long width, long long height);
+
+}  // namespace pelage

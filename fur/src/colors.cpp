@@ -114,11 +114,19 @@ Eigen::Vector3f unpackSrgb8(std::uint32_t p) {
   return {lut[p & 0xFFu], lut[(p >> 8) & 0xFFu], lut[(p >> 16) & 0xFFu]};
 }
 
-Eigen::Vector3f hairColorAt(const CoatColors& c, std::int64_t root, float t) {
-  if (!c.perHair) return c.diffuse;
-  const Eigen::Vector3f a = unpackSrgb8(c.packed[static_cast<std::size_t>(2 * root)]);
-  const Eigen::Vector3f b = unpackSrgb8(c.packed[static_cast<std::size_t>(2 * root + 1)]);
+Eigen::Vector3f gradeHairColor(const std::uint32_t* pair, float t) {
+  const Eigen::Vector3f a = unpackSrgb8(pair[0]);
+  const Eigen::Vector3f b = unpackSrgb8(pair[1]);
   return a + (b - a) * t;
+}
+
+Eigen::Vector3f hairColorAt(const CoatColors& c, std::int64_t root, float t) {
+  return c.perHair ? gradeHairColor(c.packed.data() + 2 * root, t) : c.diffuse;
+}
+
+Eigen::Vector3f drawnHairColorAt(const CoatColors& c, const HairBuffers& hb, std::int64_t i,
+                                 float t) {
+  return c.perHair ? gradeHairColor(hb.colors.data() + 2 * i, t) : c.diffuse;
 }
 
 Eigen::Vector3f shiftHue(const Eigen::Vector3f& rgb, float degrees) {
@@ -217,11 +225,9 @@ void pointColorsSrgb8(const CoatColors& cc, const HairBuffers& hb, std::vector<s
                "pointColorsSrgb8 before fillHairColors");
   parallelForChunks(hb.drawn, 16384, [&](std::int64_t b, std::int64_t e) {
     for (std::int64_t i = b; i < e; ++i) {
-      const Eigen::Vector3f root = unpackSrgb8(hb.colors[static_cast<std::size_t>(2 * i)]);
-      const Eigen::Vector3f tip = unpackSrgb8(hb.colors[static_cast<std::size_t>(2 * i + 1)]);
       std::uint8_t* out = rgb.data() + 3 * i * P;
       for (int k = 0; k < P; ++k) {
-        const Eigen::Vector3f c = root + hb.layout.along(k) * (tip - root);
+        const Eigen::Vector3f c = gradeHairColor(hb.colors.data() + 2 * i, hb.layout.along(k));
         for (int j = 0; j < 3; ++j) out[3 * k + j] = linearToSrgb8(c[j]);
       }
     }

@@ -284,14 +284,9 @@ GlbCounts writeFrameGlb(const std::string& path, const Model& model, const Fur& 
     const fur::CoatColors& cc = fur.colors.coats[static_cast<std::size_t>(p.coat)];
     std::vector<std::uint8_t> rgba(static_cast<std::size_t>(K) * 4);
     for (std::int64_t h = 0; h < p.hairs; ++h) {
-      const Eigen::Vector3f rootColor =
-          cc.perHair ? fur::unpackSrgb8(b.colors[static_cast<std::size_t>(2 * h)]) : cc.diffuse;
-      const Eigen::Vector3f tipColor =
-          cc.perHair ? fur::unpackSrgb8(b.colors[static_cast<std::size_t>(2 * h + 1)]) : cc.diffuse;
       for (int k = 0; k < K; ++k) {
         const float t = K > 1 ? static_cast<float>(k) / static_cast<float>(K - 1) : 0.0f;
-        const Eigen::Vector3f c =
-            (rootColor + t * (tipColor - rootColor)).cwiseMax(0.0f).cwiseMin(1.0f);
+        const Eigen::Vector3f c = fur::drawnHairColorAt(cc, b, h, t).cwiseMax(0.0f).cwiseMin(1.0f);
         for (int j = 0; j < 3; ++j)
           rgba[static_cast<std::size_t>(4 * k + j)] =
               static_cast<std::uint8_t>(std::lround(c[j] * 255.0f));

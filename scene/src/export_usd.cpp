@@ -380,14 +380,10 @@ UsdExportCounts UsdaWriter::finish() {
       PELAGE_CHECK(cc.packed.size() == static_cast<std::size_t>(2 * co.curves),
                    "every root's hair is exported");
       for (std::int64_t h = 0; h < co.curves; ++h) {
-        const Eigen::Vector3f rootColor =
-            fur::unpackSrgb8(cc.packed[static_cast<std::size_t>(2 * h)]);
-        const Eigen::Vector3f tipColor =
-            fur::unpackSrgb8(cc.packed[static_cast<std::size_t>(2 * h + 1)]);
         for (int k = 0; k < V; ++k) {
           if (h > 0 || k > 0) t << ((k == 0 && h % 8 == 0) ? ",\n            " : ", ");
           const float a = V > 1 ? static_cast<float>(k) / static_cast<float>(V - 1) : 0.0f;
-          t.tuple(Eigen::Vector3f(rootColor + a * (tipColor - rootColor)));
+          t.tuple(fur::hairColorAt(cc, h, a));
         }
         if (t.str().size() > (1u << 20)) emit();
       }

@@ -54,9 +54,18 @@ FurColors colorRoots(const skin::SkinMesh& skin, const FurRoots& roots, const Fu
 std::uint32_t packSrgb8(const Eigen::Vector3f& linear);
 Eigen::Vector3f unpackSrgb8(std::uint32_t packed);
 
-// The linear colour of coat colours `c`'s root `root` at parameter t along the hair (0 root, 1
-// tip): root + t (tip - root), both decoded; the coat's diffuse when it is uniform.
+// The one root-to-tip grading of a hair's colour (the renderer's shaders do the same): the linear
+// colour at parameter t along the hair (0 root, 1 tip) whose packed colours are pair[0] (root) and
+// pair[1] (tip): root + t (tip - root), both decoded.
+Eigen::Vector3f gradeHairColor(const std::uint32_t* pair, float t);
+
+// Root `root`'s hair (in root order: c.packed), graded at t; the coat's diffuse when it is uniform.
 Eigen::Vector3f hairColorAt(const CoatColors& c, std::int64_t root, float t);
+
+// Drawn hair i of `hb` (in frame order: hb.colors, filled by fillHairColors), graded at t; the
+// coat's diffuse when it is uniform.
+Eigen::Vector3f drawnHairColorAt(const CoatColors& c, const struct HairBuffers& hb, std::int64_t i,
+                                 float t);
 
 // Copies each drawn hair's packed root and tip colour into frame.coats[c].colors (2 per drawn hair,
 // through hairIds) for the coats with per-hair colours; clears the others'. After generateFur.

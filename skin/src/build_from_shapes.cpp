@@ -31,10 +31,6 @@ constexpr int kDecimateBelow = 40000;
 constexpr int kDecimateFrom = 80000;
 constexpr int kBlock = 8;  // cells per block edge for the sparse grid
 
-float shapeBlend(const Creature& c, const anatomy::Shape& s) {
-  return s.blend >= 0.0f ? s.blend : c.blendRadiusMeters;
-}
-
 Vec3 fieldGradient(const Creature& c, const Vec3& p, float eps) {
   Vec3 g;
   for (int a = 0; a < 3; ++a) {
@@ -401,13 +397,6 @@ TriMesh polygonise(const Creature& c, const Eigen::AlignedBox3f& bounds, float h
 
 }  // namespace
 
-float creatureDistance(const Creature& c, const Eigen::Vector3f& p) {
-  float acc = detail::shapeDistance(c.shapes[0], p);
-  for (std::size_t i = 1; i < c.shapes.size(); ++i)
-    acc = detail::smoothMin(acc, detail::shapeDistance(c.shapes[i], p), shapeBlend(c, c.shapes[i]));
-  return acc;
-}
-
 SkinMesh buildSkin(const Creature& c, const SkinBuildOptions& options) {
   if (options.triangles < 2000 || options.triangles > 2000000)
     inputError(c.source, ": skin triangle count ", options.triangles,
@@ -418,7 +407,7 @@ SkinMesh buildSkin(const Creature& c, const SkinBuildOptions& options) {
   float maxBlend = c.blendRadiusMeters;
   for (const auto& s : c.shapes) {
     bounds.extend(detail::shapeBounds(s));
-    maxBlend = std::max(maxBlend, shapeBlend(c, s));
+    maxBlend = std::max(maxBlend, detail::shapeBlend(c, s));
   }
   bounds.min() -= Vec3::Constant(0.5f * maxBlend);
   bounds.max() += Vec3::Constant(0.5f * maxBlend);

@@ -10,45 +10,13 @@
 
 namespace pelage::skin::detail {
 
-// Ellipsoid: the "k0 (k0 - 1) / k1" approximation (exact on the surface, close near it).
-inline float ellipsoidDistance(const anatomy::Shape& s, const Eigen::Vector3f& p) {
-  const Eigen::Vector3f q = s.rotation.conjugate() * (p - s.center);
-  const float k0 = (q.array() / s.radii.array()).matrix().norm();
-  const float k1 = (q.array() / (s.radii.array() * s.radii.array())).matrix().norm();
-  if (k1 < 1e-20f) return -s.radii.minCoeff();
-  return k0 * (k0 - 1.0f) / k1;
-}
+// The signed distance to shape s (shape_sdf.cpp): an ellipsoid's "k0 (k0 - 1) / k1" approximation
+// (exact on the surface, close near it), or a round cone's exact distance.
+float shapeDistance(const anatomy::Shape& s, const Eigen::Vector3f& p);
 
-// Round cone: spheres of radius rFrom at `from` and rTo at `to`, joined by their tangent cone.
-inline float capsuleDistance(const anatomy::Shape& s, const Eigen::Vector3f& p) {
-  const Eigen::Vector3d a = s.from.cast<double>(), b = s.to.cast<double>(), x = p.cast<double>();
-  const double r1 = static_cast<double>(s.rFrom), r2 = static_cast<double>(s.rTo);
-  const Eigen::Vector3d ba = b - a;
-  const double l2 = ba.squaredNorm();
-  if (l2 < 1e-18) return static_cast<float>((x - a).norm() - std::max(r1, r2));
-  const double rr = r1 - r2;
-  const double a2 = l2 - rr * rr;
-  if (a2 <= 0.0) {  // one sphere contains the other
-    return static_cast<float>(std::min((x - a).norm() - r1, (x - b).norm() - r2));
-  }
-  const double il2 = 1.0 / l2;
-  const Eigen::Vector3d pa = x - a;
-  const double y = pa.dot(ba);
-  const double z = y - l2;
-  const double x2 = (pa * l2 - ba * y).squaredNorm();
-  const double y2 = y * y * l2;
-  const double z2 = z * z * l2;
-  const double k = (rr > 0 ? 1.0 : (rr < 0 ? -1.0 : 0.0)) * rr * rr * x2;
-  const double sz = z > 0 ? 1.0 : (z < 0 ? -1.0 : 0.0);
-  const double sy = y > 0 ? 1.0 : (y < 0 ? -1.0 : 0.0);
-  if (sz * a2 * z2 > k) return static_cast<float>(std::sqrt(x2 + z2) * il2 - r2);
-  if (sy * a2 * y2 < k) return static_cast<float>(std::sqrt(x2 + y2) * il2 - r1);
-  return static_cast<float>((std::sqrt(x2 * a2 * il2) + y * rr) * il2 - r1);
-}
-
-inline float shapeDistance(const anatomy::Shape& s, const Eigen::Vector3f& p) {
-  return s.kind == anatomy::Shape::Kind::Ellipsoid ? ellipsoidDistance(s, p)
-                                                   : capsuleDistance(s, p);
+// The blend radius of shape s in the creature's smooth union (its own, or the creature's).
+inline float shapeBlend(const anatomy::Creature& c, const anatomy::Shape& s) {
+  return s.blend >= 0.0f ? s.blend : c.blendRadiusMeters;
 }
 
 // Polynomial smooth minimum with blend radius k (Quilez): equals min(a, b) exactly when

@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -14,6 +15,7 @@
 #include "pelage/fur/preset.h"
 #include "pelage/models/builtin.h"
 #include "pelage/skin/mesh_io.h"
+#include "pelage/skin/texture.h"
 #include "pelage/util/error.h"
 
 namespace pelage::fuzz {
@@ -82,11 +84,35 @@ void runMesh(const std::uint8_t* data, std::size_t size) {
   skin::readStaticMesh(file.write(data + 1, size - 1));
 }
 
+// An image as a glTF texture or groom map is read: decoded (limits smaller than the default so
+// that a fuzz run stays in memory, the checks are the same), made a texture with the wrap, filter
+// and encoding taken from the last byte, then sampled; every sample must be finite and in [0, 1].
+void runImage(const std::uint8_t* data, std::size_t size) {
+  const std::uint8_t mode = size > 0 ? data[size - 1] : 0;
+  ImageLimits limits;
+  limits.maxSide = 4096;
+  limits.maxBytes = std::size_t{16} << 20;
+  skin::Texture texture = skin::makeTexture(decodeImage(data, size, "fuzz image", limits),
+                                            "fuzz image", (mode & 1) != 0);
+  texture.wrapS = static_cast<skin::Wrap>((mode >> 1) % 3);
+  texture.wrapT = static_cast<skin::Wrap>((mode >> 3) % 3);
+  texture.filter = (mode & 0x20) != 0 ? skin::Filter::Nearest : skin::Filter::Linear;
+  const float uvs[][2] = {{0.f, 0.f},    {0.5f, 0.5f}, {0.999f, 1.f},     {-1.25f, 2.75f},
+                          {1e9f, -1e9f}, {-0.f, 3.f},  {INFINITY, 0.25f}, {NAN, NAN}};
+  for (const auto& uv : uvs) {
+    const Eigen::Vector4f c = texture.sample(Eigen::Vector2f(uv[0], uv[1]));
+    for (int k = 0; k < 4; ++k) {
+      if (!std::isfinite(c[k]) || c[k] < -1e-6f || c[k] > 1.f + 1e-6f)
+        throw std::logic_error("texture sample out of [0, 1]");
+    }
+  }
+}
+
 }  // namespace
 
 const std::vector<std::string>& targetNames() {
-  static const std::vector<std::string> names = {"creature", "preset", "clip",
-                                                 "pose",     "gltf",   "mesh"};
+  static const std::vector<std::string> names = {"creature", "preset", "clip", "pose",
+                                                 "gltf",     "mesh",   "image"};
   return names;
 }
 
@@ -104,6 +130,8 @@ bool runTarget(std::string_view name, const std::uint8_t* data, std::size_t size
       runGltf(data, size);
     else if (name == "mesh")
       runMesh(data, size);
+    else if (name == "image")
+      runImage(data, size);
     else
       throw std::invalid_argument("unknown fuzz target " + std::string(name));
     return true;

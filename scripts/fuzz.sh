@@ -4,7 +4,8 @@
 #        scripts/fuzz.sh ci      (CI: a fixed seed and a fixed number of runs per target, about a
 #                                 minute each on 2 cores, so a CI result is reproducible)
 # Builds build-fuzz with clang (installs clang-14 and its runtime if missing), seeds each target's
-# corpus with the project's files (fuzz/corpus/, models/) and the shared glTF models, and runs each
+# corpus with the project's files (fuzz/corpus/, models/) and the shared glTF models (and the images
+# they carry), and runs each
 # target for SECONDS. A crash, leak, sanitizer report or timeout leaves the input in
 # build-fuzz/artifacts/<target>/ and makes the script fail: add that file to
 # fuzz/regressions/<target>/ (tests/fuzz replays them in every build) and fix the bug.
@@ -15,9 +16,9 @@ shift || true
 ci=0
 if [ "$seconds" = ci ]; then ci=1; seconds=0; fi
 # Runs per target in CI mode (about 40-60 s each at the rates measured on a 2-core VM).
-declare -A ci_runs=([creature]=200000 [preset]=300000 [clip]=300000 [pose]=500000 [gltf]=4000 [mesh]=20000)
+declare -A ci_runs=([creature]=200000 [preset]=300000 [clip]=300000 [pose]=500000 [gltf]=4000 [mesh]=20000 [image]=3000)
 targets=("$@")
-[ ${#targets[@]} -eq 0 ] && targets=(creature preset clip pose gltf mesh)
+[ ${#targets[@]} -eq 0 ] && targets=(creature preset clip pose gltf mesh image)
 build=build-fuzz
 
 if ! command -v clang++-14 >/dev/null || ! ls /usr/lib/llvm-14/lib/clang/*/lib/linux/libclang_rt.fuzzer-x86_64.a >/dev/null 2>&1; then
@@ -38,6 +39,40 @@ seed() {  # seed TARGET FILE...: copies existing files into the target's working
   for f in "$@"; do [ -f "$f" ] && cp "$f" "$dir/"; done
   return 0
 }
+# seed_gltf_images DIR MODEL...: the images the glTF models carry (glb buffer views, data URIs,
+# files beside a .gltf), one file each, as texture seeds.
+seed_gltf_images() {
+  local dir="$1"; shift
+  /usr/bin/python3 - "$dir" "$@" <<'PY' || true
+import base64, json, os, struct, sys
+out = sys.argv[1]
+for path in sys.argv[2:]:
+    if not os.path.isfile(path):
+        continue
+    data = open(path, "rb").read()
+    binary = b""
+    if data[:4] == b"glTF":
+        n = struct.unpack("<I", data[12:16])[0]
+        doc = json.loads(data[20:20 + n])
+        if len(data) > 28 + n:
+            binary = data[28 + n:]
+    else:
+        doc = json.loads(data)
+    for k, image in enumerate(doc.get("images", [])):
+        if "bufferView" in image:
+            view = doc["bufferViews"][image["bufferView"]]
+            start = view.get("byteOffset", 0)
+            blob = binary[start:start + view["byteLength"]]
+        elif image.get("uri", "").startswith("data:"):
+            blob = base64.b64decode(image["uri"].split(",", 1)[1])
+        else:
+            file = os.path.join(os.path.dirname(path), image.get("uri", ""))
+            blob = open(file, "rb").read() if os.path.isfile(file) else b""
+        if blob:
+            name = os.path.splitext(os.path.basename(path))[0]
+            open(os.path.join(out, f"{name}_{k}"), "wb").write(blob)
+PY
+}
 failed=()
 for t in "${targets[@]}"; do
   [ $ci -eq 1 ] && rm -rf "$build/corpus/$t"
@@ -48,6 +83,7 @@ for t in "${targets[@]}"; do
     preset)   seed "$t" models/presets/*.json ;;
     gltf)     seed "$t" "$shared"/RiggedSimple/*.glb "$shared"/SimpleSkin/*.gltf "$shared"/RiggedFigure/*.glb \
                         "$shared"/Fox/*.glb ;;
+    image)    seed_gltf_images "$build/corpus/$t" "$shared"/*/*.glb "$shared"/*/*.gltf ;;
   esac
   if [ $ci -eq 1 ]; then
     budget=(-seed=1 -runs="${ci_runs[$t]}")

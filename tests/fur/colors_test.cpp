@@ -15,6 +15,7 @@
 #include "pelage/skin/texture.h"
 #include "pelage/util/color.h"
 #include "pelage/util/error.h"
+#include "png_writer.h"
 #include "test_support.h"
 
 namespace pelage::fur {
@@ -34,13 +35,11 @@ skin::SkinMesh texturedSquare() {
   return s;
 }
 
-// Writes a binary PPM (P6; util/image.h reads it like any image) of `w` x `h` RGB bytes.
-std::string writePpm(const test::TempDir& dir, const std::string& name, int w, int h,
-                     const std::vector<std::uint8_t>& rgb) {
+// Writes a PNG of `w` x `h` RGB bytes.
+std::string writeRgbPng(const test::TempDir& dir, const std::string& name, int w, int h,
+                        const std::vector<std::uint8_t>& rgb) {
   const std::string path = dir.file(name);
-  std::ofstream f(path, std::ios::binary);
-  f << "P6\n" << w << " " << h << "\n255\n";
-  f.write(reinterpret_cast<const char*>(rgb.data()), static_cast<std::streamsize>(rgb.size()));
+  test::writePng(path, w, h, 3, rgb);
   return path;
 }
 
@@ -120,7 +119,7 @@ TEST(GroomMaps, DensityMapZeroOnHalfGrowsNoRootsThereAndKeepsTheTotal) {
   test::TempDir dir;
   const skin::SkinMesh s = texturedSquare();
   FurParams p = params(20000);
-  p.maps.density = writePpm(dir, "density.ppm", 2, 1, {0, 0, 0, 255, 255, 255});
+  p.maps.density = writeRgbPng(dir, "density.png", 2, 1, {0, 0, 0, 255, 255, 255});
   const GroomMaps maps = loadGroomMaps(p.maps, s, "square");
   const FurRoots roots = growRoots(s, p, maps);
   const std::int64_t n = roots.coats[kOvercoat].size();
@@ -140,8 +139,8 @@ TEST(GroomMaps, LengthMapScalesTheInterpolatedLength) {
   const skin::SkinMesh s = texturedSquare();
   FurParams p = params(3000);
   const test::RestFur plain = test::restFur(s, p);
-  p.maps.length = writePpm(dir, "length.ppm", 4, 1,
-                           {128, 128, 128, 128, 128, 128, 255, 255, 255, 255, 255, 255});
+  p.maps.length = writeRgbPng(dir, "length.png", 4, 1,
+                              {128, 128, 128, 128, 128, 128, 255, 255, 255, 255, 255, 255});
   const GroomMaps maps = loadGroomMaps(p.maps, s, "square");
   const FurRoots mapped = growRoots(s, p, maps);
   ASSERT_EQ(mapped.coats[kOvercoat].triangle, plain.roots.coats[kOvercoat].triangle);  // same roots
@@ -187,7 +186,7 @@ TEST(GroomMaps, ErrorsNameTheFieldAndTheFile) {
   EXPECT_THROW(loadGroomMaps(paths, s, "square"), InputError);
   // A skin without texture coordinates takes no map.
   const skin::SkinMesh bare = test::makeGrid(2, 0.5f, 0.01f);
-  paths.length = writePpm(dir, "ok.ppm", 1, 1, {255, 255, 255});
+  paths.length = writeRgbPng(dir, "ok.png", 1, 1, {255, 255, 255});
   EXPECT_THROW(loadGroomMaps(paths, bare, "bare"), InputError);
   // Nor a texture colour source.
   FurParams p = params(100);
@@ -200,9 +199,10 @@ TEST(GroomMaps, SameRootsAndColoursForAnyThreadCount) {
   test::TempDir dir;
   const skin::SkinMesh s = texturedSquare();
   FurParams p = params(20000);
-  p.maps.density = writePpm(dir, "d.ppm", 2, 2, {0, 0, 0, 90, 90, 90, 255, 255, 255, 30, 30, 30});
-  p.maps.length = writePpm(dir, "l.ppm", 2, 1, {60, 60, 60, 250, 250, 250});
-  p.maps.color = writePpm(dir, "c.ppm", 2, 1, {200, 100, 50, 20, 40, 90});
+  p.maps.density =
+      writeRgbPng(dir, "d.png", 2, 2, {0, 0, 0, 90, 90, 90, 255, 255, 255, 30, 30, 30});
+  p.maps.length = writeRgbPng(dir, "l.png", 2, 1, {60, 60, 60, 250, 250, 250});
+  p.maps.color = writeRgbPng(dir, "c.png", 2, 1, {200, 100, 50, 20, 40, 90});
   p.coats[kOvercoat].color.source = ColorSource::Map;
   p.coats[kOvercoat].color.hueVariation = 8.0f;
   p.coats[kOvercoat].color.valueVariation = 0.1f;

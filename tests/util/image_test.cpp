@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "pelage/util/error.h"
+#include "png_writer.h"
 
 namespace pelage {
 namespace {
@@ -16,11 +17,19 @@ std::vector<std::uint8_t> bytes(const std::string& s) {
   return {s.begin(), s.end()};
 }
 
-// A binary PPM (P6) of w x h pixels with the given RGB bytes.
-std::vector<std::uint8_t> ppm(int w, int h, const std::vector<std::uint8_t>& rgb) {
-  std::vector<std::uint8_t> out =
-      bytes("P6\n" + std::to_string(w) + " " + std::to_string(h) + "\n255\n");
-  out.insert(out.end(), rgb.begin(), rgb.end());
+// A PNG of w x h RGB pixels.
+std::vector<std::uint8_t> png(int w, int h, const std::vector<std::uint8_t>& rgb) {
+  return test::pngBytes(w, h, 3, rgb);
+}
+
+// A PNG signature and IHDR chunk claiming w x h RGB pixels, and nothing else (stb_image reads the
+// size from the header without checking the chunk's CRC).
+std::vector<std::uint8_t> pngHeader(std::uint32_t w, std::uint32_t h) {
+  std::vector<std::uint8_t> out = {0x89, 'P', 'N', 'G', 0x0D, 0x0A, 0x1A, 0x0A,
+                                   0,    0,   0,   13,  'I',  'H',  'D',  'R'};
+  for (const std::uint32_t v : {w, h})
+    for (int s = 24; s >= 0; s -= 8) out.push_back(static_cast<std::uint8_t>(v >> s));
+  out.insert(out.end(), {8, 2, 0, 0, 0, 0, 0, 0, 0});  // 8 bits, RGB; CRC 0
   return out;
 }
 
@@ -35,7 +44,7 @@ std::string messageOf(const std::vector<std::uint8_t>& data, const ImageLimits& 
 
 TEST(Image, DecodesEveryPixelToRgba8TopRowFirst) {
   const std::vector<std::uint8_t> rgb = {255, 0, 0, 0, 255, 0, 0, 0, 255, 10, 20, 30};
-  const std::vector<std::uint8_t> data = ppm(2, 2, rgb);
+  const std::vector<std::uint8_t> data = png(2, 2, rgb);
   const Rgba8Image img = decodeImage(data.data(), data.size(), "test image");
   ASSERT_EQ(img.width, 2);
   ASSERT_EQ(img.height, 2);
@@ -55,16 +64,38 @@ TEST(Image, RefusesEmptyGarbageAndOversizedImagesNamingTheSource) {
   const std::string garbage = messageOf(bytes("this is not an image at all"));
   EXPECT_NE(garbage.find("test image"), std::string::npos) << garbage;
   // A header claiming 20000 x 2 pixels: refused from the header, the size in the message.
-  const std::string wide = messageOf(ppm(20000, 2, {1, 2, 3}));
+  const std::string wide = messageOf(pngHeader(20000, 2));
   EXPECT_NE(wide.find("20000"), std::string::npos) << wide;
   EXPECT_NE(wide.find("16384"), std::string::npos) << wide;
   // Within the sides but over a byte budget.
   ImageLimits small;
   small.maxBytes = 1024;
-  const std::vector<std::uint8_t> big = ppm(32, 32, std::vector<std::uint8_t>(32 * 32 * 3, 7));
+  const std::vector<std::uint8_t> big = png(32, 32, std::vector<std::uint8_t>(32 * 32 * 3, 7));
   const std::string budget = messageOf(big, small);
   EXPECT_NE(budget.find("32x32"), std::string::npos) << budget;
   EXPECT_EQ(messageOf(big), "");  // the default budget takes it
+}
+
+// A JPEG whose Huffman table (DHT) claims 16 x 17 = 272 codes: stb_image 2.27 would write past its
+// 256-entry tables (found by fuzz_image); refused before stb reads it, naming the problem.
+TEST(Image, RefusesAJpegHuffmanTableOfMoreThan256Codes) {
+  std::vector<std::uint8_t> jpeg = {0xFF, 0xD8, 0xFF, 0xC4};
+  const int length = 2 + 17 + 272;
+  jpeg.push_back(static_cast<std::uint8_t>(length >> 8));
+  jpeg.push_back(static_cast<std::uint8_t>(length & 0xFF));
+  jpeg.push_back(0x00);  // class 0 (DC), table 0
+  for (int i = 0; i < 16; ++i) jpeg.push_back(17);
+  jpeg.insert(jpeg.end(), 272, 0x01);
+  jpeg.insert(jpeg.end(), {0xFF, 0xD9});
+  const std::string message = messageOf(jpeg);
+  EXPECT_NE(message.find("test image"), std::string::npos) << message;
+  EXPECT_NE(message.find("more than 256 codes"), std::string::npos) << message;
+  // Formats not compiled in are refused with the accepted list (a BMP header).
+  const std::string bmp = messageOf(bytes("BM\x3e\0\0\0\0\0\0\0\x36\0\0\0(\0\0\0"));
+  EXPECT_NE(bmp.find("accepted: PNG, JPEG)"), std::string::npos) << bmp;
+  // Nor binary PPM (stb_image 2.27's 16-bit PNM reader overflows its buffer).
+  const std::string ppm = messageOf(bytes("P6\n2 1\n255\n\x01\x02\x03\x04\x05\x06"));
+  EXPECT_NE(ppm.find("accepted: PNG, JPEG)"), std::string::npos) << ppm;
 }
 
 TEST(Image, MissingFileIsAMissingFileError) {

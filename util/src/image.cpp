@@ -26,7 +26,7 @@ Rgba8Image decodeImage(const std::uint8_t* data, std::size_t size, const std::st
   int w = 0, h = 0, channels = 0;
   if (!detail::imageInfo(data, length, w, h, channels))
     inputError(source, ": not an image pelage can read (", detail::imageFailureReason(),
-               "; accepted: PNG, JPEG, BMP, TGA, PSD, PNM, GIF)");
+               "; accepted: PNG, JPEG)");
   if (w <= 0 || h <= 0) inputError(source, ": the image has no pixels (", w, "x", h, ")");
   const auto bytes = static_cast<unsigned long long>(w) * static_cast<unsigned long long>(h) * 4ull;
   if (w > limits.maxSide || h > limits.maxSide)

@@ -1,5 +1,5 @@
-// Reading images: PNG, JPEG and the other formats stb_image decodes (BMP, TGA, PSD, PNM, GIF's
-// first frame), 8 or 16 bits per channel, into RGBA8. The one image reader of pelage: glTF
+// Reading images: PNG and JPEG (glTF's formats), 8 or 16 bits per channel, into RGBA8 (stb_image;
+// its other readers are not compiled in). The one image reader of pelage: glTF
 // textures, groom maps, PNG read-back in tests. Limits are checked from the file's header before a
 // pixel is decoded, so a corrupt or hostile size never allocates; stb_image is compiled into this
 // library (static, instrumented by the sanitizer and fuzz builds).

@@ -103,6 +103,9 @@ void addHairCommand(CLI::App& app) {
       view.culling = params.culling.enabled;
       view.viewDistance = static_cast<float>(*distance);
       view.referenceDistance = fur::referenceDistance(m.skin, params.culling);
+      // Seen by the reference camera (its field of view and image height) from --distance.
+      view.fovYDegrees = view.referenceFovYDegrees = params.culling.fovYDegrees;
+      view.imageHeight = view.referenceHeight = params.culling.referenceHeight;
     }
     // One frame played by the frame owner: the pose (or, with fur dynamics, the clip's frames from
     // its start up to --time: scene/playback.h), then its hairs.

@@ -91,7 +91,7 @@ void BM_ExportPlyFrame(benchmark::State& st) {
   int frame = 0;
   for (auto _ : st) {
     scene::evaluateClipFrame(m, clip, (frame++ % 60) / 30.0, state);
-    scene::evaluateFur(m, fur, state.skinBounds.center(), true, state);
+    scene::evaluateFur(m, fur, fur::FurView{}, true, state);
     fur::writeHairPly(path, state.fur);
   }
   std::remove(path.c_str());

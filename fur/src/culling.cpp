@@ -10,10 +10,26 @@
 
 namespace pelage::fur {
 
+namespace {
+double tanHalf(float fovYDegrees) {
+  return std::tan(0.5 * static_cast<double>(fovYDegrees) * 3.14159265358979323846 / 180.0);
+}
+}  // namespace
+
+float pixelsPerMeter(float distance, float fovYDegrees, int imageHeight) {
+  return static_cast<float>(static_cast<double>(imageHeight) /
+                            (2.0 * static_cast<double>(distance) * tanHalf(fovYDegrees)));
+}
+
+// Van Gelder & Wilhelms 1997, sec. 3.3: the zoom factor c, as the ratio of the reference's scale on
+// screen to the camera's (see the file comment).
 float cullingFactor(const FurView& view) {
-  if (!view.culling || !(view.referenceDistance > 0.0f)) return 1.0f;
-  const float c = view.viewDistance / view.referenceDistance;
-  return c > 1.0f ? c : 1.0f;
+  if (!view.culling || !(view.referenceDistance > 0.0f) || view.imageHeight <= 0) return 1.0f;
+  const double c = static_cast<double>(view.viewDistance) /
+                   static_cast<double>(view.referenceDistance) *
+                   (tanHalf(view.fovYDegrees) / tanHalf(view.referenceFovYDegrees)) *
+                   (static_cast<double>(view.referenceHeight) / view.imageHeight);
+  return c > 1.0 ? static_cast<float>(c) : 1.0f;
 }
 
 float faceSize(const skin::SkinMesh& skin) {
@@ -35,8 +51,7 @@ float faceSize(const skin::SkinMesh& skin) {
 }
 
 float defaultReferenceDistance(const skin::SkinMesh& skin, float fovYDegrees) {
-  const double halfFov = 0.5 * static_cast<double>(fovYDegrees) * 3.14159265358979323846 / 180.0;
-  const double d = static_cast<double>(faceSize(skin)) / (2.0 * std::tan(halfFov));
+  const double d = static_cast<double>(faceSize(skin)) / (2.0 * tanHalf(fovYDegrees));
   return d > 1e-6 ? static_cast<float>(d) : 1e-6f;
 }
 
@@ -53,11 +68,15 @@ Eigen::Vector3f creatureCenter(const skin::DeformedSkin& deformed) {
 }
 
 FurView makeFurView(const skin::SkinMesh& skin, const FurParams& params,
-                    const skin::DeformedSkin& deformed, const Eigen::Vector3f& camera) {
+                    const skin::DeformedSkin& deformed, const ViewCamera& camera) {
   FurView v;
   v.culling = params.culling.enabled;
   v.referenceDistance = referenceDistance(skin, params.culling);
-  v.viewDistance = (camera - creatureCenter(deformed)).norm();
+  v.viewDistance = (camera.eye - creatureCenter(deformed)).norm();
+  v.fovYDegrees = camera.fovYDegrees;
+  v.referenceFovYDegrees = params.culling.fovYDegrees;
+  v.imageHeight = camera.imageHeight;
+  v.referenceHeight = params.culling.referenceHeight;
   return v;
 }
 

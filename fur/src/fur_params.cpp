@@ -102,6 +102,7 @@ void validateFurParams(FurParams& p, const std::string& source) {
   p.up /= upLength;
   checkRange(source, "culling.referenceDistance", p.culling.referenceDistance, 0.0, 1e4);
   checkRange(source, "culling.fovDegrees", p.culling.fovYDegrees, 1.0, 179.0);
+  checkRange(source, "culling.referenceHeight", p.culling.referenceHeight, 16, 16384);
   // A total above kMaxHairs is refused with the memory it would need (a density is checked when
   // the roots are grown, against the skin's area).
   if (p.densityPerM2 == 0.0) checkHairBudget(p, 0.0);

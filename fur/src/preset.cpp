@@ -181,11 +181,13 @@ FurParams parsePreset(const nlohmann::json& doc, const std::string& source,
   if (auto r = j.find("lengthRegion")) p.lengthRegion = parseRegion(*r);
   p.up = j.vec3("up", p.up);
   if (auto c = j.find("culling")) {
-    c->rejectUnknown({"enabled", "referenceDistance", "fovDegrees"});
+    c->rejectUnknown({"enabled", "referenceDistance", "fovDegrees", "referenceHeight"});
     p.culling.enabled = c->boolean("enabled", p.culling.enabled);
     p.culling.referenceDistance =
         num(*c, "referenceDistance", p.culling.referenceDistance, 0.0, 1e4);
     p.culling.fovYDegrees = num(*c, "fovDegrees", p.culling.fovYDegrees, 1.0, 179.0);
+    p.culling.referenceHeight =
+        static_cast<int>(c->integer("referenceHeight", p.culling.referenceHeight, 16, 16384));
   }
   if (auto m = j.find("maps")) {
     m->rejectUnknown({"density", "length", "color"});
@@ -245,7 +247,8 @@ std::string furPresetJson(const FurParams& p) {
   j["up"] = colorJson(p.up);
   j["culling"] = {{"enabled", p.culling.enabled},
                   {"referenceDistance", p.culling.referenceDistance},
-                  {"fovDegrees", p.culling.fovYDegrees}};
+                  {"fovDegrees", p.culling.fovYDegrees},
+                  {"referenceHeight", p.culling.referenceHeight}};
   if (p.maps.any()) {
     nlohmann::json m = nlohmann::json::object();
     if (!p.maps.density.empty()) m["density"] = p.maps.density;

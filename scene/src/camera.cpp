@@ -108,6 +108,14 @@ void fitBox(Camera& cam, const Eigen::AlignedBox3f& box, const Eigen::Vector3f& 
 
 }  // namespace
 
+fur::ViewCamera viewCamera(const Camera& camera) {
+  fur::ViewCamera v;
+  v.eye = camera.eye;
+  v.fovYDegrees = camera.fovYDegrees;
+  v.imageHeight = camera.height;
+  return v;
+}
+
 Eigen::Matrix4f Camera::view() const {
   const Eigen::Vector3f f = (target - eye).normalized();
   Eigen::Vector3f s = f.cross(up);

@@ -18,16 +18,8 @@ void preRollDynamics(const Model& model, const Fur& fur, const fur::DynamicsPara
   fur::resetFurDynamics(fur.roots, state);
   for (int f = preRollStart(firstFrame, clock); f < firstFrame; ++f) {
     evaluateClipFrame(model, clip, clock.startSeconds + f / clock.fps, scratch);
-    stepClipDynamics(model, fur, dynamics, clock, Eigen::Vector3f::Zero(), false, state, scratch);
+    stepClipDynamics(model, fur, dynamics, clock, nullptr, state, scratch);
   }
-}
-
-void stepClipDynamics(const Model& model, const Fur& fur, const fur::DynamicsParams& dynamics,
-                      const DynamicsClock& clock, const Eigen::Vector3f& cameraEye, bool cpuHairs,
-                      fur::FurDynamicsState& state, FrameState& frame) {
-  const fur::FurView view =
-      cpuHairs ? fur::makeFurView(model.skin, fur.params, frame.skin, cameraEye) : fur::FurView{};
-  stepClipDynamics(model, fur, dynamics, clock, cpuHairs ? &view : nullptr, state, frame);
 }
 
 void stepClipDynamics(const Model& model, const Fur& fur, const fur::DynamicsParams& dynamics,

@@ -93,12 +93,12 @@ void evaluateClipFrame(const Model& model, int clip, double seconds, FrameState&
   evaluateFrame(model, frame.pose, frame);
 }
 
-void evaluateFur(const Model& model, const Fur& fur, const Eigen::Vector3f& cameraEye,
-                 bool cpuHairs, FrameState& frame) {
+void evaluateFur(const Model& model, const Fur& fur, const Camera& camera, bool cpuHairs,
+                 FrameState& frame) {
   PELAGE_CHECK(frame.skin.positions.size() == static_cast<std::size_t>(model.skin.numVertices()),
                "evaluateFur before evaluateFrame");
-  evaluateFur(model, fur, fur::makeFurView(model.skin, fur.params, frame.skin, cameraEye), cpuHairs,
-              frame);
+  evaluateFur(model, fur, fur::makeFurView(model.skin, fur.params, frame.skin, viewCamera(camera)),
+              cpuHairs, frame);
 }
 
 void evaluateFur(const Model& model, const Fur& fur, const fur::FurView& view, bool cpuHairs,

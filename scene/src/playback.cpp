@@ -132,8 +132,8 @@ void Playback::step(const fur::FurView* view) {
   if (nextFrame_ >= 0) ++nextFrame_;
 }
 
-void Playback::evaluateFur(const Eigen::Vector3f& eye) {
-  evaluateFur(fur::makeFurView(model_->skin, fur_->params, state_.skin, eye));
+void Playback::evaluateFur(const Camera& camera) {
+  evaluateFur(fur::makeFurView(model_->skin, fur_->params, state_.skin, viewCamera(camera)));
 }
 
 void Playback::evaluateFur(const fur::FurView& view) {
@@ -165,7 +165,7 @@ const DrawList& Playback::sequenceFrame(int frame, const CameraRig& rig, int wid
                                         const Material* skin) {
   poseFrame(frame);
   const Camera camera = rigCamera(rig, firstFraming_, framing(), frame, width, height);
-  evaluateFur(camera.eye);
+  evaluateFur(camera);
   return drawList(camera, light, options, skin);
 }
 

@@ -23,6 +23,29 @@ TEST(Culling, FactorIsDistanceOverReferenceAtLeastOne) {
   EXPECT_FLOAT_EQ(cullingFactor(v), 1.0f);
 }
 
+// c = s_ref / s with s = H / (2 d tan(fovY / 2)) pixels per metre: exact on round numbers.
+TEST(Culling, FactorIsTheReferenceScaleOverTheCamerasScale) {
+  EXPECT_FLOAT_EQ(pixelsPerMeter(2.0f, 90.0f, 540), 135.0f);  // tan 45 = 1
+  FurView v;
+  v.culling = true;
+  v.referenceDistance = 0.5f;
+  v.viewDistance = 2.0f;
+  v.referenceFovYDegrees = 45.0f;
+  v.fovYDegrees = 90.0f;
+  v.referenceHeight = 1080;
+  v.imageHeight = 540;
+  // Distance x4, a field of view seeing 1 / tan(22.5) times more, half the pixels.
+  const double tan225 = std::tan(22.5 * 3.14159265358979323846 / 180.0);
+  EXPECT_NEAR(cullingFactor(v), 4.0 / tan225 * 2.0, 1e-4);
+  // A camera that sees the creature as large as the reference does: c = 1.
+  v.imageHeight = 2160;
+  v.fovYDegrees = 45.0f;
+  v.viewDistance = 1.0f;
+  EXPECT_FLOAT_EQ(cullingFactor(v), 1.0f);
+  v.imageHeight = 1080;
+  EXPECT_FLOAT_EQ(cullingFactor(v), 2.0f);
+}
+
 TEST(Culling, KeepsOneOverCOnAverageAsAPrefixOfCreationOrder) {
   const skin::SkinMesh s = test::makeGrid(50, 0.01f, 0.01f);  // 5000 triangles
   const FurRoots r = growRoots(s, test::simpleParams(HairStyle::Line, 37000));

@@ -53,10 +53,11 @@ TEST(FurOnMonkey, LengthsAreTheInterpolatedVertexLengthsAndTheFaceSetsTheReferen
   CullingParams given;
   given.referenceDistance = 0.7f;
   EXPECT_FLOAT_EQ(referenceDistance(m.skin, given), 0.7f);
-  // A camera 10 reference distances from the centre draws about a tenth.
-  const Eigen::Vector3f center = creatureCenter(m.rest);
-  const FurView v =
-      makeFurView(m.skin, FurParams{}, m.rest, center + Eigen::Vector3f(10.0f * d, 0, 0));
+  // A camera like the reference one (45 degrees, 1080 pixels high), 10 reference distances from the
+  // centre, draws about a tenth.
+  ViewCamera camera;
+  camera.eye = creatureCenter(m.rest) + Eigen::Vector3f(10.0f * d, 0, 0);
+  const FurView v = makeFurView(m.skin, FurParams{}, m.rest, camera);
   EXPECT_NEAR(cullingFactor(v), 10.0f, 1e-4f);
   const FurFrame far = test::furFrame(m.skin, r, p, m.rest, v);
   EXPECT_NEAR(static_cast<double>(far.coats[0].drawn),

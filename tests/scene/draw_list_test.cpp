@@ -199,7 +199,7 @@ TEST(BuildDrawList, SkinAndOneItemPerCoat) {
   FrameState f = restFrame();
   const Framing fr = framingOf(m, f, maxHairLength(m, fur.params));
   const Camera cam = presetCamera(fr, CameraPreset::Side, 640, 480);
-  evaluateFur(m, fur, cam.eye, true, f);
+  evaluateFur(m, fur, cam, true, f);
   Light light;
   light.shadows = true;
   DrawList list;

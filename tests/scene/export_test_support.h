@@ -39,7 +39,7 @@ inline void exportFrame(const scene::Fur& fur, int i, scene::FrameState& state) 
         pose.local[s].rotation * Eigen::Quaternionf(Eigen::AngleAxisf(0.21f * static_cast<float>(i),
                                                                       Eigen::Vector3f::UnitY()));
   scene::evaluateFrame(m, pose, state);
-  scene::evaluateFur(m, fur, state.skinBounds.center(), true, state);
+  scene::evaluateFur(m, fur, fur::FurView{}, true, state);
 }
 
 // The text of the block that starts at the line containing `header` ("def Mesh \"skin\""), up to

@@ -130,7 +130,7 @@ TEST(EvaluateFur, EveryHairLiesWithinTheLongestHairOfItsRoot) {
   p.lengthRegion.radius = 0.1f;
   p.lengthRegion.scale = 3.0f;
   const Fur fur = growFur(m, p);
-  evaluateFur(m, fur, Eigen::Vector3f(3, 0, 0), true, f);
+  evaluateFur(m, fur, fur::FurView{}, true, f);
   const float longest = maxHairLength(m, fur.params);
   float seen = 0.0f;
   for (const fur::HairBuffers& hb : f.fur.coats) {
@@ -148,6 +148,18 @@ TEST(EvaluateFur, EveryHairLiesWithinTheLongestHairOfItsRoot) {
   EXPECT_GT(seen, longest * 0.5f);  // the bound is not absurdly loose
 }
 
+// A camera looking at `center` from `distance` along `dir`, with the preset's reference field of
+// view and image height unless others are given.
+Camera cameraAt(const Fur& fur, const Eigen::Vector3f& center, const Eigen::Vector3f& dir,
+                float distance, float fovY = 0.0f, int height = 0) {
+  Camera c;
+  c.target = center;
+  c.eye = center + dir * distance;
+  c.fovYDegrees = fovY > 0.0f ? fovY : fur.params.culling.fovYDegrees;
+  c.height = c.width = height > 0 ? height : fur.params.culling.referenceHeight;
+  return c;
+}
+
 // Van Gelder & Wilhelms 1997, sec. 3.3: "when the viewing distance doubles, the number of hairs
 // drawn decreases by a factor of two" -- and the count-only path (GPU source) agrees with the CPU.
 TEST(EvaluateFur, DoublingTheDistanceHalvesTheDrawnHairs) {
@@ -159,7 +171,7 @@ TEST(EvaluateFur, DoublingTheDistanceHalvesTheDrawnHairs) {
   const float ref = fur::referenceDistance(m.skin, fur.params.culling);
   const Eigen::Vector3f dir = Eigen::Vector3f(1, 1, 0.5f).normalized();
   auto drawnAt = [&](float distance, bool cpu) {
-    evaluateFur(m, fur, center + dir * distance, cpu, f);
+    evaluateFur(m, fur, cameraAt(fur, center, dir, distance), cpu, f);
     EXPECT_NEAR(f.cullFactor, std::max(1.0f, distance / ref), 1e-4f * distance / ref);
     return f.drawnHairs[0] + f.drawnHairs[1];
   };
@@ -177,9 +189,43 @@ TEST(EvaluateFur, DoublingTheDistanceHalvesTheDrawnHairs) {
   // Culling off: every hair at any distance.
   Fur all = fur;
   all.params.culling.enabled = false;
-  evaluateFur(m, all, center + dir * (100.0f * ref), false, f);
+  evaluateFur(m, all, cameraAt(fur, center, dir, 100.0f * ref), false, f);
   EXPECT_EQ(f.drawnHairs[0] + f.drawnHairs[1], fur.roots.total());
   EXPECT_EQ(f.cullFactor, 1.0f);
+}
+
+// The zoom factor is the creature's scale on screen: four times the distance with the field of
+// view narrowed so that the creature keeps its size on screen draws the same hairs; an image twice
+// as high draws twice the hairs (while c > 1).
+TEST(EvaluateFur, TheCreaturesSizeOnScreenSetsTheDrawnHairs) {
+  const Model& m = sceneCritter();
+  const Fur& fur = sceneFur();
+  FrameState f;
+  evaluateFrame(m, anatomy::restPose(m.body), f);
+  const Eigen::Vector3f center = fur::creatureCenter(f.skin);
+  const float ref = fur::referenceDistance(m.skin, fur.params.culling);
+  const Eigen::Vector3f dir = Eigen::Vector3f(-1, 2, 0.3f).normalized();
+  const float fov = 40.0f;
+  auto narrowed = [&](float factor) {  // the field of view seeing 1/factor of fov's height
+    return 2.0f * std::atan(std::tan(0.5f * fov * 3.14159265f / 180.0f) / factor) * 180.0f /
+           3.14159265f;
+  };
+  for (const float d : {3.0f * ref, 6.0f * ref}) {
+    SCOPED_TRACE(d / ref);
+    evaluateFur(m, fur, cameraAt(fur, center, dir, d, fov, 720), false, f);
+    const float c = f.cullFactor;
+    const std::int64_t drawn = f.drawnHairs[0] + f.drawnHairs[1];
+    EXPECT_GT(c, 1.5f);
+    for (const float k : {4.0f, 8.0f}) {
+      evaluateFur(m, fur, cameraAt(fur, center, dir, k * d, narrowed(k), 720), false, f);
+      EXPECT_NEAR(f.cullFactor, c, 1e-4f * c);
+      EXPECT_NEAR(static_cast<double>(f.drawnHairs[0] + f.drawnHairs[1]),
+                  static_cast<double>(drawn), 2e-3 * static_cast<double>(drawn));
+    }
+    evaluateFur(m, fur, cameraAt(fur, center, dir, d, fov, 1440), false, f);
+    EXPECT_NEAR(f.cullFactor, c / 2.0f, 1e-4f * c);
+    EXPECT_NEAR(static_cast<double>(f.drawnHairs[0] + f.drawnHairs[1]) / drawn, 2.0, 0.05);
+  }
 }
 
 }  // namespace

@@ -47,8 +47,7 @@ class FurRenderTest : public test::GlTest {
   Shot render(const scene::Fur* fur, const scene::Camera& cam, scene::DrawOptions opt = {},
               bool shadows = false, Renderer* reuse = nullptr) {
     if (fur)
-      scene::evaluateFur(critter(), *fur, cam.eye, opt.hairSource == scene::HairSource::Cpu,
-                         frame_);
+      scene::evaluateFur(critter(), *fur, cam, opt.hairSource == scene::HairSource::Cpu, frame_);
     scene::Light light;
     light.shadows = shadows;
     Shot s;
@@ -168,7 +167,12 @@ TEST_F(FurRenderTest, DistanceCullingHalvesTheDrawnHairsAtTwiceTheDistance) {
   const scene::Fur fur = scene::growFur(critter(), p);
   const scene::Camera base = camera(scene::CameraPreset::Side, 128, fur);
   const Eigen::Vector3f center = fur::creatureCenter(frame_.skin);
-  const float ref = fur::referenceDistance(critter().skin, fur.params.culling);
+  // The distance at which this camera (its field of view and image height) draws every hair: the
+  // creature's scale on screen there is the reference camera's (fur/culling.h).
+  const float ref =
+      fur::referenceDistance(critter().skin, fur.params.culling) *
+      fur::pixelsPerMeter(1.0f, base.fovYDegrees, base.height) /
+      fur::pixelsPerMeter(1.0f, fur.params.culling.fovYDegrees, fur.params.culling.referenceHeight);
   RendererOptions ro;
   ro.samples = 0;
   Renderer r(ro);

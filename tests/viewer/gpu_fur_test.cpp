@@ -137,7 +137,7 @@ TEST_P(GpuFurParity, MatchesTheCpuModel) {
     scene::Fur f2 = fur;
     f2.params = params;
     f2.params.culling.enabled = culling;
-    scene::evaluateFur(model, f2, cam.eye, true, frame);
+    scene::evaluateFur(model, f2, cam, true, frame);
     if (culling) {
       ASSERT_GT(frame.cullFactor, 2.0f);
     } else {
@@ -261,7 +261,7 @@ TEST_F(GpuFurRandom, EveryStyleWithRandomParametersMatchesTheCpuModel) {
           scene::framingOf(model, frame, scene::maxHairLength(model, fur.params));
       scene::Camera cam = scene::presetCamera(framing, scene::CameraPreset::ThreeQuarter, 64, 64);
       cam.eye = framing.center + (cam.eye - framing.center).normalized() * 0.75f;
-      scene::evaluateFur(model, fur, cam.eye, true, frame);
+      scene::evaluateFur(model, fur, cam, true, frame);
       if (culling) {
         ASSERT_GT(frame.cullFactor, 2.0f);
       }

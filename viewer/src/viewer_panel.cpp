@@ -146,12 +146,14 @@ void furPanel(ViewerSession& s) {
       p.up = -g.normalized();
     ImGui::TreePop();
   }
-  if (ImGui::TreeNode("distance culling (sec. 3.3)")) {
+  if (ImGui::TreeNode("culling by screen scale (sec. 3.3)")) {
     ImGui::Checkbox("enabled", &p.culling.enabled);
+    ImGui::TextWrapped("every hair while the creature looks as large as from the reference camera");
     ImGui::SliderFloat("reference distance (m)", &p.culling.referenceDistance, 0.0f, 10.0f, "%.3f",
                        ImGuiSliderFlags_Logarithmic);
     ImGui::Text("0 = derived from the face: %.3f m", static_cast<double>(s.referenceDistance()));
-    ImGui::SliderFloat("fov for the default", &p.culling.fovYDegrees, 5.0f, 120.0f);
+    ImGui::SliderFloat("reference fov (degrees)", &p.culling.fovYDegrees, 5.0f, 120.0f);
+    ImGui::SliderInt("reference height (pixels)", &p.culling.referenceHeight, 16, 4320);
     ImGui::TreePop();
   }
   coatPanel("overcoat", p.coats[fur::kOvercoat], false);

@@ -272,7 +272,7 @@ void ViewerSession::frame(double dtSeconds, int width, int height) {
   }
   scene::Camera cam = scene::orbitCamera(orbit, std::max(width, 1), std::max(height, 1));
   scene::fitClipPlanes(cam, framing_);
-  if (drawFur) playback_->evaluateFur(cam.eye);
+  if (drawFur) playback_->evaluateFur(cam);
   scene::Light light;
   light.direction = scene::lightDirection(lightAzimuth, lightElevation);
   light.shadows = shadows;

@@ -1,10 +1,14 @@
-// Distance-based culling (Van Gelder & Wilhelms 1997, sec. 3.3): "we draw the full number of hairs
-// at the distance such that approximately the area of the animal's face, or less, is visible on the
-// screen. We decrease the number of hairs drawn by the zoom factor 1/c for greater viewing
-// distances." One factor c for the whole creature, from the camera's distance to the centre of the
-// creature's bounding sphere: the paper scales "the animal's projected area" as a whole, and one c
-// keeps the hair density uniform over the body (a per-triangle c would thin the far side of the
-// creature and change the density between neighbouring triangles as the camera turns).
+// Culling (Van Gelder & Wilhelms 1997, sec. 3.3): "we draw the full number of hairs at the distance
+// such that approximately the area of the animal's face, or less, is visible on the screen. We
+// decrease the number of hairs drawn by the zoom factor 1/c for greater viewing distances." The
+// zoom factor is the creature's scale on screen: pixels per metre at the centre of its bounding
+// sphere, s = H / (2 d tan(fovY / 2)) for an image H pixels high, a camera at distance d with
+// vertical field of view fovY; c = s_ref / s against the reference camera's s_ref. The paper's
+// distance rule is the case of equal fields of view and image sizes (c = d / d_ref); a narrower
+// field of view or a larger image draws more hairs, as the creature covers more pixels. One c for
+// the whole creature: the paper scales "the animal's projected area" as a whole, and one c keeps
+// the hair density uniform over the body (a per-triangle c would thin the far side of the creature
+// and change the density between neighbouring triangles as the camera turns).
 #pragma once
 
 #include <Eigen/Core>
@@ -24,9 +28,20 @@ struct FurView {
   bool culling = false;            // off: every hair is drawn
   float viewDistance = 0.0f;       // camera to the creature's bounding-sphere centre (m)
   float referenceDistance = 1.0f;  // distance with full density (m), > 0
+  // The camera's and the reference's vertical fields of view (degrees) and image heights (pixels):
+  // equal by default, so c is the distance ratio.
+  float fovYDegrees = 45.0f;
+  float referenceFovYDegrees = 45.0f;
+  int imageHeight = 1080;
+  int referenceHeight = 1080;
 };
 
-// c = max(1, viewDistance / referenceDistance); 1 when culling is off.
+// The creature's scale on screen for camera `view`, in pixels per metre at distance d:
+// H / (2 d tan(fovY / 2)).
+float pixelsPerMeter(float distance, float fovYDegrees, int imageHeight);
+
+// c = max(1, s_ref / s) = max(1, (d / d_ref) (tan(fovY / 2) / tan(fovY_ref / 2)) (H_ref / H));
+// 1 when culling is off.
 float cullingFactor(const FurView& view);
 
 // The size (m) of the creature's face: the largest extent of the bind-pose vertices of the skin
@@ -45,9 +60,16 @@ float referenceDistance(const skin::SkinMesh& skin, const CullingParams& params)
 // Centre of the bounding box of the deformed skin (the bounding-sphere centre used for distance).
 Eigen::Vector3f creatureCenter(const skin::DeformedSkin& deformed);
 
-// The view for a camera at `camera`.
+// The camera culling needs: where it is, its vertical field of view and its image height.
+struct ViewCamera {
+  Eigen::Vector3f eye = Eigen::Vector3f::Zero();
+  float fovYDegrees = 45.0f;
+  int imageHeight = 1080;
+};
+
+// The view for `camera`.
 FurView makeFurView(const skin::SkinMesh& skin, const FurParams& params,
-                    const skin::DeformedSkin& deformed, const Eigen::Vector3f& camera);
+                    const skin::DeformedSkin& deformed, const ViewCamera& camera);
 
 // Sec. 3.3: triangle t with k roots draws k' = min(k, floor(k / c + u_t)) of them (random rounding,
 // u_t = uniform01(coatSeed, kStreamCulling, t), fixed from frame to frame so nothing flickers),

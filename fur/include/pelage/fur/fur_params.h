@@ -84,13 +84,17 @@ struct LengthRegion {
   float scale = 1.0f;  // length multiplier inside [0, 10]
 };
 
-// Distance-based culling (sec. 3.3).
+// Culling by screen scale (sec. 3.3's zoom factor): every hair is drawn while the creature appears
+// at least as large as it does from the reference camera (referenceDistance, fovYDegrees,
+// referenceHeight); 1/c of them when it appears c times smaller, whatever makes it smaller
+// (distance, a wider field of view or a smaller image).
 struct CullingParams {
   bool enabled = true;
   // Distance (m) at which every hair is drawn; 0 = derived from the creature's face and fovYDegrees
   // (see defaultReferenceDistance in culling.h).
   float referenceDistance = 0.0f;
-  float fovYDegrees = 45.0f;  // camera vertical field of view used for the default, (1, 179)
+  float fovYDegrees = 45.0f;   // the reference camera's vertical field of view, (1, 179)
+  int referenceHeight = 1080;  // the reference image's height in pixels [16, 16384]
 };
 
 enum Coat : int { kOvercoat = 0, kUndercoat = 1 };

@@ -11,6 +11,7 @@
 #include <string_view>
 #include <vector>
 
+#include "pelage/fur/culling.h"
 #include "pelage/scene/model.h"
 
 namespace pelage::scene {
@@ -36,6 +37,9 @@ struct Camera {
   Eigen::Matrix4f projection() const;
   Eigen::Matrix4f viewProjection() const { return projection() * view(); }
 };
+
+// What fur culling needs of a camera: its eye, vertical field of view and image height.
+fur::ViewCamera viewCamera(const Camera& camera);
 
 // The vertical field of view (degrees) of presets and orbits unless one is given.
 inline constexpr float kDefaultFovYDegrees = 35.0f;

@@ -30,12 +30,8 @@ void preRollDynamics(const Model& model, const Fur& fur, const fur::DynamicsPara
                      fur::FurDynamicsState& state, FrameState& scratch);
 
 // Advances `state` to the skin already evaluated in `frame` (evaluateFrame / evaluateClipFrame),
-// 1 / fps after the previous step; with `cpuHairs`, also the frame's hairs (culling for
-// `cameraEye`, as evaluateFur) built from the dynamic ends.
-void stepClipDynamics(const Model& model, const Fur& fur, const fur::DynamicsParams& dynamics,
-                      const DynamicsClock& clock, const Eigen::Vector3f& cameraEye, bool cpuHairs,
-                      fur::FurDynamicsState& state, FrameState& frame);
-// The same with an explicit view (null: only the springs' step, no hairs).
+// 1 / fps after the previous step; with a view, also the frame's hairs (culled for the view, as
+// evaluateFur) built from the dynamic ends; null: only the springs' step, no hairs.
 void stepClipDynamics(const Model& model, const Fur& fur, const fur::DynamicsParams& dynamics,
                       const DynamicsClock& clock, const fur::FurView* view,
                       fur::FurDynamicsState& state, FrameState& frame);

@@ -18,6 +18,7 @@
 #include "pelage/fur/fur_params.h"
 #include "pelage/fur/generate.h"
 #include "pelage/fur/roots.h"
+#include "pelage/scene/camera.h"
 #include "pelage/scene/model.h"
 #include "pelage/skin/deform.h"
 
@@ -80,12 +81,13 @@ void evaluateFrame(const Model& model, const anatomy::Pose& pose, FrameState& fr
 // evaluateFrame. PELAGE_CHECK fails for an index out of range.
 void evaluateClipFrame(const Model& model, int clip, double seconds, FrameState& frame);
 
-// The frame's fur for a camera at `cameraEye` (after evaluateFrame): distance culling (sec. 3.3)
-// and drawn counts; with `cpuHairs`, the hairs themselves by the CPU fur model (fur::generateFur).
-// Without it the counts are still exact (the GPU applies the same culling rule).
-void evaluateFur(const Model& model, const Fur& fur, const Eigen::Vector3f& cameraEye,
-                 bool cpuHairs, FrameState& frame);
-// The same for an explicit view (a viewing distance rather than a camera).
+// The frame's fur seen by `camera` (after evaluateFrame): culling by the creature's scale on screen
+// (sec. 3.3; fur/culling.h) and drawn counts; with `cpuHairs`, the hairs themselves by the CPU fur
+// model (fur::generateFur). Without it the counts are still exact (the GPU applies the same
+// culling rule).
+void evaluateFur(const Model& model, const Fur& fur, const Camera& camera, bool cpuHairs,
+                 FrameState& frame);
+// The same for an explicit view (a viewing distance rather than a camera; FurView{}: every hair).
 void evaluateFur(const Model& model, const Fur& fur, const fur::FurView& view, bool cpuHairs,
                  FrameState& frame);
 

@@ -102,9 +102,9 @@ class Playback {
   const Framing& firstFraming() const { return firstFraming_; }
 
   // ---- 2. The fur -------------------------------------------------------------------------------
-  // For a camera at `eye`: culling, and the CPU hairs or the GPU's counts; with dynamics, the
-  // springs' step to the posed frame (once per pose) and the hairs from their ends.
-  void evaluateFur(const Eigen::Vector3f& eye);
+  // Seen by `camera`: culling, and the CPU hairs or the GPU's counts; with dynamics, the springs'
+  // step to the posed frame (once per pose) and the hairs from their ends.
+  void evaluateFur(const Camera& camera);
   // The same for an explicit view (a viewing distance rather than a camera; `pelage hair`).
   void evaluateFur(const fur::FurView& view);
   // Only the springs' step to the posed frame, no hairs (dynamics on; analysis).

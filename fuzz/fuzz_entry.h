@@ -23,7 +23,8 @@ bool runTarget(std::string_view name, const std::uint8_t* data, std::size_t size
 
 // Mesh inputs carry their format in the first byte (data[0] % 4: obj, ply, off, stl), the file
 // after it; image inputs are the file (PNG, JPEG, ...), their last byte also picks the texture's
-// wrap modes, filter and encoding; glTF inputs starting with the GLB magic are read as .glb, others as .gltf (JSON).
+// wrap modes, filter and encoding; glTF inputs starting with the GLB magic are read as .glb, others
+// as .gltf (JSON).
 std::string meshInput(std::string_view extension, std::string_view fileBytes);
 
 }  // namespace pelage::fuzz

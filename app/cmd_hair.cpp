@@ -102,7 +102,7 @@ void addHairCommand(CLI::App& app) {
     if (distanceOpt->count() > 0) {
       view.culling = params.culling.enabled;
       view.viewDistance = static_cast<float>(*distance);
-      view.referenceDistance = fur::referenceDistance(m.skin, params.culling);
+      view.referenceDistance = fur::referenceDistance(params);
       // Seen by the reference camera (its field of view and image height) from --distance.
       view.fovYDegrees = view.referenceFovYDegrees = params.culling.fovYDegrees;
       view.imageHeight = view.referenceHeight = params.culling.referenceHeight;

@@ -99,7 +99,8 @@ void runRender(RenderArgs& a) {
     o.camera.preset = a.view.cameraPreset();
   o.playback.hairSource = a.view.source();
   o.look.hairShading = a.view.hairShading();
-  o.look.hairWidth = a.view.ribbons ? scene::HairWidth::Ribbons : scene::HairWidth::Lines;
+  o.look.hairWidth = a.view.hairWidth();
+  o.look.transparency = a.view.transparent();
   o.shadows = a.view.shadows;
   o.skinColor = a.view.skin();
   const std::string ext = std::filesystem::path(o.outDir).extension().string();

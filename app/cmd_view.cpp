@@ -60,7 +60,8 @@ void addViewCommand(CLI::App& app) {
     o->follow = view->follow;
     o->hairSource = view->source();
     o->shading = view->hairShading();
-    o->ribbons = view->ribbons;
+    o->hairWidth = view->hairWidth();
+    o->transparency = view->transparent();
     o->shadows = view->shadows;
     o->noCulling = view->noCulling;
     o->skinColor = view->skin();

@@ -192,6 +192,9 @@ void FurOptions::add(CLI::App& cmd) {
   stiffnessOption = cmd.add_option("--stiffness", stiffness,
                                    "Stiffness of both coats [0, 1], floppiness = 1 - stiffness "
                                    "(default: the preset's)");
+  widthOption = cmd.add_option("--hair-width", hairWidth,
+                               "Hair width at the root of both coats, mm [0.001, 20]; the tips "
+                               "keep their share of it (default: the preset's, 0.4 to 0.02)");
   cmd.add_option("--fur-set", settings,
                  "Any preset field, FIELD=VALUE (repeatable), e.g. overcoat.stiffness=0.6, "
                  "undercoat.diffuse=[0.3,0.2,0.1], overcoat.curl.turns=3, culling.enabled=false "
@@ -216,6 +219,10 @@ fur::FurParams FurOptions::resolve() const {
       {"--stiffness",
        stiffnessOption && stiffnessOption->count() > 0,
        {"overcoat.stiffness", "undercoat.stiffness"}},
+      {"--hair-width",
+       widthOption && widthOption->count() > 0,
+       {"overcoat.width", "undercoat.width", "overcoat.width.root", "undercoat.width.root",
+        "overcoat.width.tip", "undercoat.width.tip"}},
   };
   if (!settings.empty()) {
     nlohmann::json doc = nlohmann::json::parse(fur::furPresetJson(p));
@@ -275,6 +282,15 @@ fur::FurParams FurOptions::resolve() const {
   if (lengthOption && lengthOption->count() > 0) p.lengthScale = static_cast<float>(lengthScale);
   if (stiffnessOption && stiffnessOption->count() > 0)
     for (auto& c : p.coats) c.stiffness = static_cast<float>(stiffness);
+  if (widthOption && widthOption->count() > 0) {
+    if (!(hairWidth >= 0.001 && hairWidth <= 20.0))
+      inputError("--hair-width ", hairWidth, " mm is out of range [0.001, 20]");
+    for (auto& c : p.coats) {
+      const float root = static_cast<float>(hairWidth);
+      c.width.tipMm = std::min(20.0f, c.width.tipMm * root / c.width.rootMm);
+      c.width.rootMm = root;
+    }
+  }
   fur::validateFurParams(p, "fur '" + p.name + "' with the command-line options");
   return p;
 }
@@ -380,7 +396,14 @@ void ViewOptions::add(CLI::App& cmd) {
                      "; dynamic fur is always the CPU's)");
   cmd.add_option("--shading", shading,
                  "Hair shading: paper or kajiya-kay (default " + shading + ")");
-  cmd.add_flag("--ribbons", ribbons, "Draw hairs as tapered ribbons instead of 1-pixel lines");
+  cmd.add_flag("--lines", lines,
+               "Draw hairs as the paper's 1-pixel lines instead of strands of their width "
+               "(sec. 3.3)");
+  cmd.add_option("--transparency", transparency,
+                 "Strands blended with their pixel coverage as alpha, in any order (weighted "
+                 "blended OIT): on or off (off: opaque at least 1 pixel wide) (default " +
+                     transparency + ")")
+      ->check(CLI::IsMember({"on", "off"}));
   cmd.add_flag("--shadows", shadows, "Shadow map: fur and skin shadow each other");
   cmd.add_flag("--no-culling", noCulling, "Draw every hair at any distance (no sec. 3.3 culling)");
   cmd.add_option("--skin-color", skinColor,
@@ -410,6 +433,10 @@ scene::HairSource ViewOptions::source() const {
 
 scene::HairShading ViewOptions::hairShading() const {
   return scene::parseHairShading(shading);
+}
+
+scene::HairWidth ViewOptions::hairWidth() const {
+  return lines ? scene::HairWidth::Lines : scene::HairWidth::Strands;
 }
 
 std::optional<Eigen::Vector3f> ViewOptions::skin() const {

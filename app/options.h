@@ -77,12 +77,14 @@ struct FurOptions {
   double undercoatShare = 0.0;
   double lengthScale = 0.0;
   double stiffness = 0.0;
+  double hairWidth = 0.0;
   std::vector<std::string> settings;  // "path.to.field=JSON value"
   CLI::Option* hairsOption = nullptr;
   CLI::Option* seedOption = nullptr;
   CLI::Option* shareOption = nullptr;
   CLI::Option* lengthOption = nullptr;
   CLI::Option* stiffnessOption = nullptr;
+  CLI::Option* widthOption = nullptr;
   void add(CLI::App& cmd);
   // The preset with the overrides, validated; InputError naming the option. A named option and a
   // --fur-set that set the same field are refused.
@@ -122,7 +124,8 @@ struct ViewOptions {
   double fov = scene::kDefaultFovYDegrees;
   std::string hairSource = "gpu";
   std::string shading = "paper";
-  bool ribbons = false;
+  bool lines = false;
+  std::string transparency = "on";
   bool shadows = false;
   bool noCulling = false;
   std::vector<float> skinColor;
@@ -132,6 +135,8 @@ struct ViewOptions {
   scene::CameraPreset cameraPreset() const;
   scene::HairSource source() const;
   scene::HairShading hairShading() const;
+  scene::HairWidth hairWidth() const;  // strands, or the paper's lines with --lines
+  bool transparent() const { return transparency == "on"; }
   std::optional<Eigen::Vector3f> skin() const;
   // Parses and checks every value (size, samples, fov, names, colour).
   void validate() const;

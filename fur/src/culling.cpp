@@ -32,32 +32,17 @@ float cullingFactor(const FurView& view) {
   return c > 1.0 ? static_cast<float>(c) : 1.0f;
 }
 
-float faceSize(const skin::SkinMesh& skin) {
-  const int nV = skin.numVertices();
-  if (nV == 0) return 0.0f;
-  Eigen::Map<const Eigen::Matrix<float, 3, Eigen::Dynamic>> P(skin.restPositions(), 3, nV);
-  int face = -1;
-  for (std::size_t r = 0; r < skin.regionNames.size(); ++r)
-    if (skin.regionNames[r] == "face") face = static_cast<int>(r);
-  if (face >= 0) {
-    Eigen::AlignedBox3f box;
-    const std::int32_t* region = skin.regions();
-    for (int v = 0; v < nV; ++v)
-      if (region[v] == face) box.extend(P.col(v));
-    if (!box.isEmpty()) return box.sizes().maxCoeff();
-  }
-  const Eigen::Vector3f extent = P.rowwise().maxCoeff() - P.rowwise().minCoeff();
-  return 0.25f * extent.norm();
-}
-
-float defaultReferenceDistance(const skin::SkinMesh& skin, float fovYDegrees) {
-  const double d = static_cast<double>(faceSize(skin)) / (2.0 * tanHalf(fovYDegrees));
+float defaultReferenceDistance(const FurParams& params) {
+  const double d =
+      1e-3 * static_cast<double>(params.coats[kOvercoat].width.rootMm) *
+      static_cast<double>(params.culling.referenceHeight) /
+      (2.0 * tanHalf(params.culling.fovYDegrees) * static_cast<double>(kReferenceRootPixels));
   return d > 1e-6 ? static_cast<float>(d) : 1e-6f;
 }
 
-float referenceDistance(const skin::SkinMesh& skin, const CullingParams& params) {
-  return params.referenceDistance > 0.0f ? params.referenceDistance
-                                         : defaultReferenceDistance(skin, params.fovYDegrees);
+float referenceDistance(const FurParams& params) {
+  return params.culling.referenceDistance > 0.0f ? params.culling.referenceDistance
+                                                 : defaultReferenceDistance(params);
 }
 
 Eigen::Vector3f creatureCenter(const skin::DeformedSkin& deformed) {
@@ -67,11 +52,11 @@ Eigen::Vector3f creatureCenter(const skin::DeformedSkin& deformed) {
   return box.center();
 }
 
-FurView makeFurView(const skin::SkinMesh& skin, const FurParams& params,
-                    const skin::DeformedSkin& deformed, const ViewCamera& camera) {
+FurView makeFurView(const FurParams& params, const skin::DeformedSkin& deformed,
+                    const ViewCamera& camera) {
   FurView v;
   v.culling = params.culling.enabled;
-  v.referenceDistance = referenceDistance(skin, params.culling);
+  v.referenceDistance = referenceDistance(params);
   v.viewDistance = (camera.eye - creatureCenter(deformed)).norm();
   v.fovYDegrees = camera.fovYDegrees;
   v.referenceFovYDegrees = params.culling.fovYDegrees;

@@ -38,7 +38,8 @@ void checkCoat(const std::string& source, const std::string& name, const CoatPar
   checkRange(source, name + ".relativeLength", c.lengthFactor, 0.0, 10.0);
   checkRange(source, name + ".curvePoints", c.curvePoints, 2, 64);
   checkRange(source, name + ".tubeSides", c.tubeSides, 3, 32);
-  checkRange(source, name + ".tubeRadius", c.tubeRadiusMeters, 1e-6, 0.01);
+  checkRange(source, name + ".width.root", c.width.rootMm, 0.001, 20.0);
+  checkRange(source, name + ".width.tip", c.width.tipMm, 0.0, 20.0);
   checkRange(source, name + ".curl.radius", c.curlRadius, 0.0, 0.5);
   checkRange(source, name + ".curl.turns", c.curlTurns, 0.0, 20.0);
   checkColor(source, name + ".ambient", c.material.ambient);

@@ -54,7 +54,8 @@ CoatColor parseCoatColor(const JsonReader& j, const CoatColor& defaults) {
 CoatParams parseCoat(const JsonReader& j, const CoatParams& defaults) {
   j.rejectUnknown({"style", "stiffness", "normalRandomize", "hairEndRandomize",
                    "segmentDirectionWeight", "relativeLength", "ambient", "diffuse", "specular",
-                   "shininess", "curvePoints", "tubeSides", "tubeRadius", "curl", "color"});
+                   "shininess", "curvePoints", "tubeSides", "width", "tubeRadius", "curl",
+                   "color"});
   CoatParams c = defaults;
   if (j.has("style")) c.style = parseStyle(j.string("style"), j.at("style").where());
   c.stiffness = num(j, "stiffness", c.stiffness, 0.0, 1.0);
@@ -68,7 +69,19 @@ CoatParams parseCoat(const JsonReader& j, const CoatParams& defaults) {
   c.material.shininess = num(j, "shininess", c.material.shininess, 1.0, 1000.0);
   c.curvePoints = static_cast<int>(j.integer("curvePoints", c.curvePoints, 2, 64));
   c.tubeSides = static_cast<int>(j.integer("tubeSides", c.tubeSides, 3, 32));
-  c.tubeRadiusMeters = num(j, "tubeRadius", c.tubeRadiusMeters, 1e-6, 0.01);
+  if (auto w = j.find("width")) {
+    w->rejectUnknown({"root", "tip"});
+    c.width.rootMm = num(*w, "root", c.width.rootMm, 0.001, 20.0);
+    c.width.tipMm = num(*w, "tip", c.width.tipMm, 0.0, 20.0);
+  }
+  if (j.has("tubeRadius")) {
+    // The earlier spelling: a tube's root radius in metres, its tip 0.05 of it.
+    if (j.has("width"))
+      inputError(j.at("tubeRadius").where(), " and width both given: width {root, tip} in mm",
+                 " replaces tubeRadius");
+    c.width.rootMm = 2000.0f * num(j, "tubeRadius", 0.0002f, 1e-6, 0.01);
+    c.width.tipMm = 0.05f * c.width.rootMm;
+  }
   if (auto curl = j.find("curl")) {
     curl->rejectUnknown({"radius", "turns"});
     c.curlRadius = num(*curl, "radius", c.curlRadius, 0.0, 0.5);
@@ -135,7 +148,7 @@ nlohmann::json coatJson(const CoatParams& c) {
   j["shininess"] = c.material.shininess;
   j["curvePoints"] = c.curvePoints;
   j["tubeSides"] = c.tubeSides;
-  j["tubeRadius"] = c.tubeRadiusMeters;
+  j["width"] = {{"root", c.width.rootMm}, {"tip", c.width.tipMm}};
   j["curl"] = {{"radius", c.curlRadius}, {"turns", c.curlTurns}};
   const CoatColor& k = c.color;
   j["color"] = {{"source", colorSourceName(k.source)},

@@ -499,7 +499,7 @@ py::array_t<std::uint8_t> render(PyModel& m, const py::object& clip, const py::o
                                  int frame, double fps, double time, std::pair<int, int> size,
                                  const std::string& camera, double fov, bool follow,
                                  const std::string& hairSource, const std::string& shading,
-                                 bool ribbons, bool shadows, int samples,
+                                 bool lines, bool transparency, bool shadows, int samples,
                                  const py::object& dynamics, const py::object& skinColor) {
   scene::Model& model = *m.model;
   const std::shared_ptr<const scene::Fur> fur = furOf(m, furArg);
@@ -515,7 +515,8 @@ py::array_t<std::uint8_t> render(PyModel& m, const py::object& clip, const py::o
   o.camera.fovYDegrees = static_cast<float>(fov);
   o.camera.track = follow;
   o.look.hairShading = scene::parseHairShading(shading);
-  o.look.hairWidth = ribbons ? scene::HairWidth::Ribbons : scene::HairWidth::Lines;
+  o.look.hairWidth = lines ? scene::HairWidth::Lines : scene::HairWidth::Strands;
+  o.look.transparency = transparency;
   o.shadows = shadows;
   if (!skinColor.is_none()) {
     const auto c = skinColor.cast<std::vector<float>>();
@@ -751,9 +752,9 @@ PYBIND11_MODULE(_pelage, m) {
         py::arg("fur") = py::none(), py::kw_only(), py::arg("frame") = 0, py::arg("fps") = 30.0,
         py::arg("time") = 0.0, py::arg("size") = std::pair<int, int>(1280, 720),
         py::arg("camera") = "three-quarter", py::arg("fov") = 35.0, py::arg("follow") = false,
-        py::arg("hair_source") = "gpu", py::arg("shading") = "paper", py::arg("ribbons") = false,
-        py::arg("shadows") = false, py::arg("samples") = -1, py::arg("dynamics") = py::none(),
-        py::arg("skin_color") = py::none(),
+        py::arg("hair_source") = "gpu", py::arg("shading") = "paper", py::arg("lines") = false,
+        py::arg("transparency") = true, py::arg("shadows") = false, py::arg("samples") = -1,
+        py::arg("dynamics") = py::none(), py::arg("skin_color") = py::none(),
         "`pelage render` of one frame in Python (EGL, no display): an (H, W, 3) uint8 image.");
 #endif
 }

@@ -23,6 +23,10 @@ HairShading parseHairShading(std::string_view name, std::string_view field) {
              "' (accepted: paper, kajiya-kay)");
 }
 
+std::string_view hairWidthName(HairWidth width) {
+  return width == HairWidth::Lines ? "lines" : "strands";
+}
+
 std::string_view hairSourceName(HairSource source) {
   switch (source) {
     case HairSource::Cpu:
@@ -61,7 +65,7 @@ void buildDrawList(const Model& model, const FrameState& frame, const Fur* fur,
   list.background = options.background;
   list.hairShading = options.hairShading;
   list.hairWidth = options.hairWidth;
-  list.ribbonRootWidthPixels = options.ribbonRootWidthPixels;
+  list.transparency = options.transparency;
   list.bounds = frame.skinBounds;
   list.skin = SkinDrawItem{};
   if (options.drawSkin) {
@@ -102,6 +106,7 @@ void buildDrawList(const Model& model, const FrameState& frame, const Fur* fur,
     item.rootCount = roots;
     item.drawnHairs = frame.drawnHairs[ci];
     item.cullFactor = frame.cullFactor;
+    item.width = cp.width;
     item.source = options.hairSource;
     if (cpu) {
       const fur::HairBuffers& hb = frame.fur.coats[ci];

@@ -289,7 +289,9 @@ void UsdaWriter::addFrame(int frame, const FrameState& state) {
     t << "],\n";
     t.flush();
     // Widths reach half a tube diameter beyond the control points.
-    const float pad = m.params->coats[static_cast<std::size_t>(co.coat)].tubeRadiusMeters;
+    const float pad =
+        0.5e-3f * std::max(m.params->coats[static_cast<std::size_t>(co.coat)].width.rootMm,
+                           m.params->coats[static_cast<std::size_t>(co.coat)].width.tipMm);
     if (!box.isEmpty()) {
       box.min().array() -= pad;
       box.max().array() += pad;
@@ -404,9 +406,17 @@ UsdExportCounts UsdaWriter::finish() {
         }
       t << "] (\n            interpolation = \"varying\"\n        )\n";
     } else {
+      // The hair's width at each vertex (fur::StrandWidth), tapering from root to tip.
       t << "        float[] widths = [";
-      t.num(2.0f * cp.tubeRadiusMeters)
-          << "] (\n            interpolation = \"constant\"\n        )\n";
+      for (std::int64_t h = 0; h < co.curves; ++h) {
+        for (int k = 0; k < V; ++k) {
+          if (h > 0 || k > 0) t << ((k == 0 && h % 8 == 0) ? ",\n            " : ", ");
+          t.num(
+              cp.width.metersAt(V > 1 ? static_cast<float>(k) / static_cast<float>(V - 1) : 0.0f));
+        }
+        if (t.str().size() > (1u << 20)) emit();
+      }
+      t << "] (\n            interpolation = \"vertex\"\n        )\n";
     }
     t << "        float3[] extent.timeSamples = {\n";
     emit();

@@ -97,8 +97,8 @@ void evaluateFur(const Model& model, const Fur& fur, const Camera& camera, bool 
                  FrameState& frame) {
   PELAGE_CHECK(frame.skin.positions.size() == static_cast<std::size_t>(model.skin.numVertices()),
                "evaluateFur before evaluateFrame");
-  evaluateFur(model, fur, fur::makeFurView(model.skin, fur.params, frame.skin, viewCamera(camera)),
-              cpuHairs, frame);
+  evaluateFur(model, fur, fur::makeFurView(fur.params, frame.skin, viewCamera(camera)), cpuHairs,
+              frame);
 }
 
 void evaluateFur(const Model& model, const Fur& fur, const fur::FurView& view, bool cpuHairs,

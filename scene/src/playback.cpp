@@ -133,7 +133,7 @@ void Playback::step(const fur::FurView* view) {
 }
 
 void Playback::evaluateFur(const Camera& camera) {
-  evaluateFur(fur::makeFurView(model_->skin, fur_->params, state_.skin, viewCamera(camera)));
+  evaluateFur(fur::makeFurView(fur_->params, state_.skin, viewCamera(camera)));
 }
 
 void Playback::evaluateFur(const fur::FurView& view) {

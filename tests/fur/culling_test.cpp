@@ -123,10 +123,22 @@ TEST(Culling, FramesDrawTheFirstHairsOfEachTriangleAndDoNotFlicker) {
   EXPECT_EQ(test::furFrame(s, r, p, d, view).coats[0].drawn, r.coats[0].size());
 }
 
-TEST(Culling, WithoutAFaceRegionTheFaceIsAQuarterOfTheDiagonal) {
-  const skin::SkinMesh grid = test::makeGrid(4, 0.25f, 0.01f);
-  EXPECT_NEAR(faceSize(grid), 0.25f * std::sqrt(2.0f), 1e-6f);
-  EXPECT_NEAR(defaultReferenceDistance(grid, 90.0f), 0.25f * std::sqrt(2.0f) / 2.0f, 1e-6f);
+TEST(Culling, TheDefaultReferenceIsWhereARootIsHalfAPixelWide) {
+  // 1 mm at 90 degrees in a 1000-pixel image: s = 1000 / (2 d) pixels per metre, so the root is
+  // k = kReferenceRootPixels wide at d = 1 / (2 k) m; twice the width, twice the distance; the
+  // reference image's height scales it too.
+  FurParams p;
+  p.coats[kOvercoat].width = {1.0f, 0.1f};
+  p.culling.fovYDegrees = 90.0f;
+  p.culling.referenceHeight = 1000;
+  const float d = 0.5f / kReferenceRootPixels;
+  EXPECT_NEAR(defaultReferenceDistance(p), d, 1e-6f);
+  p.coats[kOvercoat].width.rootMm = 2.0f;
+  EXPECT_NEAR(defaultReferenceDistance(p), 2.0f * d, 1e-6f);
+  p.culling.referenceHeight = 500;
+  EXPECT_NEAR(referenceDistance(p), d, 1e-6f);
+  p.culling.referenceDistance = 3.0f;
+  EXPECT_EQ(referenceDistance(p), 3.0f);
 }
 
 }  // namespace

@@ -396,7 +396,7 @@ TEST(HairMath, TubeRingsSurroundTheCurveWithOutwardNormals) {
   p.coats[0].style = HairStyle::Tube;
   p.coats[0].curvePoints = 6;
   p.coats[0].tubeSides = 5;
-  p.coats[0].tubeRadiusMeters = 0.001f;
+  p.coats[0].width = {2.0f, 0.1f};
   const CoatShape c = makeCoatShape(p, 0);
   HairInput<float> in{v3(0, 0, 0), v3(0, 0, 1), v3(1, 0, 0), 0.05f, v3(0, 0, 0), 0.0f};
   HairFrame<float> f;
@@ -411,7 +411,7 @@ TEST(HairMath, TubeRingsSurroundTheCurveWithOutwardNormals) {
     const Eigen::Vector3f center = curve.p[static_cast<std::size_t>(k)];
     const Eigen::Vector3f tangent = curve.p[static_cast<std::size_t>(std::min(k + 1, 5))] -
                                     curve.p[static_cast<std::size_t>(std::max(k - 1, 0))];
-    const float radius = 0.001f * (1.0f - (1.0f - kTubeTipFraction) * static_cast<float>(k) / 5.0f);
+    const float radius = 0.001f * (1.0f - 0.95f * static_cast<float>(k) / 5.0f);
     for (int j = 0; j < 5; ++j) {
       const auto q = static_cast<std::size_t>(k * 5 + j);
       EXPECT_NEAR((tube.p[q] - center).norm(), radius, 1e-7f);

@@ -43,21 +43,23 @@ TEST(FurOnMonkey, LengthsAreTheInterpolatedVertexLengthsAndTheFaceSetsTheReferen
   EXPECT_NEAR(longest, 1.5 * 0.018, 1e-6) << "the monkey's body fur";
   EXPECT_LT(shortest, 0.2 * longest) << "shorter on the face, hands and feet";
 
-  // sec. 3.3: every hair is drawn where the face fills the screen.
-  const float face = faceSize(m.skin);
-  // The monkey's face region is a sphere of radius 0.034 m (plus blend): 0.04 to 0.09 m across.
-  EXPECT_GT(face, 0.04f);
-  EXPECT_LT(face, 0.09f);
-  const float d = defaultReferenceDistance(m.skin, 45.0f);
-  EXPECT_NEAR(d, face / (2.0f * std::tan(22.5f * static_cast<float>(M_PI) / 180.0f)), 1e-6f);
-  CullingParams given;
-  given.referenceDistance = 0.7f;
-  EXPECT_FLOAT_EQ(referenceDistance(m.skin, given), 0.7f);
+  // sec. 3.3: every hair is drawn while a root is at least kReferenceRootPixels wide in the
+  // reference image (0.4 mm, 1080 pixels, 45 degrees: 2.09 m at a quarter pixel).
+  const FurParams defaults;
+  const float d = defaultReferenceDistance(defaults);
+  EXPECT_NEAR(
+      d,
+      0.4e-3f * 1080.0f /
+          (2.0f * std::tan(22.5f * static_cast<float>(M_PI) / 180.0f) * kReferenceRootPixels),
+      1e-5f);
+  FurParams given;
+  given.culling.referenceDistance = 0.7f;
+  EXPECT_FLOAT_EQ(referenceDistance(given), 0.7f);
   // A camera like the reference one (45 degrees, 1080 pixels high), 10 reference distances from the
   // centre, draws about a tenth.
   ViewCamera camera;
   camera.eye = creatureCenter(m.rest) + Eigen::Vector3f(10.0f * d, 0, 0);
-  const FurView v = makeFurView(m.skin, FurParams{}, m.rest, camera);
+  const FurView v = makeFurView(FurParams{}, m.rest, camera);
   EXPECT_NEAR(cullingFactor(v), 10.0f, 1e-4f);
   const FurFrame far = test::furFrame(m.skin, r, p, m.rest, v);
   EXPECT_NEAR(static_cast<double>(far.coats[0].drawn),

@@ -99,10 +99,18 @@ TEST(ExportUsd, LayerStructureCountsAndTimeSamples) {
     ASSERT_EQ(samples.size(), 3u);
     for (const auto& s : samples) EXPECT_EQ(static_cast<std::int64_t>(s.second.size()), n * 8 * 3);
     EXPECT_EQ(usdTimeSamples(curves, "float3[] extent").size(), 3u);
+    // Widths per vertex, tapering from the coat's root width to its tip width (mm -> m).
     const std::vector<double> widths = usdArray(curves, "float[] widths");
-    ASSERT_EQ(widths.size(), 1u);
-    EXPECT_FLOAT_EQ(static_cast<float>(widths[0]),
-                    2.0f * fur.params.coats[static_cast<std::size_t>(c)].tubeRadiusMeters);
+    ASSERT_EQ(static_cast<std::int64_t>(widths.size()), n * 8);
+    const fur::StrandWidth& w = fur.params.coats[static_cast<std::size_t>(c)].width;
+    for (std::int64_t h = 0; h < n; h += 97) {
+      EXPECT_FLOAT_EQ(static_cast<float>(widths[static_cast<std::size_t>(h * 8)]),
+                      1e-3f * w.rootMm);
+      EXPECT_NEAR(widths[static_cast<std::size_t>(h * 8 + 7)], 1e-3 * static_cast<double>(w.tipMm),
+                  1e-10);
+      EXPECT_GT(widths[static_cast<std::size_t>(h * 8 + 3)],
+                widths[static_cast<std::size_t>(h * 8 + 4)]);
+    }
     // Colours (linear): per hair, root to tip over the 8 vertices; or the coat's one colour.
     const std::vector<double> color = usdArray(curves, "color3f[] primvars:displayColor");
     const fur::CoatColors& cc = fur.colors.coats[static_cast<std::size_t>(c)];
@@ -212,9 +220,9 @@ TEST(ExportUsd, TubesAreCentreCurvesWithTaperedWidths) {
   const std::vector<double> widths = usdArray(curves, "float[] widths");
   const std::int64_t n = fur.roots.coats[0].size();
   ASSERT_EQ(static_cast<std::int64_t>(widths.size()), n * 2);
-  const float r = fur.params.coats[0].tubeRadiusMeters;
-  EXPECT_FLOAT_EQ(static_cast<float>(widths[0]), 2.0f * r);
-  EXPECT_NEAR(widths[1], 2.0 * r * fur::kTubeTipFraction, 1e-9);
+  const fur::StrandWidth& w = fur.params.coats[0].width;
+  EXPECT_FLOAT_EQ(static_cast<float>(widths[0]), 1e-3f * w.rootMm);
+  EXPECT_NEAR(widths[1], 1e-3 * static_cast<double>(w.tipMm), 1e-9);
 }
 
 TEST(ExportUsd, UnwritableDirectoryAndUnfinishedLayersLeaveNothing) {

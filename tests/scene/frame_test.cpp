@@ -168,7 +168,7 @@ TEST(EvaluateFur, DoublingTheDistanceHalvesTheDrawnHairs) {
   FrameState f;
   evaluateFrame(m, anatomy::restPose(m.body), f);
   const Eigen::Vector3f center = fur::creatureCenter(f.skin);
-  const float ref = fur::referenceDistance(m.skin, fur.params.culling);
+  const float ref = fur::referenceDistance(fur.params);
   const Eigen::Vector3f dir = Eigen::Vector3f(1, 1, 0.5f).normalized();
   auto drawnAt = [&](float distance, bool cpu) {
     evaluateFur(m, fur, cameraAt(fur, center, dir, distance), cpu, f);
@@ -203,7 +203,7 @@ TEST(EvaluateFur, TheCreaturesSizeOnScreenSetsTheDrawnHairs) {
   FrameState f;
   evaluateFrame(m, anatomy::restPose(m.body), f);
   const Eigen::Vector3f center = fur::creatureCenter(f.skin);
-  const float ref = fur::referenceDistance(m.skin, fur.params.culling);
+  const float ref = fur::referenceDistance(fur.params);
   const Eigen::Vector3f dir = Eigen::Vector3f(-1, 2, 0.3f).normalized();
   const float fov = 40.0f;
   auto narrowed = [&](float factor) {  // the field of view seeing 1/factor of fov's height

@@ -49,6 +49,7 @@ TEST_F(CreatureColourRenderTest, FoxChestAndTailTipFurIsLighterThanItsBack) {
     scene::DrawList list;
     scene::DrawOptions opt;
     opt.hairSource = scene::HairSource::Cpu;
+    opt.hairWidth = scene::HairWidth::Lines;  // opaque: each fur pixel is one hair's colour
     scene::buildDrawList(fox, frame, f, cam, scene::Light{}, opt, list);
     RendererOptions ro;
     ro.samples = 0;

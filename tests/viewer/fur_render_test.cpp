@@ -1,9 +1,11 @@
 // Image statistics of rendered fur (llvmpipe): fur pixels carry the coat's material colour, the
 // creature covers the expected area, distance culling halves the drawn hairs at twice the distance,
-// and the drawing options (ribbons, tubes, shadows, CPU vs GPU hairs) do what they say.
+// and the drawing options (strands and their coverage, tubes, shadows, CPU vs GPU hairs) do what
+// they say.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "gl_fixture.h"
@@ -52,7 +54,6 @@ class FurRenderTest : public test::GlTest {
     light.shadows = shadows;
     Shot s;
     scene::buildDrawList(critter(), frame_, fur, cam, light, opt, s.list);
-    s.list.ribbonRootWidthPixels = ribbonWidth_;
     RendererOptions ro;
     ro.samples = 0;
     Renderer local(ro);
@@ -69,7 +70,6 @@ class FurRenderTest : public test::GlTest {
   }
 
   scene::FrameState frame_;
-  float ribbonWidth_ = 2.5f;
 };
 
 bool samePixel(const Image& a, const Image& b, int x, int y) {
@@ -87,6 +87,7 @@ TEST_F(FurRenderTest, FurPixelsHaveTheCoatColour) {
     scene::DrawOptions withFur;
     withFur.hairSource = scene::HairSource::Gpu;
     withFur.hairShading = shading;
+    withFur.hairWidth = scene::HairWidth::Lines;  // opaque: each fur pixel is one hair's colour
     const Shot hairy = render(&fur, cam, withFur);
     const Shot bare = render(nullptr, cam);
     EXPECT_EQ(hairy.drawn, fur.roots.total());
@@ -170,7 +171,7 @@ TEST_F(FurRenderTest, DistanceCullingHalvesTheDrawnHairsAtTwiceTheDistance) {
   // The distance at which this camera (its field of view and image height) draws every hair: the
   // creature's scale on screen there is the reference camera's (fur/culling.h).
   const float ref =
-      fur::referenceDistance(critter().skin, fur.params.culling) *
+      fur::referenceDistance(fur.params) *
       fur::pixelsPerMeter(1.0f, base.fovYDegrees, base.height) /
       fur::pixelsPerMeter(1.0f, fur.params.culling.fovYDegrees, fur.params.culling.referenceHeight);
   RendererOptions ro;
@@ -195,7 +196,15 @@ TEST_F(FurRenderTest, DistanceCullingHalvesTheDrawnHairsAtTwiceTheDistance) {
   EXPECT_EQ(drawnAt(0.5f * ref), fur.roots.total());
 }
 
-TEST_F(FurRenderTest, RibbonsTubesAndShadowsDrawWhatTheySay) {
+// The summed difference from the bare skin's image over the pixels (0..255 per channel).
+double ink(const Image& a, const Image& bare) {
+  double sum = 0;
+  for (std::size_t i = 0; i < a.rgba.size(); ++i)
+    if (i % 4 != 3) sum += std::abs(int(a.rgba[i]) - int(bare.rgba[i]));
+  return sum;
+}
+
+TEST_F(FurRenderTest, StrandsTubesAndShadowsDrawWhatTheySay) {
   // Sparse fur, so that hairs rarely overlap and each one's width shows.
   fur::FurParams p = testFur(3000);
   const scene::Fur fur = scene::growFur(critter(), p);
@@ -209,17 +218,38 @@ TEST_F(FurRenderTest, RibbonsTubesAndShadowsDrawWhatTheySay) {
   };
   scene::DrawOptions lines;
   lines.hairSource = scene::HairSource::Gpu;
-  scene::DrawOptions ribbons = lines;
-  ribbons.hairWidth = scene::HairWidth::Ribbons;
+  lines.hairWidth = scene::HairWidth::Lines;
   const int lineCount = furPixels(render(&fur, cam, lines));
-  ribbonWidth_ = 4.0f;
-  const int ribbonCount = furPixels(render(&fur, cam, ribbons));
-  EXPECT_GT(ribbonCount, lineCount * 1.4);  // 4-pixel roots tapering to half a pixel
+  // Opaque strands of several pixels at the root cover more than lines.
+  const float metresPerPixel = (cam.eye - cam.target).norm() * 2.0f *
+                               std::tan(0.5f * cam.fovYDegrees * 3.14159265f / 180.0f) /
+                               static_cast<float>(cam.height);
+  scene::Fur wide = fur;
+  for (fur::CoatParams& c : wide.params.coats) c.width = {4e3f * metresPerPixel, 0.0f};
+  scene::DrawOptions opaque = lines;
+  opaque.hairWidth = scene::HairWidth::Strands;
+  opaque.transparency = false;
+  EXPECT_GT(furPixels(render(&wide, cam, opaque)), lineCount * 1.4);  // 4 px at the root
+  // Transparent strands narrower than a pixel: alpha is the coverage, so the ink (the summed
+  // difference from the bare skin) is proportional to the width: twice as wide, twice the ink
+  // (the hairs of this sparse coat seldom overlap), and far less than 1-pixel lines leave.
+  scene::DrawOptions transparent = opaque;
+  transparent.transparency = true;
+  std::array<double, 2> inks{};
+  for (int k = 0; k < 2; ++k) {
+    scene::Fur thin = fur;
+    for (fur::CoatParams& c : thin.params.coats)
+      c.width = {1e3f * metresPerPixel * 0.1f * float(k + 1),
+                 1e3f * metresPerPixel * 0.1f * float(k + 1)};
+    inks[static_cast<std::size_t>(k)] = ink(render(&thin, cam, transparent).image, bare.image);
+  }
+  EXPECT_NEAR(inks[1] / inks[0], 2.0, 0.2);
+  EXPECT_LT(inks[1], 0.5 * ink(render(&fur, cam, lines).image, bare.image));
   // Tubes: triangles around each hair; visible from here.
   scene::Fur tubes = fur;
   for (fur::CoatParams& c : tubes.params.coats) {
     c.style = fur::HairStyle::Tube;
-    c.tubeRadiusMeters = 0.0015f;
+    c.width = {3.0f, 0.15f};
   }
   const Shot tubeShot = render(&tubes, cam, lines);
   EXPECT_GT(furPixels(tubeShot), lineCount / 2);

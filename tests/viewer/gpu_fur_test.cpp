@@ -241,7 +241,8 @@ TEST_F(GpuFurRandom, EveryStyleWithRandomParametersMatchesTheCpuModel) {
       cp.lengthFactor = uniform(0.2f, 3.0f);
       cp.curvePoints = integer(2, 16);
       cp.tubeSides = integer(3, 9);
-      cp.tubeRadiusMeters = uniform(1e-5f, 1e-3f);
+      cp.width.rootMm = uniform(0.02f, 2.0f);
+      cp.width.tipMm = uniform(0.0f, 2.0f);
       cp.curlRadius = integer(0, 1) ? uniform(0.0f, 0.5f) : 0.0f;
       cp.curlTurns = uniform(0.0f, 6.0f);
     }

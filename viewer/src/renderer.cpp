@@ -72,11 +72,12 @@ struct Renderer::Impl {
   int samples = 0;
   int width = 0, height = 0;
 
-  Program skinProgram, skinTexturedProgram, hairProgram, ribbonProgram, depthProgram;
+  Program skinProgram, skinTexturedProgram, hairProgram, strandProgram, strandOitProgram,
+      compositeProgram, depthProgram;
 
-  Framebuffer msaaFbo, resolveFbo, shadowFbo;
+  Framebuffer msaaFbo, resolveFbo, shadowFbo, oitFbo;
   Renderbuffer msaaColor, msaaDepth, resolveDepth;
-  Texture resolveColor, shadowMap;
+  Texture resolveColor, shadowMap, oitAccum, oitReveal;
   int shadowSize = 0;
 
   detail::VertexArray skinVao;
@@ -128,12 +129,18 @@ struct Renderer::Impl {
     hairProgram.reset(detail::buildProgram(
         "hair", {ShaderStage{GL_VERTEX_SHADER, {"color.glsl", "hair.vert"}},
                  ShaderStage{GL_FRAGMENT_SHADER, {"lighting.glsl", "hair.frag"}}}));
-    ribbonProgram.reset(
-        detail::buildProgram("hair ribbons",
-                             {ShaderStage{GL_VERTEX_SHADER, {"color.glsl", "hair.vert"}},
-                              ShaderStage{GL_GEOMETRY_SHADER, {"hair_ribbon.geom"}},
-                              ShaderStage{GL_FRAGMENT_SHADER, {"lighting.glsl", "hair.frag"}}},
-                             "#define RIBBON 1"));
+    const auto strand = [](const char* name, const char* defines) {
+      return detail::buildProgram(name,
+                                  {ShaderStage{GL_VERTEX_SHADER, {"color.glsl", "hair.vert"}},
+                                   ShaderStage{GL_GEOMETRY_SHADER, {"hair_strand.geom"}},
+                                   ShaderStage{GL_FRAGMENT_SHADER, {"lighting.glsl", "hair.frag"}}},
+                                  defines);
+    };
+    strandProgram.reset(strand("hair strands", "#define STRAND 1"));
+    strandOitProgram.reset(strand("hair strands (transparent)", "#define STRAND 1\n#define OIT 1"));
+    compositeProgram.reset(detail::buildProgram(
+        "transparency resolve", {ShaderStage{GL_VERTEX_SHADER, {"oit_composite.vert"}},
+                                 ShaderStage{GL_FRAGMENT_SHADER, {"oit_composite.frag"}}}));
     depthProgram.reset(
         detail::buildProgram("depth", {ShaderStage{GL_VERTEX_SHADER, {"depth.vert"}},
                                        ShaderStage{GL_FRAGMENT_SHADER, {"depth.frag"}}}));
@@ -271,24 +278,44 @@ struct Renderer::Impl {
     resolveFbo.reset();
     resolveColor.reset();
     resolveDepth.reset();
+    oitFbo.reset();
+    oitAccum.reset();
+    oitReveal.reset();
 
-    glCreateTextures(GL_TEXTURE_2D, 1, &id);
-    resolveColor.reset(id);
+    const auto texture = [&](GLenum format) {
+      GLuint t = 0;
+      glCreateTextures(GL_TEXTURE_2D, 1, &t);
+      glTextureStorage2D(t, 1, format, w, h);
+      return Texture(t);
+    };
     // sRGB colour: shading is in linear space, the framebuffer encodes (GL_FRAMEBUFFER_SRGB while
     // drawing), and read-back pixels are sRGB bytes, as image files and displays expect.
-    glTextureStorage2D(id, 1, GL_SRGB8_ALPHA8, w, h);
+    resolveColor = texture(GL_SRGB8_ALPHA8);
     glCreateFramebuffers(1, &id);
     resolveFbo.reset(id);
     glNamedFramebufferTexture(id, GL_COLOR_ATTACHMENT0, resolveColor.get(), 0);
-    if (samples == 0) {
-      glCreateRenderbuffers(1, &id);
-      resolveDepth.reset(id);
-      glNamedRenderbufferStorage(id, GL_DEPTH_COMPONENT24, w, h);
-      glNamedFramebufferRenderbuffer(resolveFbo.get(), GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, id);
-    }
+    // Single-sample depth: the depth buffer without MSAA, and the depth the transparent strands
+    // are tested against (resolved from the multisampled one) with it.
+    glCreateRenderbuffers(1, &id);
+    resolveDepth.reset(id);
+    glNamedRenderbufferStorage(id, GL_DEPTH_COMPONENT24, w, h);
+    glNamedFramebufferRenderbuffer(resolveFbo.get(), GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, id);
     PELAGE_CHECK(
         glCheckNamedFramebufferStatus(resolveFbo.get(), GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE,
         "resolve framebuffer incomplete");
+    // Weighted blended OIT targets: the weighted colour sum (RGBA32F: thousands of fragments per
+    // pixel at 5 million hairs stay exact enough) and the revealage (R32F).
+    oitAccum = texture(GL_RGBA32F);
+    oitReveal = texture(GL_R32F);
+    glCreateFramebuffers(1, &id);
+    oitFbo.reset(id);
+    glNamedFramebufferTexture(id, GL_COLOR_ATTACHMENT0, oitAccum.get(), 0);
+    glNamedFramebufferTexture(id, GL_COLOR_ATTACHMENT1, oitReveal.get(), 0);
+    glNamedFramebufferRenderbuffer(id, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, resolveDepth.get());
+    const GLenum buffers[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+    glNamedFramebufferDrawBuffers(id, 2, buffers);
+    PELAGE_CHECK(glCheckNamedFramebufferStatus(id, GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE,
+                 "transparency framebuffer incomplete");
     if (samples > 0) {
       glCreateRenderbuffers(1, &id);
       msaaColor.reset(id);
@@ -416,6 +443,34 @@ struct Renderer::Impl {
     setMatrix(program, "uViewProj", list.camera.viewProjection());
   }
 
+  // Draws coat `f` with `program` (lines, tubes, or strands with or without transparency).
+  void drawFurItem(const scene::FurDrawItem& f, GLuint p, const scene::DrawList& list,
+                   const Eigen::Matrix4f& lightViewProj, float bias) {
+    const HairVertexBuffers& b = coats[static_cast<std::size_t>(f.coat)];
+    setLighting(p, list, lightViewProj, bias * 2.0f);
+    setMaterial(p, f.material);
+    setInt(p, "uKajiyaKay", list.hairShading == scene::HairShading::KajiyaKay ? 1 : 0);
+    setInt(p, "uPerHairColor", f.perHairColor ? 1 : 0);
+    setFloat(p, "uAmbientRatio", f.ambientRatio);
+    glBindTextureUnit(1, b.colorTexture());
+    if (p == strandProgram.get() || p == strandOitProgram.get()) {
+      glProgramUniform2f(p, uniform(p, "uViewport"), static_cast<float>(width),
+                         static_cast<float>(height));
+      setFloat(p, "uRootWidth", 1e-3f * f.width.rootMm);
+      setFloat(p, "uTipWidth", 1e-3f * f.width.tipMm);
+      setFloat(p, "uWiden", std::max(f.cullFactor, 1.0f));
+      setFloat(p, "uProjScale", 0.5f * static_cast<float>(height) * list.camera.projection()(1, 1));
+      if (p == strandOitProgram.get()) {
+        // The creature's bounds as seen from the eye: the weights' depth range.
+        const Eigen::AlignedBox3f& box = list.bounds;
+        const float dist = box.isEmpty() ? 1.0f : (box.center() - list.camera.eye).norm();
+        const float r = box.isEmpty() ? 1.0f : 0.5f * box.diagonal().norm();
+        glProgramUniform2f(p, uniform(p, "uDepthRange"), std::max(dist - r, 0.0f), dist + r);
+      }
+    }
+    drawHairs(b, p);
+  }
+
   // Light-space view-projection fitting the scene bounds (orthographic: a directional light).
   Eigen::Matrix4f lightMatrix(const scene::DrawList& list) const {
     Eigen::AlignedBox3f box = list.bounds;
@@ -527,30 +582,57 @@ struct Renderer::Impl {
         drawSkin(p);
       glDisable(GL_POLYGON_OFFSET_FILL);
     }
-    const bool ribbons = list.hairWidth == scene::HairWidth::Ribbons;
+    // Opaque hairs first (1-pixel lines, tubes, strands without transparency), then the
+    // transparent strands over everything opaque.
+    const bool strands = list.hairWidth == scene::HairWidth::Strands;
+    const auto isTransparent = [&](const scene::FurDrawItem& f) {
+      return strands && list.transparency &&
+             coats[static_cast<std::size_t>(f.coat)].layout().topology == fur::HairTopology::Strand;
+    };
+    bool anyTransparent = false;
     for (const scene::FurDrawItem& f : list.fur) {
+      if (isTransparent(f)) {
+        anyTransparent = true;
+        continue;
+      }
       const HairVertexBuffers& b = coats[static_cast<std::size_t>(f.coat)];
-      const bool strand = b.layout().topology == fur::HairTopology::Strand;
-      const GLuint p = ribbons && strand ? ribbonProgram.get() : hairProgram.get();
-      setLighting(p, list, lightViewProj, bias * 2.0f);
-      setMaterial(p, f.material);
-      setInt(p, "uKajiyaKay", list.hairShading == scene::HairShading::KajiyaKay ? 1 : 0);
-      setInt(p, "uPerHairColor", f.perHairColor ? 1 : 0);
-      setFloat(p, "uAmbientRatio", f.ambientRatio);
-      glBindTextureUnit(1, b.colorTexture());
-      glProgramUniform2f(p, uniform(p, "uViewport"), static_cast<float>(width),
-                         static_cast<float>(height));
-      setFloat(p, "uRootWidth", list.ribbonRootWidthPixels);
-      drawHairs(b, p);
+      const bool strand = strands && b.layout().topology == fur::HairTopology::Strand;
+      drawFurItem(f, strand ? strandProgram.get() : hairProgram.get(), list, lightViewProj, bias);
+    }
+    // (MSAA resolved in linear space where the driver follows GL 4.4+; the depth too, for the
+    // transparent strands.)
+    if (samples > 0)
+      glBlitNamedFramebuffer(
+          msaaFbo.get(), resolveFbo.get(), 0, 0, width, height, 0, 0, width, height,
+          GL_COLOR_BUFFER_BIT | (anyTransparent ? GL_DEPTH_BUFFER_BIT : 0), GL_NEAREST);
+    if (anyTransparent) {
+      glBindFramebuffer(GL_FRAMEBUFFER, oitFbo.get());
+      const float zero[4] = {0, 0, 0, 0}, one[4] = {1, 1, 1, 1};
+      glClearNamedFramebufferfv(oitFbo.get(), GL_COLOR, 0, zero);
+      glClearNamedFramebufferfv(oitFbo.get(), GL_COLOR, 1, one);
+      glDepthMask(GL_FALSE);
+      glEnable(GL_BLEND);
+      glBlendFunci(0, GL_ONE, GL_ONE);
+      glBlendFunci(1, GL_ZERO, GL_ONE_MINUS_SRC_COLOR);
+      for (const scene::FurDrawItem& f : list.fur)
+        if (isTransparent(f)) drawFurItem(f, strandOitProgram.get(), list, lightViewProj, bias);
+      glBindFramebuffer(GL_FRAMEBUFFER, resolveFbo.get());
+      glDisable(GL_DEPTH_TEST);
+      glBlendFunc(GL_ONE_MINUS_SRC_ALPHA, GL_SRC_ALPHA);
+      glBindTextureUnit(3, oitAccum.get());
+      glBindTextureUnit(4, oitReveal.get());
+      glUseProgram(compositeProgram.get());
+      glBindVertexArray(skinVao.get());  // any VAO: the triangle comes from gl_VertexID
+      glDrawArrays(GL_TRIANGLES, 0, 3);
+      glDisable(GL_BLEND);
+      glDepthMask(GL_TRUE);
+      glEnable(GL_DEPTH_TEST);
     }
     glBindVertexArray(0);
     glUseProgram(0);
     glDisable(
         GL_PRIMITIVE_RESTART_FIXED_INDEX);  // others (the UI) draw 16-bit indices up to 0xFFFF
 
-    if (samples > 0)  // (resolved in linear space where the driver follows GL 4.4+)
-      glBlitNamedFramebuffer(msaaFbo.get(), resolveFbo.get(), 0, 0, width, height, 0, 0, width,
-                             height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
     glDisable(GL_FRAMEBUFFER_SRGB);  // the window and the UI draw unencoded
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     return stats;

@@ -73,11 +73,11 @@ void coatPanel(const char* title, fur::CoatParams& c, bool undercoat) {
     ImGui::SliderFloat("curl radius", &c.curlRadius, 0.0f, 0.5f);
     ImGui::SliderFloat("curl turns", &c.curlTurns, 0.0f, 20.0f);
   }
-  if (fur::usesTubeParams(c.style)) {
-    ImGui::SliderInt("tube sides (M)", &c.tubeSides, 3, 32);
-    ImGui::SliderFloat("tube radius (m)", &c.tubeRadiusMeters, 1e-6f, 0.01f, "%.6f",
-                       ImGuiSliderFlags_Logarithmic);
-  }
+  if (fur::usesTubeParams(c.style)) ImGui::SliderInt("tube sides (M)", &c.tubeSides, 3, 32);
+  ImGui::SliderFloat("root width (mm)", &c.width.rootMm, 0.001f, 20.0f, "%.3f",
+                     ImGuiSliderFlags_Logarithmic);
+  ImGui::SliderFloat("tip width (mm)", &c.width.tipMm, 0.0f, 20.0f, "%.3f",
+                     ImGuiSliderFlags_Logarithmic);
   color("ambient", c.material.ambient);
   color("diffuse", c.material.diffuse);
   color("specular", c.material.specular);
@@ -151,7 +151,8 @@ void furPanel(ViewerSession& s) {
     ImGui::TextWrapped("every hair while the creature looks as large as from the reference camera");
     ImGui::SliderFloat("reference distance (m)", &p.culling.referenceDistance, 0.0f, 10.0f, "%.3f",
                        ImGuiSliderFlags_Logarithmic);
-    ImGui::Text("0 = derived from the face: %.3f m", static_cast<double>(s.referenceDistance()));
+    ImGui::Text("0 = where a root is a quarter pixel wide: %.3f m",
+                static_cast<double>(s.referenceDistance()));
     ImGui::SliderFloat("reference fov (degrees)", &p.culling.fovYDegrees, 5.0f, 120.0f);
     ImGui::SliderInt("reference height (pixels)", &p.culling.referenceHeight, 16, 4320);
     ImGui::TreePop();
@@ -242,11 +243,11 @@ void viewPanel(ViewerSession& s) {
   if (ImGui::Combo("hair shading", &shading, shadings, 2))
     s.shading = static_cast<scene::HairShading>(shading);
   int width = static_cast<int>(s.hairWidth);
-  const char* widths[] = {"1-pixel lines", "tapered ribbons"};
-  if (ImGui::Combo("hair width", &width, widths, 2))
+  const char* widths[] = {"1-pixel lines (the paper's)", "strands of their width (coat panel)"};
+  if (ImGui::Combo("hairs drawn as", &width, widths, 2))
     s.hairWidth = static_cast<scene::HairWidth>(width);
-  if (s.hairWidth == scene::HairWidth::Ribbons)
-    ImGui::SliderFloat("root width (px)", &s.ribbonWidth, 0.5f, 8.0f);
+  if (s.hairWidth == scene::HairWidth::Strands)
+    ImGui::Checkbox("transparency (coverage, any order)", &s.transparency);
   int source = static_cast<int>(s.hairSource);
   const char* sources[] = {"CPU fur model", "GPU compute"};
   if (ImGui::Combo("hairs computed on", &source, sources, 2))

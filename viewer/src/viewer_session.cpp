@@ -37,7 +37,8 @@ ViewerSession::ViewerSession(const ViewerOptions& options, scene::Model model)
   follow = options.follow;
   hairSource = options.hairSource;
   shading = options.shading;
-  hairWidth = options.ribbons ? scene::HairWidth::Ribbons : scene::HairWidth::Lines;
+  hairWidth = options.hairWidth;
+  transparency = options.transparency;
   shadows = options.shadows;
   dynamics = options.dynamics;
   dynamicsParams = options.dynamicsParams;
@@ -74,7 +75,7 @@ ViewerSession::~ViewerSession() {
 }
 
 float ViewerSession::referenceDistance() const {
-  return fur::referenceDistance(model_.skin, fur_.params.culling);
+  return fur::referenceDistance(fur_.params);
 }
 
 void ViewerSession::applyPreset(scene::CameraPreset preset) {
@@ -279,7 +280,7 @@ void ViewerSession::frame(double dtSeconds, int width, int height) {
   scene::DrawOptions opt;
   opt.hairShading = shading;
   opt.hairWidth = hairWidth;
-  opt.ribbonRootWidthPixels = ribbonWidth;
+  opt.transparency = transparency;
   opt.drawSkin = drawSkin;
   opt.drawFur = drawFur;
   const Material skin = scene::skinMaterial(skinColor);

@@ -39,8 +39,8 @@ class ViewerSession {
   bool follow = false;
   scene::HairSource hairSource = scene::HairSource::Gpu;  // the CPU's hairs with dynamics on
   scene::HairShading shading = scene::HairShading::Paper;
-  scene::HairWidth hairWidth = scene::HairWidth::Lines;
-  float ribbonWidth = 2.5f;
+  scene::HairWidth hairWidth = scene::HairWidth::Strands;
+  bool transparency = true;
   Eigen::Vector3f skinColor;  // the skin's diffuse colour (the model's, or --skin-color)
   bool drawSkin = true;
   bool drawFur = true;

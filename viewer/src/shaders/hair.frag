@@ -1,7 +1,10 @@
-#ifdef RIBBON
+#ifdef STRAND
 in vec3 gPosition;
 in vec3 gShading;
 in vec3 gColor;
+noperspective in float gEdge;
+noperspective in float gHalfWidth;
+noperspective in float gCoverage;
 #define P_IN gPosition
 #define S_IN gShading
 #define C_IN gColor
@@ -21,7 +24,18 @@ uniform bool uKajiyaKay;
 uniform bool uPerHairColor;  // the hair's colour is its diffuse, times uAmbientRatio its ambient
 uniform float uAmbientRatio;
 uniform float uShadowBias;
+#ifdef OIT
+// Weighted blended order-independent transparency (McGuire and Bavoil 2013): every strand fragment
+// adds its premultiplied colour times a weight to the accumulation target and multiplies the
+// revealage by (1 - alpha); a full-screen pass resolves colour = sum / weight sum over the scene
+// with alpha = 1 - revealage. The weight favours the near side of the creature (t = 0 at its
+// nearest point, 1 at its farthest).
+uniform vec2 uDepthRange;  // distance from the eye to the creature's bounds: near, far
+layout(location = 0) out vec4 fAccum;
+layout(location = 1) out float fReveal;
+#else
 layout(location = 0) out vec4 fColor;
+#endif
 void main() {
   vec3 v = S_IN;
   float len = length(v);
@@ -31,5 +45,15 @@ void main() {
   vec3 ka = uPerHairColor ? C_IN * uAmbientRatio : uKa;
   vec3 c = uKajiyaKay ? kajiyaKay(u, P_IN, ka, kd, uKs, uShininess, s)
                       : phong(u, P_IN, ka, kd, uKs, uShininess, s);
+#ifdef OIT
+  float a = clamp(gHalfWidth + 0.5 - abs(gEdge), 0.0, 1.0) * gCoverage;
+  if (a < 1.0 / 1024.0) discard;
+  float t = clamp((distance(uEye, P_IN) - uDepthRange.x) / max(uDepthRange.y - uDepthRange.x, 1e-6),
+                  0.0, 1.0);
+  float w = a * (0.05 + 10.0 * pow(1.0 - t, 3.0));
+  fAccum = vec4(c * a, a) * w;
+  fReveal = a;
+#else
   fColor = vec4(c, 1.0);
+#endif
 }

@@ -44,18 +44,23 @@ float pixelsPerMeter(float distance, float fovYDegrees, int imageHeight);
 // 1 when culling is off.
 float cullingFactor(const FurView& view);
 
-// The size (m) of the creature's face: the largest extent of the bind-pose vertices of the skin
-// region named "face"; without such a region, a quarter of the skin's bounding-box diagonal (the
-// size of a head relative to a small quadruped's body).
-float faceSize(const skin::SkinMesh& skin);
+// How wide (pixels) the overcoat's hair root is at the default reference scale.
+inline constexpr float kReferenceRootPixels = 0.25f;
 
-// The default reference distance: where the face fills the screen height for a camera with vertical
-// field of view fovY, D = faceSize / (2 tan(fovY / 2)). For the monkey (face ~0.07 m) at 45 degrees
-// this is ~0.09 m: a close-up of the face draws every hair, the whole monkey in view (~1 m) ~1/11.
-float defaultReferenceDistance(const skin::SkinMesh& skin, float fovYDegrees);
+// The default reference distance: where the overcoat's root width (fur::StrandWidth) spans
+// kReferenceRootPixels of the reference image (referenceHeight pixels, vertical field of view
+// fovYDegrees): D = w_root H_ref / (2 tan(fovY / 2) kReferenceRootPixels). The paper chose the
+// distance at which the face fills the screen, for 1-pixel lines; with hairs of a physical width
+// drawn with their coverage (the renderer's strands), the coat covers the skin correctly at any
+// count, so culling starts where a hair becomes narrower than a quarter pixel, and the hairs left
+// are widened by c back to a quarter pixel (drawn one pixel wide at that coverage): fewer strands,
+// never wider than a pixel. The value is measured: at half a pixel the monkey's 320 vs 1280
+// box-filtered renders differed by 7.8/255, at a quarter by 4.7 (tests/viewer/strand_look_test).
+// For the default fur (0.4 mm) at 45 degrees and 1080 pixels: 2.09 m.
+float defaultReferenceDistance(const FurParams& params);
 
 // The reference distance in use: params.culling.referenceDistance, or the default when that is 0.
-float referenceDistance(const skin::SkinMesh& skin, const CullingParams& params);
+float referenceDistance(const FurParams& params);
 
 // Centre of the bounding box of the deformed skin (the bounding-sphere centre used for distance).
 Eigen::Vector3f creatureCenter(const skin::DeformedSkin& deformed);
@@ -68,8 +73,8 @@ struct ViewCamera {
 };
 
 // The view for `camera`.
-FurView makeFurView(const skin::SkinMesh& skin, const FurParams& params,
-                    const skin::DeformedSkin& deformed, const ViewCamera& camera);
+FurView makeFurView(const FurParams& params, const skin::DeformedSkin& deformed,
+                    const ViewCamera& camera);
 
 // Sec. 3.3: triangle t with k roots draws k' = min(k, floor(k / c + u_t)) of them (random rounding,
 // u_t = uniform01(coatSeed, kStreamCulling, t), fixed from frame to frame so nothing flickers),

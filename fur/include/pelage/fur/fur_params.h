@@ -55,6 +55,17 @@ struct GroomMapPaths {
   bool any() const { return !density.empty() || !length.empty() || !color.empty(); }
 };
 
+// A hair's width (its diameter), tapering linearly from the root to the tip, in millimetres. The
+// paper draws hairs as 1-pixel lines (sec. 3.3); a physical width lets the renderer draw each hair
+// with its coverage of the pixel at any distance, tubes (sec. 3.8) take it as their diameter, and
+// the exports write it per point.
+struct StrandWidth {
+  float rootMm = 0.4f;  // [0.001, 20]
+  float tipMm = 0.02f;  // [0, 20]
+  // The width at t in [0, 1] along the hair (0 = root), in metres.
+  float metersAt(float t) const { return 1e-3f * (rootMm + (tipMm - rootMm) * t); }
+};
+
 // One coat (sec. 3.1): "different material characteristics, stiffness, randomness, and hair style".
 struct CoatParams {
   HairStyle style = HairStyle::Polyline;
@@ -66,7 +77,7 @@ struct CoatParams {
   float lengthFactor = 1.0f;            // [0, 10]: overcoat 1, undercoat "relative length"
   int curvePoints = 8;                  // K, curve and tube points along the hair [2, 64]
   int tubeSides = 6;                    // M, points per tube ring [3, 32]
-  float tubeRadiusMeters = 0.0002f;     // tube radius at the root [1e-6, 0.01] m
+  StrandWidth width;                    // root and tip width (mm); a tube's diameter
   float curlRadius = 0.0f;              // helix radius as a fraction of the length [0, 0.5]
   float curlTurns = 0.0f;               // helix turns along the hair [0, 20]
   CoatColor color;                      // where each hair's colour comes from
@@ -90,8 +101,8 @@ struct LengthRegion {
 // (distance, a wider field of view or a smaller image).
 struct CullingParams {
   bool enabled = true;
-  // Distance (m) at which every hair is drawn; 0 = derived from the creature's face and fovYDegrees
-  // (see defaultReferenceDistance in culling.h).
+  // Distance (m) at which every hair is drawn; 0 = where the overcoat's root is a quarter pixel
+  // wide (see defaultReferenceDistance in culling.h).
   float referenceDistance = 0.0f;
   float fovYDegrees = 45.0f;   // the reference camera's vertical field of view, (1, 179)
   int referenceHeight = 1080;  // the reference image's height in pixels [16, 16384]

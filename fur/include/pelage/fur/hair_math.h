@@ -136,10 +136,9 @@ inline void sinCosTurns(const T& u, T& s, T& c) {
 }
 
 // ---- Per-coat constants ----------------------------------------------------------------------
-inline constexpr int kPolylinePoints = 8;         // sec. 3.7: "eight control points"
-inline constexpr int kMaxCurvePoints = 64;        // K
-inline constexpr int kMaxTubeSides = 32;          // M
-inline constexpr float kTubeTipFraction = 0.05f;  // tube radius at the tip / at the root
+inline constexpr int kPolylinePoints = 8;   // sec. 3.7: "eight control points"
+inline constexpr int kMaxCurvePoints = 64;  // K
+inline constexpr int kMaxTubeSides = 32;    // M
 
 // Everything per-coat that the per-hair maths needs, precomputed from FurParams (makeCoatShape in
 // generate.h). One description for the CPU and the GPU: the member list below declares the C++

@@ -35,8 +35,14 @@ std::string_view hairShadingName(HairShading shading);
 // Parses a shading name; InputError naming `field` and the accepted names.
 HairShading parseHairShading(std::string_view name, std::string_view field = "shading");
 
-// How 1-D hairs are drawn: 1-pixel lines, or ribbons tapering from `rootWidthPixels` to 0.
-enum class HairWidth { Lines, Ribbons };
+// How 1-D hairs (lines, polylines, curves) are drawn: as the paper's 1-pixel lines (sec. 3.3), or
+// as strands of their physical width (fur::StrandWidth, tapering root to tip): a strand narrower
+// than a pixel is drawn one pixel wide with its coverage (true width / drawn width) as alpha, with
+// anti-aliased edges, and a culled coat's hairs are widened by c (sec. 3.3's factor) so that the
+// coat covers the same area with fewer hairs (the LOD rule of AMD TressFX). Tubes are geometry.
+enum class HairWidth { Lines, Strands };
+// "lines", "strands".
+std::string_view hairWidthName(HairWidth width);
 
 // Where a coat's hairs come from: buffers the CPU fur model wrote this frame, or the GPU, which
 // regenerates them from the roots and the deformed skin (viewer/gpu_fur.h).
@@ -74,6 +80,7 @@ struct FurDrawItem {
   std::int64_t rootCount = 0;   // hairs grown on the skin
   std::int64_t drawnHairs = 0;  // after distance culling (sec. 3.3)
   float cullFactor = 1.0f;      // c of sec. 3.3 (1 = all hairs)
+  fur::StrandWidth width;       // the coat's hair width (strands)
   HairSource source = HairSource::Cpu;
   // CPU source: drawnHairs * P * 3 floats each (P = layout.pointsPerHair()).
   const float* positions = nullptr;
@@ -104,8 +111,10 @@ struct DrawList {
   SkinDrawItem skin;
   std::vector<FurDrawItem> fur;  // 0, 1 or 2 coats
   HairShading hairShading = HairShading::Paper;
-  HairWidth hairWidth = HairWidth::Lines;
-  float ribbonRootWidthPixels = 2.5f;
+  HairWidth hairWidth = HairWidth::Strands;
+  // Strands blended in any order (weighted blended order-independent transparency); off: drawn
+  // opaque at their drawn width.
+  bool transparency = true;
   Eigen::AlignedBox3f bounds;  // everything drawn (fits the shadow map)
   GpuFurInputs gpuFur;         // for fur items with HairSource::Gpu
 
@@ -116,8 +125,8 @@ struct DrawList {
 struct DrawOptions {
   HairSource hairSource = HairSource::Cpu;
   HairShading hairShading = HairShading::Paper;
-  HairWidth hairWidth = HairWidth::Lines;
-  float ribbonRootWidthPixels = 2.5f;
+  HairWidth hairWidth = HairWidth::Strands;
+  bool transparency = true;
   bool drawFur = true;
   bool drawSkin = true;
   Eigen::Vector3f background = kDefaultBackground;

@@ -32,7 +32,8 @@ struct ViewerOptions {
   bool follow = false;  // camera follows the creature
   scene::HairSource hairSource = scene::HairSource::Gpu;
   scene::HairShading shading = scene::HairShading::Paper;
-  bool ribbons = false;
+  scene::HairWidth hairWidth = scene::HairWidth::Strands;
+  bool transparency = true;  // strands blended by coverage (order-independent)
   bool shadows = false;
   bool noCulling = false;
   bool dynamics = false;  // dynamic fur (fur/dynamics.h): hair ends lag through damped springs

@@ -23,10 +23,6 @@ HairShading parseHairShading(std::string_view name, std::string_view field) {
              "' (accepted: paper, kajiya-kay)");
 }
 
-std::string_view hairWidthName(HairWidth width) {
-  return width == HairWidth::Lines ? "lines" : "strands";
-}
-
 std::string_view hairSourceName(HairSource source) {
   switch (source) {
     case HairSource::Cpu:

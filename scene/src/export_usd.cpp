@@ -289,9 +289,8 @@ void UsdaWriter::addFrame(int frame, const FrameState& state) {
     t << "],\n";
     t.flush();
     // Widths reach half a tube diameter beyond the control points.
-    const float pad =
-        0.5e-3f * std::max(m.params->coats[static_cast<std::size_t>(co.coat)].width.rootMm,
-                           m.params->coats[static_cast<std::size_t>(co.coat)].width.tipMm);
+    const fur::StrandWidth& w = m.params->coats[static_cast<std::size_t>(co.coat)].width;
+    const float pad = 0.5e-3f * std::max(w.rootMm, w.tipMm);
     if (!box.isEmpty()) {
       box.min().array() -= pad;
       box.max().array() += pad;
@@ -357,6 +356,16 @@ UsdExportCounts UsdaWriter::finish() {
   for (CoatOut& co : m.coats) {
     const fur::CoatParams& cp = m.params->coats[static_cast<std::size_t>(co.coat)];
     const int V = co.layout.curveVertices();
+    // One value per curve vertex, write(h, a) for hair h at a in [0, 1] along it (root to tip).
+    const auto perVertex = [&](const auto& write) {
+      for (std::int64_t h = 0; h < co.curves; ++h) {
+        for (int k = 0; k < V; ++k) {
+          if (h > 0 || k > 0) t << ((k == 0 && h % 8 == 0) ? ",\n            " : ", ");
+          write(h, V > 1 ? static_cast<float>(k) / static_cast<float>(V - 1) : 0.0f);
+        }
+        if (t.str().size() > (1u << 20)) emit();
+      }
+    };
     t << "\n    def BasisCurves \"" << co.name << "\"\n    {\n";
     switch (co.layout.basis) {
       case fur::CurveBasis::Bezier:
@@ -381,14 +390,7 @@ UsdExportCounts UsdaWriter::finish() {
     } else {
       PELAGE_CHECK(cc.packed.size() == static_cast<std::size_t>(2 * co.curves),
                    "every root's hair is exported");
-      for (std::int64_t h = 0; h < co.curves; ++h) {
-        for (int k = 0; k < V; ++k) {
-          if (h > 0 || k > 0) t << ((k == 0 && h % 8 == 0) ? ",\n            " : ", ");
-          const float a = V > 1 ? static_cast<float>(k) / static_cast<float>(V - 1) : 0.0f;
-          t.tuple(fur::hairColorAt(cc, h, a));
-        }
-        if (t.str().size() > (1u << 20)) emit();
-      }
+      perVertex([&](std::int64_t h, float a) { t.tuple(fur::hairColorAt(cc, h, a)); });
     }
     t << "] (\n            interpolation = \"" << (cc.perHair ? "vertex" : "constant")
       << "\"\n        )\n";
@@ -408,14 +410,7 @@ UsdExportCounts UsdaWriter::finish() {
     } else {
       // The hair's width at each vertex (fur::StrandWidth), tapering from root to tip.
       t << "        float[] widths = [";
-      for (std::int64_t h = 0; h < co.curves; ++h) {
-        for (int k = 0; k < V; ++k) {
-          if (h > 0 || k > 0) t << ((k == 0 && h % 8 == 0) ? ",\n            " : ", ");
-          t.num(
-              cp.width.metersAt(V > 1 ? static_cast<float>(k) / static_cast<float>(V - 1) : 0.0f));
-        }
-        if (t.str().size() > (1u << 20)) emit();
-      }
+      perVertex([&](std::int64_t, float a) { t.num(cp.width.metersAt(a)); });
       t << "] (\n            interpolation = \"vertex\"\n        )\n";
     }
     t << "        float3[] extent.timeSamples = {\n";

@@ -41,8 +41,6 @@ HairShading parseHairShading(std::string_view name, std::string_view field = "sh
 // anti-aliased edges, and a culled coat's hairs are widened by c (sec. 3.3's factor) so that the
 // coat covers the same area with fewer hairs (the LOD rule of AMD TressFX). Tubes are geometry.
 enum class HairWidth { Lines, Strands };
-// "lines", "strands".
-std::string_view hairWidthName(HairWidth width);
 
 // Where a coat's hairs come from: buffers the CPU fur model wrote this frame, or the GPU, which
 // regenerates them from the roots and the deformed skin (viewer/gpu_fur.h).

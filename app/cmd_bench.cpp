@@ -71,7 +71,7 @@ void addBenchCommand(CLI::App& app) {
         static_cast<long long>(frame.coats[0].drawn), fur::styleName(frame.coats[0].layout.style),
         static_cast<long long>(frame.coats[1].drawn), fur::styleName(frame.coats[1].layout.style));
     std::printf("threads %d, kernel %s, %d frames\n", threadCount(),
-                fur::kernelPathName(fur::activeKernelPath()), *frames);
+                fur::activeKernelTarget().c_str(), *frames);
     std::printf("fur:  %.3f ms/frame median (min %.3f, max %.3f), %.1f M hairs/s\n", median,
                 furMs.front(), furMs.back(), hairs / median / 1e3);
     std::printf("skin: %.3f ms/frame median (deformation and normals)\n",

@@ -132,7 +132,7 @@ void addHairCommand(CLI::App& app) {
     const std::string comment =
         str("model ", m.name, ", fur ", params.name, ", seed ", params.seed, ", ", frame.drawn(),
             " of ", roots.total(), " hairs (culling factor ", frame.cullingFactor, ")");
-    const fur::HairPlyCounts n = fur::writeHairPly(*out, frame, comment, &fur.colors);
+    const fur::HairPlyCounts n = fur::writeHairPly(*out, frame, params, comment, &fur.colors);
     if (quiet) return;
     if (dynamics->enabled()) {
       scene::DynamicsClock clock;

@@ -102,6 +102,7 @@ void runRender(RenderArgs& a) {
   o.look.hairWidth = a.view.hairWidth();
   o.look.transparency = a.view.transparent();
   o.shadows = a.view.shadows;
+  o.selfShadowing = a.view.selfShadowed();
   o.skinColor = a.view.skin();
   const std::string ext = std::filesystem::path(o.outDir).extension().string();
   if ((ext == ".png" || ext == ".jpg" || ext == ".mp4" || ext == ".gif") &&

@@ -63,6 +63,7 @@ void addViewCommand(CLI::App& app) {
     o->hairWidth = view->hairWidth();
     o->transparency = view->transparent();
     o->shadows = view->shadows;
+    o->selfShadowing = view->selfShadowed();
     o->noCulling = view->noCulling;
     o->skinColor = view->skin();
     o->fur = furArgs->resolve();

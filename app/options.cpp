@@ -26,6 +26,13 @@ std::string number(double v) {
   return buf;
 }
 
+// An on/off switch: `what` (the help text before the accepted values), its default shown.
+void addSwitch(CLI::App& cmd, const std::string& name, std::string& value,
+               const std::string& what) {
+  cmd.add_option(name, value, what + ": on or off (default " + value + ")")
+      ->check(CLI::IsMember({"on", "off"}));
+}
+
 // The --threads value every command shares (the top-level option and each command's).
 int& sharedThreads() {
   static int threads = 0;
@@ -299,10 +306,9 @@ fur::FurParams FurOptions::resolve() const {
 
 void DynamicsOptions::add(CLI::App& cmd, bool withPreRoll) {
   const fur::CoatDynamics d;
-  cmd.add_option("--dynamics", mode,
-                 "Fur dynamics: 'on' makes each hair's end follow the paper's (quasi-static) end "
-                 "through a damped spring; 'off' is the paper's model (default off)")
-      ->check(CLI::IsMember({"on", "off"}));
+  addSwitch(cmd, "--dynamics", mode,
+            "Fur dynamics: 'on' makes each hair's end follow the paper's (quasi-static) end "
+            "through a damped spring; 'off' is the paper's model");
   cmd.add_option("--frequency", frequency,
                  "With --dynamics on: natural frequency of a 1 cm hair, Hz (0, 100]: one value "
                  "for both coats or two (overcoat undercoat) (default " +
@@ -395,16 +401,19 @@ void ViewOptions::add(CLI::App& cmd) {
                  "Where hairs are computed each frame: gpu or cpu (default " + hairSource +
                      "; dynamic fur is always the CPU's)");
   cmd.add_option("--shading", shading,
-                 "Hair shading: paper or kajiya-kay (default " + shading + ")");
+                 "Hair shading: paper, kajiya-kay or marschner (default " + shading + ")");
   cmd.add_flag("--lines", lines,
                "Draw hairs as the paper's 1-pixel lines instead of strands of their width "
                "(sec. 3.3)");
-  cmd.add_option("--transparency", transparency,
-                 "Strands blended with their pixel coverage as alpha, in any order (weighted "
-                 "blended OIT): on or off (off: opaque at least 1 pixel wide) (default " +
-                     transparency + ")")
-      ->check(CLI::IsMember({"on", "off"}));
-  cmd.add_flag("--shadows", shadows, "Shadow map: fur and skin shadow each other");
+  addSwitch(cmd, "--transparency", transparency,
+            "Strands blended with their pixel coverage as alpha, in any order (weighted blended "
+            "OIT; off: opaque, at least 1 pixel wide)");
+  cmd.add_flag("--shadows", shadows,
+               "Shadow map: the skin shadows itself and the fur (without self-shadowing the "
+               "hairs' shadows are hard)");
+  addSwitch(cmd, "--self-shadowing", selfShadowing,
+            "The fur's own soft shadow (deep opacity maps): the coat darkens inside and the skin "
+            "under it");
   cmd.add_flag("--no-culling", noCulling, "Draw every hair at any distance (no sec. 3.3 culling)");
   cmd.add_option("--skin-color", skinColor,
                  "Skin colour R G B, each in [0, 1] (default: the model's)")

@@ -127,6 +127,7 @@ struct ViewOptions {
   bool lines = false;
   std::string transparency = "on";
   bool shadows = false;
+  std::string selfShadowing = "on";
   bool noCulling = false;
   std::vector<float> skinColor;
   void add(CLI::App& cmd);
@@ -137,6 +138,7 @@ struct ViewOptions {
   scene::HairShading hairShading() const;
   scene::HairWidth hairWidth() const;  // strands, or the paper's lines with --lines
   bool transparent() const { return transparency == "on"; }
+  bool selfShadowed() const { return selfShadowing == "on"; }
   std::optional<Eigen::Vector3f> skin() const;
   // Parses and checks every value (size, samples, fov, names, colour).
   void validate() const;

@@ -84,8 +84,7 @@ void BM_DynamicsFrame(benchmark::State& st) {
   st.counters["threads"] = threads;
   st.counters["hairs/s"] = benchmark::Counter(n, benchmark::Counter::kIsIterationInvariantRate);
   static const char* names[] = {"quasi-static", "dynamic", "dynamic step only"};
-  st.SetLabel(std::string(names[mode]) + " polyline " +
-              fur::kernelPathName(fur::activeKernelPath()));
+  st.SetLabel(std::string(names[mode]) + " polyline " + fur::activeKernelTarget());
 }
 
 void modes(benchmark::internal::Benchmark* b) {

@@ -92,7 +92,7 @@ void BM_ExportPlyFrame(benchmark::State& st) {
   for (auto _ : st) {
     scene::evaluateClipFrame(m, clip, (frame++ % 60) / 30.0, state);
     scene::evaluateFur(m, fur, fur::FurView{}, true, state);
-    fur::writeHairPly(path, state.fur);
+    fur::writeHairPly(path, state.fur, fur.params);
   }
   std::remove(path.c_str());
   st.counters["hairs/s"] = benchmark::Counter(static_cast<double>(fur.roots.total()),

@@ -1,5 +1,10 @@
 # Warning flags, sanitizers and a helper to declare a module library.
 
+# Every float operation rounds as written: no contraction of a * b + c into a fused multiply-add.
+# (x86-64's baseline has no FMA, but aarch64's does, and GCC contracts by default there; the fur
+# kernel, its scalar reference and the tests' expectations must all round the same way.)
+add_compile_options(-ffp-contract=off)
+
 add_library(pelage_warnings INTERFACE)
 target_compile_options(pelage_warnings INTERFACE
   -Wall -Wextra -Wpedantic -Wshadow -Wnon-virtual-dtor -Wcast-align -Wunused -Woverloaded-virtual

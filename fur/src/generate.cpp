@@ -1,7 +1,6 @@
 #include "pelage/fur/generate.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <cstring>
 
@@ -21,23 +20,6 @@ constexpr std::int64_t kHairsPerTask = 4096;
 static_assert(kHairsPerTask % 16 == 0);
 // Outputs above this many bytes per coat use non-temporal stores (they would not stay in cache).
 constexpr double kStreamStoreBytes = 8.0 * 1024.0 * 1024.0;
-
-std::atomic<int>& kernelPathSetting() {
-  static std::atomic<int> p{static_cast<int>(KernelPath::Auto)};
-  return p;
-}
-
-bool cpuHasAvx2() {
-  static const bool has = __builtin_cpu_supports("avx2") != 0;
-  return has;
-}
-
-bool cpuHasAvx512() {
-  static const bool has = __builtin_cpu_supports("avx512f") != 0 &&
-                          __builtin_cpu_supports("avx512dq") != 0 &&
-                          __builtin_cpu_supports("avx512vl") != 0 && cpuHasAvx2();
-  return has;
-}
 
 }  // namespace
 
@@ -168,34 +150,6 @@ void prepareFurFrame(const FurRoots& roots, const FurParams& params, FurFrame& f
   }
 }
 
-bool setKernelPath(KernelPath path) {
-  if (path == KernelPath::Avx2 && !cpuHasAvx2()) return false;
-  if (path == KernelPath::Avx512 && !cpuHasAvx512()) return false;
-  kernelPathSetting() = static_cast<int>(path);
-  return true;
-}
-
-KernelPath activeKernelPath() {
-  const auto p = static_cast<KernelPath>(kernelPathSetting().load());
-  if (p != KernelPath::Auto) return p;
-  if (cpuHasAvx512()) return KernelPath::Avx512;
-  return cpuHasAvx2() ? KernelPath::Avx2 : KernelPath::Generic;
-}
-
-const char* kernelPathName(KernelPath path) {
-  switch (path) {
-    case KernelPath::Auto:
-      return "auto";
-    case KernelPath::Generic:
-      return "generic";
-    case KernelPath::Avx2:
-      return "avx2";
-    case KernelPath::Avx512:
-      return "avx512";
-  }
-  return "?";
-}
-
 namespace {
 
 // Packs position, fur length, normal and segment direction of every vertex into 48-byte records,
@@ -267,7 +221,6 @@ void detail::generateFurWithDynamics(
   packVertices(skin, deformed, ws.vertexRecords);
   const float factor = emit ? cullingFactor(view) : 1.0f;
   if (emit) frame.cullingFactor = factor;
-  const KernelPath path = activeKernelPath();
   for (int c = 0; c < kCoatCount; ++c) {
     const auto ci = static_cast<std::size_t>(c);
     const CoatRoots& cr = roots.coats[ci];
@@ -304,18 +257,16 @@ void detail::generateFurWithDynamics(
     a.dynamics = dynamics[ci];
     a.emit = emit;
     const double bytes = static_cast<double>(drawn) * shape.points * 24.0;
-    // Streaming needs 32-byte aligned rows: polyline-like layouts (P a multiple of 8) and lines
-    // (a full 8-line block is six aligned vectors).
-    // ... and coat 1's arrays start where coat 0's end: only at a 64-byte boundary.
+    // Streaming needs 16-byte aligned rows of 4 floats: P a multiple of 4 (a hair's 3 P floats are
+    // whole rows) or lines (4 lines' 24 floats are six rows), and coat 1's arrays start where coat
+    // 0's end: only at a 64-byte boundary.
     const auto aligned = [](const float* p) {
       return reinterpret_cast<std::uintptr_t>(p) % 64 == 0;
     };
-    a.streamStores = emit && (shape.points % 8 == 0 || shape.style == HairStyle::Line) &&
+    a.streamStores = emit && (shape.points % 4 == 0 || shape.style == HairStyle::Line) &&
                      bytes > kStreamStoreBytes && aligned(a.positions) && aligned(a.normals);
-    auto run = path == KernelPath::Avx512 ? detail::runCoatRangeAvx512
-               : path == KernelPath::Avx2 ? detail::runCoatRangeAvx2
-                                          : detail::runCoatRangeGeneric;
-    parallelForChunks(drawn, kHairsPerTask, [&](std::int64_t b, std::int64_t e) { run(a, b, e); });
+    parallelForChunks(drawn, kHairsPerTask,
+                      [&](std::int64_t b, std::int64_t e) { detail::runCoatRange(a, b, e); });
   }
 }
 

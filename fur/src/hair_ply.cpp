@@ -1,5 +1,6 @@
 #include "pelage/fur/hair_ply.h"
 
+#include <algorithm>
 #include <bit>
 #include <cstring>
 #include <fstream>
@@ -49,7 +50,13 @@ HairPlyCounts hairPlyCounts(const FurFrame& frame) {
   return n;
 }
 
-HairPlyCounts writeHairPly(const std::string& path, const FurFrame& frame,
+float exportedWidth(const FurFrame& frame, const FurParams& params, int coat, int k) {
+  const HairBuffers& hb = frame.coats[static_cast<std::size_t>(coat)];
+  const float w = params.coats[static_cast<std::size_t>(coat)].width.metersAt(hb.layout.along(k));
+  return hb.layout.topology == HairTopology::Strand ? w * std::max(frame.cullingFactor, 1.0f) : w;
+}
+
+HairPlyCounts writeHairPly(const std::string& path, const FurFrame& frame, const FurParams& params,
                            const std::string& comment, const FurColors* colors) {
   static_assert(std::numeric_limits<float>::is_iec559 && sizeof(float) == 4);
   static_assert(std::endian::native == std::endian::little,
@@ -70,7 +77,7 @@ HairPlyCounts writeHairPly(const std::string& path, const FurFrame& frame,
   for (std::string line; std::getline(lines, line);) h << "comment " << line << "\n";
   h << "element vertex " << n.vertices << "\nproperty float x\nproperty float y\nproperty float z\n"
     << "property float nx\nproperty float ny\nproperty float nz\nproperty int hair\nproperty uchar "
-       "coat\n";
+       "coat\nproperty float width\n";
   if (colors) h << "property uchar red\nproperty uchar green\nproperty uchar blue\n";
   if (anyStrand || !anyRings)
     h << "element edge " << n.edges << "\nproperty int vertex1\nproperty int vertex2\n";
@@ -81,20 +88,25 @@ HairPlyCounts writeHairPly(const std::string& path, const FurFrame& frame,
   w.write(h.str());
   Chunked out(w);
   std::vector<std::uint8_t> rgb;
+  std::vector<float> widths;
   for (int c = 0; c < kCoatCount; ++c) {
     const HairBuffers& hb = frame.coats[static_cast<std::size_t>(c)];
     const std::int64_t P = hb.layout.pointsPerHair();
     const auto coat = static_cast<std::uint8_t>(c);
     if (colors) pointColorsSrgb8(colors->coats[static_cast<std::size_t>(c)], hb, rgb);
-    const std::size_t size = colors ? 32 : 29;
+    const std::size_t size = colors ? 36 : 33;
+    widths.resize(static_cast<std::size_t>(P));
+    for (int k = 0; k < P; ++k)
+      widths[static_cast<std::size_t>(k)] = exportedWidth(frame, params, c, k);
     for (std::int64_t i = 0; i < hb.drawn; ++i)
       for (std::int64_t k = 0; k < P; ++k) {
-        char rec[32];  // 6 floats, int, uchar (and 3 uchar): little-endian like the host
+        char rec[36];  // 6 floats, int, uchar, float (and 3 uchar): little-endian like the host
         std::memcpy(rec, hb.positions.data() + (i * P + k) * 3, 12);
         std::memcpy(rec + 12, hb.normals.data() + (i * P + k) * 3, 12);
         std::memcpy(rec + 24, &hb.hairIds[static_cast<std::size_t>(i)], 4);
         rec[28] = static_cast<char>(coat);
-        if (colors) std::memcpy(rec + 29, rgb.data() + 3 * (i * P + k), 3);
+        std::memcpy(rec + 29, &widths[static_cast<std::size_t>(k)], 4);
+        if (colors) std::memcpy(rec + 33, rgb.data() + 3 * (i * P + k), 3);
         out.putBytes(rec, size);
       }
   }
@@ -152,9 +164,9 @@ bool isCompleteHairPly(const std::string& path) {
     if (in.tellg() > (1 << 16)) return false;
   }
   if (line != "end_header" || vertices < 0) return false;
-  // Body: 29 or 32 bytes per vertex (6 floats, int, uchar, and the colour), 8 per edge, 13 per
-  // triangle face.
-  if (vertexBytes != 29 && vertexBytes != 32) return false;
+  // Body: 33 or 36 bytes per vertex (6 floats, int, uchar, float, and the colour), 8 per edge, 13
+  // per triangle face.
+  if (vertexBytes != 33 && vertexBytes != 36) return false;
   const std::int64_t body = vertices * vertexBytes + edges * 8 + faces * 13;
   return static_cast<std::int64_t>(in.tellg()) + body == size;
 }

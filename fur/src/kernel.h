@@ -1,7 +1,5 @@
-// The per-frame hair kernel's inputs, shared by the generic (SSE2 baseline), AVX2 and AVX-512
-// builds of kernel_impl.h. Plain pointers and PODs only: the ISA-specific translation units include
-// nothing else (no Eigen, no standard library beyond <cstdint>/<cmath>), so no inline function
-// compiled for AVX2 or AVX-512 can be merged into the rest of the program.
+// The per-frame hair kernel's inputs (kernel_impl.h, compiled per SIMD target by kernel_hwy.cpp).
+// Plain pointers and PODs only, no Eigen: nothing here is compiled for a particular target.
 #pragma once
 
 #include <cstdint>
@@ -10,7 +8,7 @@
 
 namespace pelage::fur::detail {
 
-// Hairs per SIMD block of the emission phase (every build) and of the generic build's other phases.
+// Hairs per SIMD block of the emission phase.
 inline constexpr int kLanes = 8;
 
 struct CoatDynamicsArgs;  // dynamics_kernel.h
@@ -50,9 +48,7 @@ inline void triangleRecords(const CoatKernelArgs& a, std::int32_t t, const float
 }  // namespace
 
 // Computes drawn hairs [begin, end) (begin a multiple of 16, so SIMD blocks and their stores stay
-// aligned).
-void runCoatRangeGeneric(const CoatKernelArgs& args, std::int64_t begin, std::int64_t end);
-void runCoatRangeAvx2(const CoatKernelArgs& args, std::int64_t begin, std::int64_t end);
-void runCoatRangeAvx512(const CoatKernelArgs& args, std::int64_t begin, std::int64_t end);
+// aligned) with the best SIMD target the CPU has (or the one setKernelTarget forced).
+void runCoatRange(const CoatKernelArgs& args, std::int64_t begin, std::int64_t end);
 
 }  // namespace pelage::fur::detail

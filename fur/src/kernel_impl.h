@@ -1,8 +1,7 @@
 // The per-frame hair kernel, written once over a backend B that supplies the lane types (B::FrameF
 // for the gather and frame phases, B::F for the emission), the gather of a block's inputs (B::load)
-// and the transposed stores (B::Sink, B::FixedSink<P>). Included by exactly one translation unit
-// per backend (kernel_generic.cpp, kernel_avx2.cpp, kernel_avx512.cpp); everything here has
-// internal linkage.
+// and the transposed stores (B::Sink, B::FixedSink<P>). Included by kernel_hwy.cpp only, whose
+// per-target backends instantiate it; everything here has internal linkage.
 //
 // Layout: SIMD lanes are hairs (structure of arrays); drawn hairs are taken in chunks of 128,
 // processed in three loops (gather, frame, emission) whose data stays in L1; roots are sorted by
@@ -51,11 +50,60 @@ void emitBlocks(const CoatKernelArgs& a, const HairFrame<FrameF>* frames, int bl
   }
 }
 
+// The phases a backend runs as separate (not inlined) functions: each is a few hundred vector
+// instructions, which keeps the register allocation of one phase apart from the others'.
+// 2. Frames: directions, gravity, hair plane (sec. 3.4, 3.5, 3.7).
+template <class FrameF>
+void framePhase(const CoatShape& shape, const HairInput<FrameF>* inputs, HairFrame<FrameF>* frames,
+                int blocks) {
+  for (int k = 0; k < blocks; ++k) hairFrame(shape, inputs[k], frames[k]);
+}
+
+// 2b. Fur dynamics: damped ending points (dynamics_kernel.h), only when asked for.
+template <int kFrameLanes, class FrameF>
+void dynamicsPhase(const CoatShape& shape, const CoatDynamicsArgs& d, const std::int32_t* roots,
+                   int count, HairFrame<FrameF>* frames, int blocks) {
+  for (int k = 0; k < blocks; ++k)
+    dynamicEnds(shape, d, roots + k * kFrameLanes,
+                count - k * kFrameLanes < kFrameLanes ? count - k * kFrameLanes : kFrameLanes,
+                frames[k]);
+}
+
+// 3. Points and normals of the coat's style S, stored transposed (sec. 3.6 to 3.8), for the
+// chunk's `blocks` emission blocks (the last with `lastCount` hairs) from `chunkStart`.
+template <class B, HairStyle S>
+void emitPhase(const CoatKernelArgs& a, const HairFrame<typename B::FrameF>* frames, int blocks,
+               int lastCount, std::int64_t chunkStart, const std::int32_t* roots) {
+  using F = typename B::F;
+  const CoatShape& shape = *a.shape;
+  if constexpr (S == HairStyle::Line) {
+    emitBlocks<B, typename B::template FixedSink<2>>(
+        a, frames, blocks, lastCount, chunkStart,
+        [&](int, const HairFrame<F>& f, typename B::template FixedSink<2>& s) { emitLine(f, s); });
+  } else if constexpr (S == HairStyle::Polyline) {
+    emitBlocks<B, typename B::template FixedSink<kPolylinePoints>>(
+        a, frames, blocks, lastCount, chunkStart,
+        [&](int k, const HairFrame<F>& f, typename B::template FixedSink<kPolylinePoints>& s) {
+          HairTwist<F> twist;
+          if (shape.twist) B::loadTwist(a, roots + k * B::kLanes, twist);
+          emitPolyline(shape, f, twist, s);
+        });
+  } else if constexpr (S == HairStyle::Curve) {
+    emitBlocks<B, typename B::Sink>(
+        a, frames, blocks, lastCount, chunkStart,
+        [&](int, const HairFrame<F>& f, typename B::Sink& s) { emitCurve(shape, f, s); });
+  } else {
+    emitBlocks<B, typename B::Sink>(
+        a, frames, blocks, lastCount, chunkStart,
+        [&](int, const HairFrame<F>& f, typename B::Sink& s) { emitTube(shape, f, s); });
+  }
+}
+
 // B::FrameF (B::kFrameLanes lanes) runs the gather and frame phases, B::F (B::kLanes lanes) the
-// emission; B::frameLanes(frame, j) is block j of kLanes lanes of a frame.
+// emission; B::frameLanes(frame, j) is block j of kLanes lanes of a frame. B::frames, B::dynamics
+// and B::emit<S> run framePhase, dynamicsPhase and emitPhase<B, S>.
 template <class B>
 void runCoatRange(const CoatKernelArgs& a, std::int64_t begin, std::int64_t end) {
-  using F = typename B::F;
   using FrameF = typename B::FrameF;
   constexpr int kLanes = B::kLanes;            // hairs per emission block
   constexpr int kFrameLanes = B::kFrameLanes;  // hairs per gather/frame block
@@ -115,42 +163,22 @@ void runCoatRange(const CoatKernelArgs& a, std::int64_t begin, std::int64_t end)
         for (int l = 0; l < kFrameLanes; ++l) s[l] = a.lengthScale[roots[k * kFrameLanes + l]];
         inputs[k].length = inputs[k].length * B::loadFrame(s);
       }
-    // 2. Frames: directions, gravity, hair plane (sec. 3.4, 3.5, 3.7).
-    for (int k = 0; k < frameBlocks; ++k) hairFrame(shape, inputs[k], frames[k]);
-    // 2b. Fur dynamics: damped ending points (dynamics_kernel.h), only when asked for.
-    if (a.dynamics)
-      for (int k = 0; k < frameBlocks; ++k)
-        dynamicEnds(shape, *a.dynamics, roots + k * kFrameLanes,
-                    count - k * kFrameLanes < kFrameLanes ? count - k * kFrameLanes : kFrameLanes,
-                    frames[k]);
+    // 2. Frames, 2b. dynamics, 3. emission (the phases above, through the backend).
+    B::frames(shape, inputs, frames, frameBlocks);
+    if (a.dynamics) B::dynamics(shape, *a.dynamics, roots, count, frames, frameBlocks);
     if (!a.emit) continue;
-    // 3. Points and normals of the coat's style, stored transposed (sec. 3.6 to 3.8).
     switch (shape.style) {
       case HairStyle::Line:
-        emitBlocks<B, typename B::template FixedSink<2>>(
-            a, frames, blocks, lastCount, chunkStart,
-            [&](int, const HairFrame<F>& f, typename B::template FixedSink<2>& s) {
-              emitLine(f, s);
-            });
+        B::template emit<HairStyle::Line>(a, frames, blocks, lastCount, chunkStart, roots);
         break;
       case HairStyle::Polyline:
-        emitBlocks<B, typename B::template FixedSink<kPolylinePoints>>(
-            a, frames, blocks, lastCount, chunkStart,
-            [&](int k, const HairFrame<F>& f, typename B::template FixedSink<kPolylinePoints>& s) {
-              HairTwist<F> twist;
-              if (shape.twist) B::loadTwist(a, roots + k * kLanes, twist);
-              emitPolyline(shape, f, twist, s);
-            });
+        B::template emit<HairStyle::Polyline>(a, frames, blocks, lastCount, chunkStart, roots);
         break;
       case HairStyle::Curve:
-        emitBlocks<B, typename B::Sink>(
-            a, frames, blocks, lastCount, chunkStart,
-            [&](int, const HairFrame<F>& f, typename B::Sink& s) { emitCurve(shape, f, s); });
+        B::template emit<HairStyle::Curve>(a, frames, blocks, lastCount, chunkStart, roots);
         break;
       case HairStyle::Tube:
-        emitBlocks<B, typename B::Sink>(
-            a, frames, blocks, lastCount, chunkStart,
-            [&](int, const HairFrame<F>& f, typename B::Sink& s) { emitTube(shape, f, s); });
+        B::template emit<HairStyle::Tube>(a, frames, blocks, lastCount, chunkStart, roots);
         break;
     }
     B::storeIds(a.hairIds + chunkStart, roots, count);

@@ -499,8 +499,9 @@ py::array_t<std::uint8_t> render(PyModel& m, const py::object& clip, const py::o
                                  int frame, double fps, double time, std::pair<int, int> size,
                                  const std::string& camera, double fov, bool follow,
                                  const std::string& hairSource, const std::string& shading,
-                                 bool lines, bool transparency, bool shadows, int samples,
-                                 const py::object& dynamics, const py::object& skinColor) {
+                                 bool lines, bool transparency, bool shadows, bool selfShadowing,
+                                 int samples, const py::object& dynamics,
+                                 const py::object& skinColor) {
   scene::Model& model = *m.model;
   const std::shared_ptr<const scene::Fur> fur = furOf(m, furArg);
   viewer::SequenceOptions o;
@@ -518,6 +519,7 @@ py::array_t<std::uint8_t> render(PyModel& m, const py::object& clip, const py::o
   o.look.hairWidth = lines ? scene::HairWidth::Lines : scene::HairWidth::Strands;
   o.look.transparency = transparency;
   o.shadows = shadows;
+  o.selfShadowing = selfShadowing;
   if (!skinColor.is_none()) {
     const auto c = skinColor.cast<std::vector<float>>();
     if (c.size() != 3 ||
@@ -753,8 +755,9 @@ PYBIND11_MODULE(_pelage, m) {
         py::arg("time") = 0.0, py::arg("size") = std::pair<int, int>(1280, 720),
         py::arg("camera") = "three-quarter", py::arg("fov") = 35.0, py::arg("follow") = false,
         py::arg("hair_source") = "gpu", py::arg("shading") = "paper", py::arg("lines") = false,
-        py::arg("transparency") = true, py::arg("shadows") = false, py::arg("samples") = -1,
-        py::arg("dynamics") = py::none(), py::arg("skin_color") = py::none(),
+        py::arg("transparency") = true, py::arg("shadows") = false,
+        py::arg("self_shadowing") = true, py::arg("samples") = -1, py::arg("dynamics") = py::none(),
+        py::arg("skin_color") = py::none(),
         "`pelage render` of one frame in Python (EGL, no display): an (H, W, 3) uint8 image.");
 #endif
 }

@@ -28,6 +28,22 @@ def test_render_equals_the_png(monkey, cli, tmp_path, source):
     assert np.abs(image[54, 96].astype(int) - image[2, 2].astype(int)).sum() > 30
 
 
+@pytest.mark.skipif(render is None, reason="built without the renderer (PELAGE_BUILD_VIEWER)")
+def test_render_look_options_match_the_command_line(monkey, cli, tmp_path):
+    from PIL import Image
+
+    fur = monkey.fur(hairs=8000)
+    look = dict(shading="marschner", self_shadowing=False)
+    image = render(monkey, "walk", fur=fur, frame=3, size=(192, 108), **look)
+    cli("render", "--clip", "walk", "--hairs", 8000, "--frames", 3, "--size", "192x108",
+        "--shading", "marschner", "--self-shadowing", "off", "--out", tmp_path)
+    png = np.asarray(Image.open(tmp_path / "frame_00003.png").convert("RGB"))
+    np.testing.assert_array_equal(image, png)
+    # The fur's own shadow takes light away: the default (self-shadowed) frame is darker.
+    shadowed = render(monkey, "walk", fur=fur, frame=3, size=(192, 108), shading="marschner")
+    assert shadowed.astype(int).sum() < image.astype(int).sum()
+
+
 def _files(directory):
     return sorted(os.listdir(directory))
 

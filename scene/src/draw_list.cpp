@@ -12,15 +12,17 @@ std::string_view hairShadingName(HairShading shading) {
       return "paper";
     case HairShading::KajiyaKay:
       return "kajiya-kay";
+    case HairShading::Marschner:
+      return "marschner";
   }
   return "?";
 }
 
 HairShading parseHairShading(std::string_view name, std::string_view field) {
-  for (HairShading s : {HairShading::Paper, HairShading::KajiyaKay})
+  for (HairShading s : kHairShadings)
     if (name == hairShadingName(s)) return s;
   fieldError(std::string(field), ": unknown hair shading '", name,
-             "' (accepted: paper, kajiya-kay)");
+             "' (accepted: paper, kajiya-kay, marschner)");
 }
 
 std::string_view hairSourceName(HairSource source) {
@@ -63,6 +65,7 @@ void buildDrawList(const Model& model, const FrameState& frame, const Fur* fur,
   list.hairWidth = options.hairWidth;
   list.transparency = options.transparency;
   list.bounds = frame.skinBounds;
+  list.hairLength = 0.0f;
   list.skin = SkinDrawItem{};
   if (options.drawSkin) {
     list.skin.material = skin;
@@ -81,6 +84,7 @@ void buildDrawList(const Model& model, const FrameState& frame, const Fur* fur,
     list.gpuFur = GpuFurInputs{&fur->params,         &fur->roots, fur->generation, &fur->colors,
                                fur->colorGeneration, &model.skin, &frame.skin};
   const float pad = maxHairLength(model, fur->params);
+  list.hairLength = pad;
   list.bounds.extend(frame.skinBounds.min() - Eigen::Vector3f::Constant(pad));
   list.bounds.extend(frame.skinBounds.max() + Eigen::Vector3f::Constant(pad));
   for (int c = 0; c < fur::kCoatCount; ++c) {

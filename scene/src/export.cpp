@@ -96,7 +96,7 @@ ExportReport exportClip(const Model& model, const Fur& fur, const ExportOptions&
         usd->addFrame(f, state);
         break;
       case ExportFormat::Ply:
-        fur::writeHairPly(framePath(f), state.fur,
+        fur::writeHairPly(framePath(f), state.fur, fur.params,
                           str("model ", model.name, ", frame ", f, " (",
                               po.startSeconds + static_cast<double>(f) / po.framesPerSecond,
                               " s), fur ", fur.params.name, ", seed ", fur.params.seed),

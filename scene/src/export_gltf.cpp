@@ -11,6 +11,7 @@
 
 #include "hair_curves.h"
 #include "pelage/fur/colors.h"
+#include "pelage/fur/hair_ply.h"
 #include "pelage/util/atomic_file.h"
 #include "pelage/util/color.h"
 #include "pelage/util/error.h"
@@ -138,7 +139,8 @@ GlbCounts writeFrameGlb(const std::string& path, const Model& model, const Fur& 
   const std::vector<CoatPart> parts = coatParts(params, state);
   GlbCounts counts = glbCounts(model, params, state);
 
-  // Buffer layout: skin positions, normals, indices; then per coat positions, indices.
+  // Buffer layout: skin positions, normals, indices; then per coat positions, indices, colours,
+  // widths.
   nlohmann::json views = nlohmann::json::array(), accessors = nlohmann::json::array();
   std::uint64_t offset = 0;
   auto addView = [&](std::uint64_t bytes, int target) {
@@ -203,10 +205,14 @@ GlbCounts writeFrameGlb(const std::string& path, const Model& model, const Fur& 
     const int col = addAccessor(addView(static_cast<std::uint64_t>(p.vertices) * 4, kArrayBuffer),
                                 kUnsignedByte, p.vertices, "VEC4");
     accessors[static_cast<std::size_t>(col)]["normalized"] = true;
+    // _WIDTH (an application attribute, glTF 2.0 sec. 3.7.2.1): the hair's width at each point in
+    // metres (fur::exportedWidth: tapering root to tip; a tube's diameter).
+    const int width = addAccessor(addView(static_cast<std::uint64_t>(p.vertices) * 4, kArrayBuffer),
+                                  kFloat, p.vertices, "SCALAR");
     materials.push_back(material(name, Eigen::Vector3f::Ones()));
     meshes.push_back({{"name", name},
                       {"primitives",
-                       {{{"attributes", {{"POSITION", pos}, {"COLOR_0", col}}},
+                       {{{"attributes", {{"POSITION", pos}, {"COLOR_0", col}, {"_WIDTH", width}}},
                          {"indices", idx},
                          {"material", static_cast<int>(materials.size()) - 1},
                          {"mode", kModeLines}}}}});
@@ -294,6 +300,11 @@ GlbCounts writeFrameGlb(const std::string& path, const Model& model, const Fur& 
       }
       bin.put(rgba.data(), rgba.size());
     }
+    std::vector<float> widths(static_cast<std::size_t>(K));
+    for (int k = 0; k < K; ++k)
+      widths[static_cast<std::size_t>(k)] =
+          fur::exportedWidth(state.fur, params, p.coat, k * p.layout.ringSides);
+    for (std::int64_t h = 0; h < p.hairs; ++h) bin.put(widths.data(), widths.size() * 4);
   }
   bin.flush();
   w.commit();

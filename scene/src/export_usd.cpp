@@ -42,12 +42,15 @@ class Spool {
     path_ = (dir / ("." + p.filename().string() + ".spool-" + tag + "-" +
                     std::to_string(::getpid()) + "-" + std::to_string(spoolCounter++)))
                 .string();
+    // Registered before it exists, so that a signal arriving at any moment after its creation
+    // finds it (the handler unlinks it; unlinking a name not yet created is harmless).
+    registerTemporary(path_);
     file_ = std::fopen(path_.c_str(), "w+b");
     if (!file_) {
       const int err = errno;
+      unregisterTemporary(path_);
       inputError(output_, ": cannot write (", reason(err), ")");
     }
-    registerTemporary(path_);  // removed also when the process is interrupted
   }
   ~Spool() {
     if (file_) std::fclose(file_);

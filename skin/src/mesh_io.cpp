@@ -175,9 +175,10 @@ class PlyBody {
     return v;
   }
   double binaryValue(PlyType t, std::size_t e, long long i) {
-    const std::size_t n = static_cast<std::size_t>(plySize(t));
-    if (bytes_.size() - pos_ < n) truncated(e, i);
     unsigned char b[8] = {};
+    // (plySize is at most 8; the bound also tells GCC's -Wstringop-overflow so on aarch64.)
+    const std::size_t n = std::min(static_cast<std::size_t>(plySize(t)), sizeof b);
+    if (bytes_.size() - pos_ < n) truncated(e, i);
     std::memcpy(b, bytes_.data() + pos_, n);
     pos_ += n;
     if (bigEndian_) std::reverse(b, b + n);

@@ -233,15 +233,11 @@ inline void checkStylesAgainstReference(const skin::SkinMesh& s, const skin::Def
         setThreadCount(threads);
         EXPECT_TRUE(sameHairs(one, furFrame(s, r, p, d, view))) << threads << " threads";
       }
-      ASSERT_TRUE(setKernelPath(KernelPath::Generic));
-      EXPECT_TRUE(sameHairs(one, furFrame(s, r, p, d, view))) << "generic kernel";
-      if (setKernelPath(KernelPath::Avx2)) {
-        EXPECT_TRUE(sameHairs(one, furFrame(s, r, p, d, view))) << "AVX2 kernel";
+      for (const std::string& target : kernelTargets()) {  // each SIMD target, forced
+        ASSERT_TRUE(setKernelTarget(target));
+        EXPECT_TRUE(sameHairs(one, furFrame(s, r, p, d, view))) << target << " kernel";
       }
-      if (setKernelPath(KernelPath::Avx512)) {
-        EXPECT_TRUE(sameHairs(one, furFrame(s, r, p, d, view))) << "AVX-512 kernel";
-      }
-      setKernelPath(KernelPath::Auto);
+      setKernelTarget("auto");
       setThreadCount(0);
     }
   }

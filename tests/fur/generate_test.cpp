@@ -3,7 +3,11 @@
 // The same checks on the default monkey are in monkey_fur_test.cpp (slow).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
 
 #include "fur/fur_test_support.h"
 #include "pelage/fur/generate.h"
@@ -12,6 +16,31 @@
 
 namespace pelage::fur {
 namespace {
+
+TEST(Generate, KernelTargetsAreTheCpusBestFirstAndEachCanBeForced) {
+  const std::vector<std::string> targets = kernelTargets();
+  std::string names;
+  for (const std::string& t : targets) names += " " + t;
+  std::printf("kernel targets:%s\n", names.c_str());
+  ASSERT_FALSE(targets.empty());
+  const auto has = [&](const char* name) {
+    return std::find(targets.begin(), targets.end(), name) != targets.end();
+  };
+#if defined(__aarch64__)
+  EXPECT_TRUE(has("NEON")) << names;  // every aarch64 CPU has NEON
+#elif defined(__x86_64__)
+  EXPECT_TRUE(has("SSE4") || has("SCALAR")) << names;
+#endif
+  EXPECT_EQ(activeKernelTarget(), targets.front());
+  for (const std::string& t : targets) {
+    ASSERT_TRUE(setKernelTarget(t)) << t;
+    EXPECT_EQ(activeKernelTarget(), t);
+  }
+  EXPECT_FALSE(setKernelTarget("NO_SUCH_TARGET"));
+  EXPECT_EQ(activeKernelTarget(), targets.back());  // unchanged
+  ASSERT_TRUE(setKernelTarget("auto"));
+  EXPECT_EQ(activeKernelTarget(), targets.front());
+}
 
 TEST(Generate, EveryStyleMatchesTheReferenceAndIsDeterministic) {
   // A small curved skin (normals in every direction, varying lengths, a bare-direction cap).
@@ -26,7 +55,7 @@ TEST(Generate, DegenerateHairPlanesMatchTheReferenceOnEveryPath) {
   // segment direction, so with no end randomize the hairs stand straight up (d~ = n = U, e = U):
   // R, W and E are collinear and the hair plane (and the tube's ring frame) take their fallbacks;
   // on the right half (direction +X) the planes are regular. Blocks mix both kinds of hair, and
-  // every kernel path must still equal the scalar reference bit for bit.
+  // every kernel target must still equal the scalar reference bit for bit.
   skin::SkinMesh s = test::makeGrid(12, 0.01f, 0.01f, Eigen::Vector3f(1, 0, 0));
   for (auto v : s.mesh.vertices())
     if (s.mesh.point(v)[0] < 0.055f)
@@ -39,9 +68,9 @@ TEST(Generate, DegenerateHairPlanesMatchTheReferenceOnEveryPath) {
     p.coats[0].normalRandomize = 0.3f;
     const test::RestFur rf = test::restFur(s, p);
     std::int64_t degenerate = 0;
-    for (KernelPath path : {KernelPath::Generic, KernelPath::Avx2, KernelPath::Avx512}) {
-      if (!setKernelPath(path)) continue;
-      SCOPED_TRACE(kernelPathName(path));
+    for (const std::string& target : kernelTargets()) {
+      ASSERT_TRUE(setKernelTarget(target));
+      SCOPED_TRACE(target);
       const FurFrame f = test::furFrame(s, rf.roots, p, rf.rest);
       const HairBuffers& hb = f.coats[0];
       ASSERT_GT(hb.drawn, 2500);
@@ -61,7 +90,7 @@ TEST(Generate, DegenerateHairPlanesMatchTheReferenceOnEveryPath) {
         if (chord.x() == 0.0f && chord.y() == 0.0f) ++degenerate;
       }
     }
-    setKernelPath(KernelPath::Auto);
+    setKernelTarget("auto");
     if (style != HairStyle::Tube) {  // (a tube's last ring is around the end, not at it)
       EXPECT_GT(degenerate, 1000) << "hairs straight up on the bare half";
       EXPECT_LT(degenerate, 2000) << "hairs leaning along +X on the other half";

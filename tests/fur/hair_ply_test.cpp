@@ -61,12 +61,12 @@ TEST(HairPly, ColoursPerVertexReadBackEqual) {
   const FurColors colors = colorRoots(s, rf.roots, p, GroomMaps{});
   fillHairColors(colors, f);
   test::TempDir dir;
-  const HairPlyCounts n = writeHairPly(dir.file("c.ply"), f, "", &colors);
+  const HairPlyCounts n = writeHairPly(dir.file("c.ply"), f, p, "", &colors);
   EXPECT_TRUE(isCompleteHairPly(dir.file("c.ply")));
   const Ply ply = readPly(dir.file("c.ply"));
   for (const char* name : {"property uchar red", "property uchar green", "property uchar blue"})
     EXPECT_NE(std::find(ply.header.begin(), ply.header.end(), name), ply.header.end()) << name;
-  ASSERT_EQ(ply.body.size(), static_cast<std::size_t>(n.vertices * 32 + n.edges * 8));
+  ASSERT_EQ(ply.body.size(), static_cast<std::size_t>(n.vertices * 36 + n.edges * 8));
   std::int64_t v = 0;
   int graded = 0;
   for (int c = 0; c < kCoatCount; ++c) {
@@ -76,7 +76,7 @@ TEST(HairPly, ColoursPerVertexReadBackEqual) {
     EXPECT_EQ(cc.perHair, c == kOvercoat);
     for (std::int64_t h = 0; h < hb.drawn; ++h)
       for (int k = 0; k < P; ++k, ++v) {
-        const auto o = static_cast<std::size_t>(v * 32 + 29);
+        const auto o = static_cast<std::size_t>(v * 36 + 33);
         const Eigen::Vector3f want =
             cc.perHair ? unpackSrgb8(hb.colors[static_cast<std::size_t>(2 * h)]) +
                              hb.layout.along(k) *
@@ -88,7 +88,7 @@ TEST(HairPly, ColoursPerVertexReadBackEqual) {
                     linearToSrgb8(want[j]))
               << c << " " << h << " " << k;
         graded += cc.perHair && k == P - 1 &&
-                  at<std::uint8_t>(ply.body, o) != at<std::uint8_t>(ply.body, o - (P - 1) * 32);
+                  at<std::uint8_t>(ply.body, o) != at<std::uint8_t>(ply.body, o - (P - 1) * 36);
       }
   }
   EXPECT_GT(graded, 50);  // tips lighter than roots
@@ -104,7 +104,7 @@ TEST(HairPly, VerticesAndEdgesOfBothCoats) {
   const skin::DeformedSkin& d = rf.rest;
   const FurFrame f = test::furFrame(s, r, p, d);
   test::TempDir dir;
-  const HairPlyCounts n = writeHairPly(dir.file("h.ply"), f, "fur: test");
+  const HairPlyCounts n = writeHairPly(dir.file("h.ply"), f, p, "fur: test");
   const std::int64_t over = f.coats[0].drawn, under = f.coats[1].drawn;
   EXPECT_EQ(n.vertices, over * 8 + under * 2);
   EXPECT_EQ(n.edges, over * 7 + under * 1);
@@ -117,17 +117,19 @@ TEST(HairPly, VerticesAndEdgesOfBothCoats) {
   EXPECT_NE(std::find(ply.header.begin(), ply.header.end(), "property int hair"), ply.header.end());
   EXPECT_NE(std::find(ply.header.begin(), ply.header.end(), "property uchar coat"),
             ply.header.end());
+  EXPECT_NE(std::find(ply.header.begin(), ply.header.end(), "property float width"),
+            ply.header.end());
   EXPECT_EQ(ply.vertices, n.vertices);
   EXPECT_EQ(ply.edges, n.edges);
   EXPECT_EQ(ply.faces, -1) << "no face element without tubes";
-  ASSERT_EQ(ply.body.size(), static_cast<std::size_t>(n.vertices * 29 + n.edges * 8));
+  ASSERT_EQ(ply.body.size(), static_cast<std::size_t>(n.vertices * 33 + n.edges * 8));
   // Vertex v: the frame's point, normal, hair id and coat.
   std::int64_t v = 0;
   for (int c = 0; c < 2; ++c) {
     const HairBuffers& hb = f.coats[static_cast<std::size_t>(c)];
     for (std::int64_t h = 0; h < hb.drawn; ++h)
       for (int k = 0; k < hb.layout.pointsPerHair(); ++k, ++v) {
-        const auto o = static_cast<std::size_t>(v * 29);
+        const auto o = static_cast<std::size_t>(v * 33);
         for (int q = 0; q < 3; ++q) {
           ASSERT_EQ(at<float>(ply.body, o + 4 * static_cast<std::size_t>(q)),
                     test::point(hb, h, k)[q]);
@@ -136,10 +138,18 @@ TEST(HairPly, VerticesAndEdgesOfBothCoats) {
         }
         ASSERT_EQ(at<std::int32_t>(ply.body, o + 24), hb.hairIds[static_cast<std::size_t>(h)]);
         ASSERT_EQ(static_cast<int>(ply.body[o + 28]), c);
+        // The coat's width at the point: root width at k = 0, tip width at the last point,
+        // linear between (the frame is not culled).
+        const StrandWidth& w = p.coats[static_cast<std::size_t>(c)].width;
+        const int P = hb.layout.pointsPerHair();
+        ASSERT_NEAR(at<float>(ply.body, o + 29),
+                    1e-3f * (w.rootMm + (w.tipMm - w.rootMm) * static_cast<float>(k) /
+                                            static_cast<float>(P - 1)),
+                    1e-9f);  // a nanometre: float rounding of the interpolation
       }
   }
   // Edges join consecutive points of each hair: (0,1) .. (6,7), (8,9) ...
-  const std::size_t e0 = static_cast<std::size_t>(n.vertices * 29);
+  const std::size_t e0 = static_cast<std::size_t>(n.vertices * 33);
   std::int64_t e = 0;
   std::int32_t base = 0;
   for (int c = 0; c < 2; ++c) {
@@ -163,7 +173,7 @@ TEST(HairPly, TubesWriteFaces) {
   const skin::DeformedSkin& d = rf.rest;
   const FurFrame f = test::furFrame(s, r, p, d);
   test::TempDir dir;
-  const HairPlyCounts n = writeHairPly(dir.file("t.ply"), f);
+  const HairPlyCounts n = writeHairPly(dir.file("t.ply"), f, p);
   const std::int64_t hairs = f.coats[0].drawn;
   EXPECT_EQ(n.vertices, hairs * 12);
   EXPECT_EQ(n.faces, hairs * 3 * 3 * 2);
@@ -173,9 +183,16 @@ TEST(HairPly, TubesWriteFaces) {
   EXPECT_NE(
       std::find(ply.header.begin(), ply.header.end(), "property list uchar int vertex_indices"),
       ply.header.end());
-  ASSERT_EQ(ply.body.size(), static_cast<std::size_t>(n.vertices * 29 + n.faces * 13));
+  ASSERT_EQ(ply.body.size(), static_cast<std::size_t>(n.vertices * 33 + n.faces * 13));
+  // Every point of ring k carries the tube's diameter there: 2 r_k = the coat's width at k / 3.
+  for (std::int64_t v = 0; v < n.vertices; ++v) {
+    const int k = static_cast<int>(v % 12) / 3;
+    ASSERT_FLOAT_EQ(at<float>(ply.body, static_cast<std::size_t>(v * 33 + 29)),
+                    p.coats[0].width.metersAt(static_cast<float>(k) / 3.0f))
+        << v;
+  }
   const std::vector<std::int32_t> pattern = tubeTriangles(4, 3);
-  const std::size_t f0 = static_cast<std::size_t>(n.vertices * 29);
+  const std::size_t f0 = static_cast<std::size_t>(n.vertices * 33);
   for (std::int64_t t = 0; t < n.faces; ++t) {
     const std::size_t o = f0 + static_cast<std::size_t>(13 * t);
     ASSERT_EQ(ply.body[o], 3);
@@ -186,6 +203,27 @@ TEST(HairPly, TubesWriteFaces) {
   }
 }
 
+TEST(HairPly, CulledStrandsAreWidenedTubesKeepTheirDiameter) {
+  const skin::SkinMesh s = test::makeGrid(3, 0.01f, 0.02f);
+  FurParams p = test::simpleParams(HairStyle::Polyline, 30);
+  p.undercoatShare = 0.5f;
+  p.coats[kUndercoat].style = HairStyle::Tube;
+  const test::RestFur rf = test::restFur(s, p);
+  FurFrame f = test::furFrame(s, rf.roots, p, rf.rest);
+  f.cullingFactor = 3.0f;  // a third of the hairs drawn: strands three times as wide
+  const int P = f.coats[kOvercoat].layout.pointsPerHair();
+  for (int k = 0; k < P; ++k)
+    EXPECT_FLOAT_EQ(exportedWidth(f, p, kOvercoat, k),
+                    3.0f * p.coats[kOvercoat].width.metersAt(static_cast<float>(k) /
+                                                             static_cast<float>(P - 1)));
+  const HairLayout& tube = f.coats[kUndercoat].layout;
+  for (int k = 0; k < tube.pointsPerHair(); ++k)
+    EXPECT_FLOAT_EQ(exportedWidth(f, p, kUndercoat, k),
+                    p.coats[kUndercoat].width.metersAt(tube.along(k)));
+  f.cullingFactor = 0.5f;  // closer than the reference: every hair, at its own width
+  EXPECT_FLOAT_EQ(exportedWidth(f, p, kOvercoat, 0), p.coats[kOvercoat].width.metersAt(0.0f));
+}
+
 TEST(HairPly, UnwritableDestinationLeavesNoFile) {
   const skin::SkinMesh s = test::makeGrid(2, 0.01f, 0.02f);
   const FurParams p = test::simpleParams(HairStyle::Line, 10);
@@ -193,7 +231,7 @@ TEST(HairPly, UnwritableDestinationLeavesNoFile) {
   const FurRoots& r = rf.roots;
   const skin::DeformedSkin& d = rf.rest;
   const FurFrame f = test::furFrame(s, r, p, d);
-  EXPECT_THROW(writeHairPly("/nonexistent-dir/h.ply", f), InputError);
+  EXPECT_THROW(writeHairPly("/nonexistent-dir/h.ply", f, p), InputError);
   EXPECT_FALSE(std::filesystem::exists("/nonexistent-dir/h.ply"));
 }
 

@@ -176,6 +176,11 @@ TEST(Names, PresetsAndShadingsParseAndRejectUnknownNames) {
     EXPECT_EQ(parseCameraPreset(cameraPresetName(p)), p);
   EXPECT_EQ(parseHairShading("kajiya-kay"), HairShading::KajiyaKay);
   EXPECT_EQ(parseHairShading("paper"), HairShading::Paper);
+  EXPECT_EQ(parseHairShading("marschner"), HairShading::Marschner);
+  for (HairShading s : kHairShadings) EXPECT_EQ(parseHairShading(hairShadingName(s)), s);
+  EXPECT_FALSE(shadesWithTangents(HairShading::Paper));
+  EXPECT_TRUE(shadesWithTangents(HairShading::KajiyaKay));
+  EXPECT_TRUE(shadesWithTangents(HairShading::Marschner));
   try {
     parseCameraPreset("top");
     FAIL();
@@ -226,6 +231,7 @@ TEST(BuildDrawList, SkinAndOneItemPerCoat) {
     EXPECT_EQ(item.source, HairSource::Cpu);
   }
   EXPECT_EQ(list.drawnHairs(), f.drawnHairs[0] + f.drawnHairs[1]);
+  EXPECT_EQ(list.hairLength, maxHairLength(m, fur.params));  // the fur shadow's depth scale
   // The bounds hold every hair point.
   for (const fur::HairBuffers& hb : f.fur.coats)
     for (std::int64_t i = 0; i < hb.drawn * hb.layout.pointsPerHair(); ++i)
@@ -245,6 +251,7 @@ TEST(BuildDrawList, SkinAndOneItemPerCoat) {
   buildDrawList(m, f, &fur, cam, light, o, list);
   EXPECT_TRUE(list.fur.empty());
   EXPECT_EQ(list.skin.positions, nullptr);
+  EXPECT_EQ(list.hairLength, 0.0f);
 }
 
 }  // namespace

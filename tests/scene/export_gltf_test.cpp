@@ -141,6 +141,17 @@ void checkFrame(fur::HairStyle style) {
           ASSERT_EQ(rgba[(h * K + k) * 4 + j], std::lround(want[j] * 255.0f)) << h << " " << k;
         ASSERT_EQ(rgba[(h * K + k) * 4 + 3], 255);
       }
+    // Widths: _WIDTH, one float per point, the coat's width tapering linearly from the root's to
+    // the tip's (tubes: the diameter), in metres.
+    const std::vector<float> widths = read<float>(g, p.attributes.at("_WIDTH"));
+    ASSERT_EQ(static_cast<std::int64_t>(widths.size()), b.drawn * K);
+    for (std::int64_t h = 0; h < b.drawn; ++h)
+      for (int k = 0; k < K; ++k)
+        ASSERT_NEAR(
+            widths[static_cast<std::size_t>(h * K + k)],
+            1e-3f * (cp.width.rootMm + (cp.width.tipMm - cp.width.rootMm) * static_cast<float>(k) /
+                                           static_cast<float>(K - 1)),
+            1e-9f);  // a nanometre: float rounding of the interpolation
   }
 }
 

@@ -129,7 +129,7 @@ TEST_F(Soak, ExportFrameLoopWithAChangeEveryFrame) {
     scene::evaluateClipFrame(model, clip, i / 30.0, state);
     scene::evaluateFur(model, fur, fur::FurView{}, true, state);
     ASSERT_EQ(state.fur.drawn(), fur.roots.total());
-    fur::writeHairPly(dir.file("frame.ply"), state.fur, "soak");
+    fur::writeHairPly(dir.file("frame.ply"), state.fur, fur.params, "soak");
     if (i % 10 == 0) scene::writeFrameGlb(dir.file("frame.glb"), model, fur, state, "soak");
     if (i == frames / 10) report("export", i, early = memory());
   }

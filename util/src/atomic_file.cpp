@@ -119,12 +119,13 @@ AtomicFileWriter::AtomicFileWriter(std::string path) : path_(std::move(path)) {
   tempPath_ = (dir / ("." + p.filename().string() + ".tmp-" + std::to_string(::getpid()) + "-" +
                       std::to_string(tempCounter++)))
                   .string();
+  registerTemporary(tempPath_);  // before it exists: see registerTemporary
   file_ = std::fopen(tempPath_.c_str(), "wb");
   if (!file_) {
     const int err = errno;
+    unregisterTemporary(tempPath_);
     inputError(path_, ": cannot write (", reason(err), ")");
   }
-  registerTemporary(tempPath_);
   std::setvbuf(file_, nullptr, _IOFBF, 1 << 20);
 }
 

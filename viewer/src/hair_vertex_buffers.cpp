@@ -20,6 +20,27 @@ void deleteAll(GLuint& a, GLuint& b, GLuint& c, GLuint& d) {
     }
 }
 
+// An index buffer of hairs 0, stride, 2 stride, ... below `hairs` of `layout`: each one's pattern
+// (fur::hairIndexPattern) offset by its first point.
+GLuint stridedIndices(const fur::HairLayout& layout, std::int64_t hairs, int stride) {
+  const std::int64_t P = layout.pointsPerHair();
+  const int perHair = layout.indicesPerHair();
+  const std::vector<std::uint32_t> pattern = fur::hairIndexPattern(layout, kRestart);
+  const std::int64_t n = (hairs + stride - 1) / stride;
+  std::vector<std::uint32_t> indices(static_cast<std::size_t>(n * perHair));
+  for (std::int64_t j = 0; j < n; ++j)
+    for (int i = 0; i < perHair; ++i) {
+      const std::uint32_t v = pattern[static_cast<std::size_t>(i)];
+      indices[static_cast<std::size_t>(j * perHair + i)] =
+          v == kRestart ? kRestart : static_cast<std::uint32_t>(j * stride * P) + v;
+    }
+  GLuint id = 0;
+  glCreateBuffers(1, &id);
+  glNamedBufferStorage(id, static_cast<GLsizeiptr>(indices.size() * sizeof(std::uint32_t)),
+                       indices.data(), 0);
+  return id;
+}
+
 }  // namespace
 
 std::int64_t maxShaderStorageBlockSize() {
@@ -34,6 +55,7 @@ HairVertexBuffers::HairVertexBuffers() {
 
 HairVertexBuffers::~HairVertexBuffers() {
   deleteAll(positions_, shading_, indices_, commands_);
+  releaseStrided();
   if (colors_) glDeleteBuffers(1, &colors_);
   if (colorTexture_) glDeleteTextures(1, &colorTexture_);
   glDeleteVertexArrays(1, &vao_);
@@ -59,6 +81,7 @@ void HairVertexBuffers::reserve(std::int64_t hairs, const HairLayout& layout,
       std::max<std::int64_t>(layoutChanged ? hairs : hairs + hairs / 4, 1);
 
   deleteAll(positions_, shading_, indices_, commands_);
+  releaseStrided();
   if (colors_) glDeleteBuffers(1, &colors_);
   if (colorTexture_) glDeleteTextures(1, &colorTexture_);
   colors_ = colorTexture_ = 0;
@@ -86,18 +109,7 @@ void HairVertexBuffers::reserve(std::int64_t hairs, const HairLayout& layout,
   // The index pattern of one hair, repeated for the largest chunk; chunks reuse it through
   // baseVertex, so the indices stay below 2^32 whatever the total hair count.
   indexCapacity_ = chunks_.front().capacity;
-  const int perHair = layout.indicesPerHair();
-  const std::vector<std::uint32_t> pattern = fur::hairIndexPattern(layout, kRestart);
-  std::vector<std::uint32_t> indices(static_cast<std::size_t>(indexCapacity_ * perHair));
-  for (std::int64_t h = 0; h < indexCapacity_; ++h)
-    for (int i = 0; i < perHair; ++i) {
-      const std::uint32_t v = pattern[static_cast<std::size_t>(i)];
-      indices[static_cast<std::size_t>(h * perHair + i)] =
-          v == kRestart ? kRestart : static_cast<std::uint32_t>(h * P) + v;
-    }
-  glCreateBuffers(1, &indices_);
-  glNamedBufferStorage(indices_, static_cast<GLsizeiptr>(indices.size() * sizeof(std::uint32_t)),
-                       indices.data(), 0);
+  indices_ = stridedIndices(layout, indexCapacity_, 1);
   glCreateBuffers(1, &commands_);
   const std::vector<DrawCommand> zero(chunks_.size());
   glNamedBufferStorage(commands_, static_cast<GLsizeiptr>(zero.size() * sizeof(DrawCommand)),
@@ -206,6 +218,33 @@ void strandTangents(const float* positions, std::int64_t hairs, const HairLayout
         o[2] = d.z();
       }
   }
+}
+
+void HairVertexBuffers::drawEvery(int stride, std::int64_t hairs, GLenum mode) {
+  PELAGE_CHECK(stride >= 1 && hairs >= 0 && hairs <= capacity_);
+  if (positions_ == 0 || hairs == 0) return;
+  if (stride > 1 && stride != strideOf_) {
+    releaseStrided();
+    strided_ = stridedIndices(layout_, indexCapacity_, stride);
+    strideOf_ = stride;
+  }
+  const std::int64_t P = layout_.pointsPerHair();
+  glVertexArrayElementBuffer(vao_, stride > 1 ? strided_ : indices_);
+  glBindVertexArray(vao_);
+  for (const HairChunk& c : chunks_) {
+    const std::int64_t n = std::clamp<std::int64_t>(hairs - c.firstHair, 0, c.capacity);
+    const std::int64_t m = (n + stride - 1) / stride;
+    if (m > 0)
+      glDrawElementsBaseVertex(mode, static_cast<GLsizei>(m * layout_.indicesPerHair()),
+                               GL_UNSIGNED_INT, nullptr, static_cast<GLint>(c.firstHair * P));
+  }
+  glVertexArrayElementBuffer(vao_, indices_);
+}
+
+void HairVertexBuffers::releaseStrided() {
+  if (strided_) glDeleteBuffers(1, &strided_);
+  strided_ = 0;
+  strideOf_ = 0;
 }
 
 }  // namespace pelage::viewer

@@ -87,6 +87,7 @@ struct SequenceRenderer::Impl {
   scene::Light light() const {
     scene::Light l;
     l.shadows = options.shadows;
+    l.selfShadowing = options.selfShadowing;
     return l;
   }
 };

@@ -232,6 +232,8 @@ void viewPanel(ViewerSession& s) {
   ImGui::SliderFloat("light elevation", &s.lightElevation, -89.0f, 89.0f);
   ImGui::Checkbox("shadows", &s.shadows);
   ImGui::SameLine();
+  ImGui::Checkbox("self-shadowing", &s.selfShadowing);
+  ImGui::SameLine();
   ImGui::Checkbox("skin", &s.drawSkin);
   ImGui::SameLine();
   ImGui::ColorEdit3("##skin colour", s.skinColor.data(),
@@ -239,8 +241,9 @@ void viewPanel(ViewerSession& s) {
   ImGui::SameLine();
   ImGui::Checkbox("fur", &s.drawFur);
   int shading = static_cast<int>(s.shading);
-  const char* shadings[] = {"paper (Phong, style normals)", "Kajiya-Kay (tangents)"};
-  if (ImGui::Combo("hair shading", &shading, shadings, 2))
+  const char* shadings[] = {"paper (Phong, style normals)", "Kajiya-Kay (tangents)",
+                            "Marschner (R, TT, TRT lobes)"};
+  if (ImGui::Combo("hair shading", &shading, shadings, 3))
     s.shading = static_cast<scene::HairShading>(shading);
   int width = static_cast<int>(s.hairWidth);
   const char* widths[] = {"1-pixel lines (the paper's)", "strands of their width (coat panel)"};

@@ -40,6 +40,7 @@ ViewerSession::ViewerSession(const ViewerOptions& options, scene::Model model)
   hairWidth = options.hairWidth;
   transparency = options.transparency;
   shadows = options.shadows;
+  selfShadowing = options.selfShadowing;
   dynamics = options.dynamics;
   dynamicsParams = options.dynamicsParams;
   fur::validateDynamicsParams(dynamicsParams, "dynamics");
@@ -277,6 +278,7 @@ void ViewerSession::frame(double dtSeconds, int width, int height) {
   scene::Light light;
   light.direction = scene::lightDirection(lightAzimuth, lightElevation);
   light.shadows = shadows;
+  light.selfShadowing = selfShadowing;
   scene::DrawOptions opt;
   opt.hairShading = shading;
   opt.hairWidth = hairWidth;

@@ -47,6 +47,7 @@ class ViewerSession {
   float lightAzimuth = scene::kKeyLightAzimuthDegrees;
   float lightElevation = scene::kKeyLightElevationDegrees;
   bool shadows = false;
+  bool selfShadowing = true;
   bool playing = true;
   float turntableDegPerSecond = 0.0f;  // without a clip: turn the creature about +Z (0 = still)
   bool loop = true;

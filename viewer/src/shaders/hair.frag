@@ -20,7 +20,7 @@ uniform vec3 uKa;
 uniform vec3 uKd;
 uniform vec3 uKs;
 uniform float uShininess;
-uniform bool uKajiyaKay;
+uniform int uShading;  // scene::HairShading: 0 paper, 1 Kajiya-Kay, 2 Marschner
 uniform bool uPerHairColor;  // the hair's colour is its diffuse, times uAmbientRatio its ambient
 uniform float uAmbientRatio;
 uniform float uShadowBias;
@@ -37,17 +37,21 @@ layout(location = 1) out float fReveal;
 layout(location = 0) out vec4 fColor;
 #endif
 void main() {
+#ifdef OIT
+  // Coverage first: the fringe beyond the strand's edge is dropped before any lighting.
+  float a = clamp(gHalfWidth + 0.5 - abs(gEdge), 0.0, 1.0) * gCoverage;
+  if (a < 1.0 / 1024.0) discard;
+#endif
   vec3 v = S_IN;
   float len = length(v);
   vec3 u = len > 0.0 ? v / len : vec3(0.0, 0.0, 1.0);
   float s = shadowFactor(P_IN, uShadowBias);
   vec3 kd = uPerHairColor ? C_IN : uKd;
   vec3 ka = uPerHairColor ? C_IN * uAmbientRatio : uKa;
-  vec3 c = uKajiyaKay ? kajiyaKay(u, P_IN, ka, kd, uKs, uShininess, s)
-                      : phong(u, P_IN, ka, kd, uKs, uShininess, s);
+  vec3 c = uShading == 2   ? marschner(u, P_IN, ka, kd, uKs, s)
+           : uShading == 1 ? kajiyaKay(u, P_IN, ka, kd, uKs, uShininess, s)
+                           : phong(u, P_IN, ka, kd, uKs, uShininess, s);
 #ifdef OIT
-  float a = clamp(gHalfWidth + 0.5 - abs(gEdge), 0.0, 1.0) * gCoverage;
-  if (a < 1.0 / 1024.0) discard;
   float t = clamp((distance(uEye, P_IN) - uDepthRange.x) / max(uDepthRange.y - uDepthRange.x, 1e-6),
                   0.0, 1.0);
   float w = a * (0.05 + 10.0 * pow(1.0 - t, 3.0));

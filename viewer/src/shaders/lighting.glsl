@@ -1,5 +1,5 @@
 // Lighting shared by the skin and hair fragment shaders: one directional key light plus ambient,
-// an optional shadow map, the paper's Phong model and the Kajiya-Kay hair model.
+// an optional shadow map, the paper's Phong model, the Kajiya-Kay and Marschner hair models.
 uniform vec3 uLightDir;      // world, unit, towards the light
 uniform vec3 uLightColor;
 uniform vec3 uAmbientLight;
@@ -8,17 +8,44 @@ uniform bool uShadows;
 uniform mat4 uLightViewProj;
 layout(binding = 0) uniform sampler2DShadow uShadowMap;
 
-// Fraction of the key light reaching worldPos: 3x3 percentage-closer filtering of the shadow map.
+// The fur's own shadow (deep opacity maps, deep_opacity.frag): the fraction of the key light that
+// passes the hairs between the light and worldPos. The opacity in front of the point is read from
+// the layers, linear between their ends (0 at z0, the nearest hair), and light passes it as
+// through independent hairs of coverage a_i: prod (1 - a_i) ~ exp(-sum a_i).
+uniform bool uSelfShadow;
+uniform vec4 uOpacityLayerEnds;  // as deep_opacity.frag's uLayers
+uniform float uOpacityDepthScale;
+layout(binding = 5) uniform sampler2D uOpacityDepth;  // z0, low-passed (opacity_blur.frag)
+layout(binding = 6) uniform sampler2D uOpacityMap;    // the four layers' opacity, low-passed
+float furTransmittance(vec3 q) {
+  if (!uSelfShadow) return 1.0;
+  float z0 = textureLod(uOpacityDepth, q.xy, 0.0).r;
+  float dz = (q.z - z0) * uOpacityDepthScale;
+  if (dz <= 0.0) return 1.0;
+  vec4 o = textureLod(uOpacityMap, q.xy, 0.0);  // low-passed (opacity_blur.frag)
+  vec4 d = uOpacityLayerEnds;
+  float opacity = dz < d.x   ? o.x * dz / d.x
+                  : dz < d.y ? mix(o.x, o.y, (dz - d.x) / (d.y - d.x))
+                  : dz < d.z ? mix(o.y, o.z, (dz - d.y) / (d.z - d.y))
+                  : dz < d.w ? mix(o.z, o.w, (dz - d.z) / (d.w - d.z))
+                             : o.w;
+  return exp(-opacity);
+}
+
+// Fraction of the key light reaching worldPos: 3x3 percentage-closer filtering of the shadow map
+// (the skin's shadow, and the hairs' without self-shadowing), times the fur's transmittance.
 float shadowFactor(vec3 worldPos, float bias) {
-  if (!uShadows) return 1.0;
+  if (!uShadows && !uSelfShadow) return 1.0;
   vec4 p = uLightViewProj * vec4(worldPos, 1.0);
   vec3 q = p.xyz / p.w * 0.5 + 0.5;
   if (any(lessThan(q, vec3(0.0))) || any(greaterThan(q, vec3(1.0)))) return 1.0;
+  float fur = furTransmittance(q);
+  if (!uShadows) return fur;
   vec2 texel = 1.0 / vec2(textureSize(uShadowMap, 0));
   float s = 0.0;
   for (int y = -1; y <= 1; ++y)
     for (int x = -1; x <= 1; ++x) s += texture(uShadowMap, vec3(q.xy + vec2(x, y) * texel, q.z - bias));
-  return s / 9.0;
+  return fur * s / 9.0;
 }
 
 // The paper's lighting (sec. 3.2: "Hair is given a user-defined material type consisting of
@@ -30,7 +57,9 @@ vec3 phong(vec3 N, vec3 P, vec3 Ka, vec3 Kd, vec3 Ks, float shininess, float s) 
   vec3 H = normalize(uLightDir + V);
   float nl = max(dot(N, uLightDir), 0.0);
   float nh = nl > 0.0 ? max(dot(N, H), 0.0) : 0.0;
-  return Ka * uAmbientLight + s * uLightColor * (Kd * nl + Ks * pow(nh, shininess));
+  // (GLSL leaves pow(0, y) undefined for y <= 0: no highlight without light.)
+  float spec = nh > 0.0 ? pow(nh, shininess) : 0.0;
+  return Ka * uAmbientLight + s * uLightColor * (Kd * nl + Ks * spec);
 }
 
 // Kajiya & Kay 1989, "Rendering fur with three dimensional textures" (the paper's ref. [5]): a hair
@@ -44,6 +73,48 @@ vec3 kajiyaKay(vec3 T, vec3 P, vec3 Ka, vec3 Kd, vec3 Ks, float shininess, float
   float tv = dot(T, V);
   float sinTL = sqrt(max(1.0 - tl * tl, 0.0));
   float sinTV = sqrt(max(1.0 - tv * tv, 0.0));
-  float spec = pow(max(sinTL * sinTV - tl * tv, 0.0), shininess);
+  float k = sinTL * sinTV - tl * tv;
+  float spec = k > 0.0 ? pow(k, shininess) : 0.0;
   return Ka * uAmbientLight + s * uLightColor * (Kd * sinTL + Ks * spec);
+}
+
+// Marschner, Jensen, Cammarano, Worley and Hanrahan 2003, "Light scattering from human hair
+// fibers": light leaves a fibre by three paths, each a lobe around the cone of mirror directions:
+// R (reflected at the surface, the light's colour times Ks), TT (transmitted through the fibre,
+// tinted by the hair's colour, forward: bright where the light is behind the hair) and TRT
+// (reflected inside: tinted, the secondary highlight). The real-time form of Scheuermann 2004
+// ("Practical real-time hair rendering and shading": shifted tangent lobes, the secondary one
+// tinted by the hair colour) with Marschner's longitudinal Gaussians and the azimuthal fits of
+// Karis 2016 ("Physically based hair shading in Unreal"). Angles against the normal plane of T:
+//   sin(theta_i) = T.L, sin(theta_r) = T.V, theta_h = (theta_i + theta_r) / 2,
+//   theta_d = (theta_r - theta_i) / 2, phi the angle between L and V around T;
+//   M_p = g(beta_p, theta_h - alpha_p), g(b, x) = exp(-x^2 / (2 b^2)) / (sqrt(2 pi) b),
+//   alpha_R = -7.5 deg (the cuticle's tilt), alpha_TT = -alpha_R / 2, alpha_TRT = -3 alpha_R / 2,
+//   beta_R = 7.5 deg, beta_TT = beta_R / 2, beta_TRT = 2 beta_R (Marschner's table 1);
+//   N_R = cos(phi / 2) / 4, N_TT = exp(-3.65 cos(phi) - 3.98), N_TRT = exp(17 cos(phi) - 16.78);
+//   S = Ks M_R N_R + Kd M_TT N_TT + Ks Kd M_TRT N_TRT, over cos^2(theta_d);
+//   c = Ka La + s Ld (Kd cos(theta_i) + S cos(theta_i)),
+// the Kd cos(theta_i) term standing for light scattered many times inside the coat (as
+// Kajiya-Kay's diffuse: fur is light enough that it dominates).
+float hairLobe(float beta, float x) {
+  return exp(-0.5 * x * x / (beta * beta)) / (2.50662827 * beta);
+}
+vec3 marschner(vec3 T, vec3 P, vec3 Ka, vec3 Kd, vec3 Ks, float s) {
+  const float alphaR = radians(-7.5), betaR = radians(7.5);
+  vec3 V = normalize(uEye - P);
+  vec3 L = uLightDir;
+  float sinI = clamp(dot(T, L), -1.0, 1.0), sinR = clamp(dot(T, V), -1.0, 1.0);
+  float thetaI = asin(sinI), thetaR = asin(sinR);
+  float thetaH = 0.5 * (thetaI + thetaR);
+  float cosD = cos(0.5 * (thetaR - thetaI));
+  vec3 lp = L - T * sinI, vp = V - T * sinR;
+  float cosPhi = clamp(dot(lp, vp) * inversesqrt(max(dot(lp, lp) * dot(vp, vp), 1e-8)), -1.0, 1.0);
+  float nR = 0.25 * sqrt(0.5 + 0.5 * cosPhi);
+  float nTT = exp(-3.65 * cosPhi - 3.98);
+  float nTRT = exp(17.0 * cosPhi - 16.78);
+  vec3 S = Ks * (hairLobe(betaR, thetaH - alphaR) * nR) +
+           Kd * (hairLobe(0.5 * betaR, thetaH + 0.5 * alphaR) * nTT) +
+           Ks * Kd * (hairLobe(2.0 * betaR, thetaH + 1.5 * alphaR) * nTRT);
+  float cosI = sqrt(max(1.0 - sinI * sinI, 0.0));
+  return Ka * uAmbientLight + s * uLightColor * cosI * (Kd + S / max(cosD * cosD, 0.04));
 }

@@ -1,4 +1,4 @@
-// A triangle covering the screen (weighted blended OIT's resolve pass).
+// A triangle covering the target (weighted blended OIT's resolve pass, the opacity map's low-pass).
 void main() {
   vec2 p = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));
   gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0);

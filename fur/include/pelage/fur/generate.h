@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <memory>
 #include <new>
+#include <string>
 #include <vector>
 
 #include "pelage/fur/culling.h"
@@ -111,14 +112,15 @@ void generateFur(const skin::SkinMesh& skin, const FurRoots& roots, const FurPar
                  const skin::DeformedSkin& deformed, const FurView& view, FurWorkspace& workspace,
                  FurFrame& frame);
 
-// The kernel implementations: Auto picks AVX-512 (F, DQ, VL) where the CPU has it, else AVX2, else
-// Generic (the x86-64 SSE2 baseline). All give bit-identical output.
-enum class KernelPath { Auto, Generic, Avx2, Avx512 };
-// Forces a path (tests compare them); returns false (and changes nothing) if the CPU lacks it.
-bool setKernelPath(KernelPath path);
-// The path generateFur uses now (never Auto).
-KernelPath activeKernelPath();
-const char* kernelPathName(KernelPath path);
+// The kernel's SIMD targets (Google Highway, e.g. "AVX3", "AVX2", "SSE4", "SSSE3", "NEON",
+// "SCALAR") that this CPU runs, best first; generateFur uses the first unless one is forced. All
+// give bit-identical output.
+std::vector<std::string> kernelTargets();
+// Forces one of kernelTargets() for the whole process (tests and benchmarks compare them); "auto"
+// or "" returns to the best. False (and nothing changes) for a name not in kernelTargets().
+bool setKernelTarget(const std::string& name);
+// The target generateFur uses now.
+std::string activeKernelTarget();
 
 // Sec. 3.2: the inputs of root `rootIndex` of coat `coat` interpolated on the deformed skin
 // (interpolateRoot of hair_math.h on its triangle's vertex records).

@@ -1,6 +1,6 @@
 // The per-hair maths of Van Gelder & Wilhelms 1997, sec. 3.2 to 3.8, written once for any "lane"
 // type T: float (the scalar reference, and the text the GPU shader mirrors line for line) or the
-// SIMD types of the CPU kernels (fur/src/simd_*.h), which supply the same helpers by ADL:
+// SIMD lane types of the CPU kernel (fur/src/kernel_hwy.cpp), which supply the same helpers by ADL:
 //   sqrtOf(T), floorOf(T), absOf(T), greater(T,T), lessEq(T,T), equalTo(T,T) -> mask,
 //   andMask(mask,mask), pick(mask, a, b) = mask ? a : b, allOf(mask) -> bool (every lane set).
 // Every function is a fixed sequence of IEEE single-precision +, -, *, /, sqrt and selects (no

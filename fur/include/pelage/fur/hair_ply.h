@@ -1,7 +1,10 @@
 // One frame of hairs as a binary little-endian PLY file, written atomically:
 //   element vertex: float x, y, z, nx, ny, nz; int hair (index into the coat's roots);
-//                   uchar coat (0 overcoat, 1 undercoat); with colours, uchar red, green,
-//                   blue (8-bit sRGB, graded root to tip: colors.h pointColorsSrgb8)
+//                   uchar coat (0 overcoat, 1 undercoat); float width (metres: the coat's
+//                   fur::StrandWidth at the point, tapering root to tip; a tube's diameter; a
+//                   culled frame's strands widened by its factor c, exportedWidth); with colours,
+//                   uchar red, green, blue (8-bit sRGB, graded root to tip: colors.h
+//                   pointColorsSrgb8)
 //   element edge:   int vertex1, vertex2 joining consecutive points of each strand hair
 //                   (line, polyline, curve)
 //   element face:   list uchar int vertex_indices, the triangles of each ring hair (tube)
@@ -13,6 +16,7 @@
 #include <string>
 
 #include "pelage/fur/colors.h"
+#include "pelage/fur/fur_params.h"
 #include "pelage/fur/generate.h"
 
 namespace pelage::fur {
@@ -30,10 +34,16 @@ bool isCompleteHairPly(const std::string& path);
 // The element counts writeHairPly writes for `frame`.
 HairPlyCounts hairPlyCounts(const FurFrame& frame);
 
-// Writes `frame` to `path` (via a temporary file renamed on success; InputError naming the file on
-// any failure, leaving no partial file). `comment` lines go into the header. With `colors` (the
-// roots' colours; frame colours filled by fillHairColors), every vertex carries its colour.
-HairPlyCounts writeHairPly(const std::string& path, const FurFrame& frame,
+// The width the exporters (this PLY, the glb) write for point k of coat `coat`'s hairs: the coat's
+// width at the point (tubes: their diameter), strands times the frame's culling factor c when
+// culled (fewer, wider strands keep the coat's coverage, as the renderer draws them).
+float exportedWidth(const FurFrame& frame, const FurParams& params, int coat, int k);
+
+// Writes `frame` (grown with `params`: the coats' widths) to `path` (via a temporary file renamed
+// on success; InputError naming the file on any failure, leaving no partial file). `comment` lines
+// go into the header. With `colors` (the roots' colours; frame colours filled by fillHairColors),
+// every vertex carries its colour.
+HairPlyCounts writeHairPly(const std::string& path, const FurFrame& frame, const FurParams& params,
                            const std::string& comment = "", const FurColors* colors = nullptr);
 
 }  // namespace pelage::fur

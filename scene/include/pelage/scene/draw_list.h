@@ -27,10 +27,18 @@ namespace pelage::scene {
 struct FrameState;
 struct Fur;
 
-// How hairs are lit: the paper's Phong model with each style's shading normals, or Kajiya-Kay
-// with the hair tangent.
-enum class HairShading { Paper, KajiyaKay };
-// "paper", "kajiya-kay".
+// How hairs are lit: the paper's Phong model with each style's shading normals, Kajiya-Kay with
+// the hair tangent, or Marschner's three lobes (R, TT, TRT) about the tangent (lighting.glsl).
+// The values are the renderer's shader codes.
+enum class HairShading { Paper = 0, KajiyaKay = 1, Marschner = 2 };
+inline constexpr HairShading kHairShadings[] = {HairShading::Paper, HairShading::KajiyaKay,
+                                                HairShading::Marschner};
+// Whether `shading` lights hairs by their tangent (the renderer's shading vector) instead of the
+// style's normals.
+inline bool shadesWithTangents(HairShading shading) {
+  return shading != HairShading::Paper;
+}
+// "paper", "kajiya-kay", "marschner".
 std::string_view hairShadingName(HairShading shading);
 // Parses a shading name; InputError naming `field` and the accepted names.
 HairShading parseHairShading(std::string_view name, std::string_view field = "shading");
@@ -114,6 +122,7 @@ struct DrawList {
   // opaque at their drawn width.
   bool transparency = true;
   Eigen::AlignedBox3f bounds;  // everything drawn (fits the shadow map)
+  float hairLength = 0.0f;     // the longest hair, metres (the depth scale of the fur's shadow)
   GpuFurInputs gpuFur;         // for fur items with HairSource::Gpu
 
   std::int64_t drawnHairs() const;

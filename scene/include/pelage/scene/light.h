@@ -21,8 +21,14 @@ struct Light {
   Eigen::Vector3f direction = lightDirection(kKeyLightAzimuthDegrees, kKeyLightElevationDegrees);
   Eigen::Vector3f color{1.0f, 1.0f, 1.0f};
   Eigen::Vector3f ambient{0.35f, 0.35f, 0.35f};  // ambient light intensity (the paper's GL model)
-  bool shadows = false;                          // shadow map: fur and skin shadow each other
+  // Shadow map: the skin shadows itself and the fur (and, without self-shadowing, the hairs cast
+  // hard shadows into it too).
+  bool shadows = false;
   int shadowMapSize = 2048;
+  // The fur's own soft shadow (deep opacity maps): the coat darkens inside by the hairs between
+  // each point and the light, and the skin under it is shadowed by the fur.
+  bool selfShadowing = true;
+  int opacityMapSize = 512;  // its side in texels (the renderer clamps it to [64, 4096])
 };
 
 // The skin's lighting material (linear) for a typed, sRGB-encoded diffuse colour (the same ambient,

@@ -43,7 +43,8 @@ void writeFileAtomically(const std::string& path, std::string_view content);
 // Temporary files (an AtomicFileWriter's, an exporter's spools) registered here are removed when
 // the process is stopped by SIGINT, SIGTERM, SIGHUP or SIGQUIT: the handler unlinks them, then the
 // signal takes its default action. (SIGKILL cannot be caught: removeStaleTemporaries cleans up
-// after such a run.) At most kMaxTemporaries at a time; more are simply not covered.
+// after such a run.) At most kMaxTemporaries at a time; more are simply not covered. Register a
+// path before creating the file: a signal between creation and registration would leave it.
 inline constexpr int kMaxTemporaries = 256;
 void registerTemporary(const std::string& path);
 void unregisterTemporary(const std::string& path);

@@ -58,6 +58,11 @@ class HairVertexBuffers {
   void readBack(std::vector<float>& positions, std::vector<float>& shading) const;
   // Hairs the current commands draw (reads the command buffer back; for tests and statistics).
   std::int64_t drawnHairsOnGpu() const;
+  // Draws every `stride`-th of the first `hairs` hair slots (hairs 0, stride, 2 stride, ...: a
+  // uniform subsample of the drawn hairs, which fill the slots from the first) with the bound
+  // program, as GL `mode` primitives: for passes that estimate the coat's density (the deep
+  // opacity map). Builds its strided index pattern on first use of a stride > 1.
+  void drawEvery(int stride, std::int64_t hairs, GLenum mode);
 
   const HairLayout& layout() const { return layout_; }
   const std::vector<HairChunk>& chunks() const { return chunks_; }
@@ -80,6 +85,9 @@ class HairVertexBuffers {
   std::vector<HairChunk> chunks_;
   std::vector<DrawCommand> commandScratch_;
   GLuint positions_ = 0, shading_ = 0, indices_ = 0, commands_ = 0, vao_ = 0;
+  GLuint strided_ = 0;  // drawEvery's index pattern for strideOf_ > 1 (stride 1: indices_)
+  int strideOf_ = 0;
+  void releaseStrided();
   GLuint colors_ = 0, colorTexture_ = 0;
 };
 

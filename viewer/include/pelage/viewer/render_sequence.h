@@ -41,10 +41,11 @@ struct SequenceOptions {
   scene::DrawOptions look;
   std::optional<Eigen::Vector3f> skinColor;  // the skin's diffuse colour; none: the model's
   bool shadows = false;
-  std::string outDir;      // frames go to outDir/frame_NNNNN.png
-  bool resume = false;     // skip frames whose PNG is already complete
-  std::string video;       // "" or an .mp4/.gif path (ffmpeg)
-  int encoderThreads = 0;  // PNG encoders; 0 = the worker thread count (util/parallel.h)
+  bool selfShadowing = true;  // the fur's deep opacity shadow (scene::Light::selfShadowing)
+  std::string outDir;         // frames go to outDir/frame_NNNNN.png
+  bool resume = false;        // skip frames whose PNG is already complete
+  std::string video;          // "" or an .mp4/.gif path (ffmpeg)
+  int encoderThreads = 0;     // PNG encoders; 0 = the worker thread count (util/parallel.h)
 };
 
 // Checks the options (size, frames, fps, samples, encoders, field of view, output, video

@@ -35,6 +35,7 @@ struct ViewerOptions {
   scene::HairWidth hairWidth = scene::HairWidth::Strands;
   bool transparency = true;  // strands blended by coverage (order-independent)
   bool shadows = false;
+  bool selfShadowing = true;  // the fur's deep opacity shadow
   bool noCulling = false;
   bool dynamics = false;  // dynamic fur (fur/dynamics.h): hair ends lag through damped springs
   fur::DynamicsParams dynamicsParams;

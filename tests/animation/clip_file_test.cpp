@@ -117,6 +117,11 @@ struct Bad {
   const char* expect;
 };
 
+// gtest names the case by this (not its bytes) in test names and failures.
+void PrintTo(const Bad& c, std::ostream* os) {
+  *os << c.name;
+}
+
 class ClipFileErrors : public ::testing::TestWithParam<Bad> {};
 
 TEST_P(ClipFileErrors, NameTheFileAndTheField) {

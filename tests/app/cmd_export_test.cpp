@@ -112,6 +112,11 @@ struct BadExport {
   std::string expect;  // in the message
 };
 
+// gtest names the case by this (not its bytes) in test names and failures.
+void PrintTo(const BadExport& c, std::ostream* os) {
+  *os << c.name;
+}
+
 class ExportCommandErrors : public ExportCommand,
                             public ::testing::WithParamInterface<BadExport> {};
 

@@ -17,6 +17,11 @@ struct BadHair {
   const char* expect;
 };
 
+// gtest names the case by this (not its bytes) in test names and failures.
+void PrintTo(const BadHair& c, std::ostream* os) {
+  *os << c.name;
+}
+
 class HairCommandBad : public ::testing::TestWithParam<BadHair> {};
 
 TEST_P(HairCommandBad, ClearMessageNonZeroExitNoFile) {

@@ -206,6 +206,11 @@ struct BadRender {
   std::string expect;
 };
 
+// gtest names the case by this (not its bytes) in test names and failures.
+void PrintTo(const BadRender& c, std::ostream* os) {
+  *os << c.name;
+}
+
 class RenderCommandErrors : public RenderCommand,
                             public ::testing::WithParamInterface<BadRender> {};
 

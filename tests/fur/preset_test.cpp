@@ -89,6 +89,11 @@ struct BadPreset {
   const char* expect;  // part of the message
 };
 
+// gtest names the case by this (not its bytes) in test names and failures.
+void PrintTo(const BadPreset& c, std::ostream* os) {
+  *os << c.name;
+}
+
 class PresetRejects : public ::testing::TestWithParam<BadPreset> {};
 
 TEST_P(PresetRejects, WithAClearMessage) {

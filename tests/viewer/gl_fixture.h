@@ -4,7 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstdlib>
 #include <memory>
 #include <string>
 
@@ -87,6 +90,29 @@ inline double coverage(const viewer::Image& img, const float bg[3]) {
   for (int y = 0; y < img.height; ++y)
     for (int x = 0; x < img.width; ++x) n += differsFrom(img, x, y, bg) ? 1 : 0;
   return static_cast<double>(n) / (static_cast<double>(img.width) * img.height);
+}
+
+// Bit-identical images; on a difference, how many pixels differ, by how much at most and the first
+// one (not the pixel arrays, which would bury the log).
+inline ::testing::AssertionResult sameImage(const viewer::Image& a, const viewer::Image& b) {
+  if (a.width != b.width || a.height != b.height || a.rgba.size() != b.rgba.size())
+    return ::testing::AssertionFailure() << "sizes differ: " << a.width << "x" << a.height << " vs "
+                                         << b.width << "x" << b.height;
+  std::int64_t differing = 0, first = -1;
+  int maxDiff = 0;
+  for (std::size_t i = 0; i < a.rgba.size(); i += 4) {
+    int d = 0;
+    for (std::size_t c = 0; c < 4; ++c)
+      d = std::max(d, std::abs(static_cast<int>(a.rgba[i + c]) - static_cast<int>(b.rgba[i + c])));
+    if (d == 0) continue;
+    if (first < 0) first = static_cast<std::int64_t>(i / 4);
+    ++differing;
+    maxDiff = std::max(maxDiff, d);
+  }
+  if (differing == 0) return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure()
+         << differing << " of " << a.rgba.size() / 4 << " pixels differ, by up to " << maxDiff
+         << "/255; the first at (" << first % a.width << ", " << first / a.width << ")";
 }
 
 }  // namespace pelage::test

@@ -1,11 +1,11 @@
 #!/usr/bin/env bash
 # Runs a build's tests: scripts/ctest.sh BUILD [CTEST_ARGS...] (make test, make test-asan).
-# ctest's progress (two lines per test) goes to BUILD/Testing/ctest-progress.log, not to the
-# terminal: CI keeps only the first part of a long log, and the progress of 400 tests twice over
-# pushed what mattered out of it. Printed here: a line every 50 tests, ctest's summary, and when a
-# test fails, its whole output (from LastTest.log, at most its last 300 lines) and the failed tests
-# run once more, alone, to tell a failure that repeats from one that does not. The exit status
-# stays non-zero either way: a test that fails once is a failure.
+# ctest's progress (two lines per test) goes to BUILD/Testing/ctest-progress.log, not to the log:
+# what CI reports of a failed run is its last lines, and 400 tests' progress buried the failure.
+# Printed here: a line per 50 tests, ctest's summary and, when a test fails, a rerun of the failed
+# tests alone (to tell a failure that repeats from one that does not), then each failed test's
+# output (its last 60 lines) and a one-line recap, last. The exit status stays non-zero either
+# way: a test that fails once is a failure.
 set -uo pipefail
 if [ $# -lt 1 ] || [ ! -d "$1" ]; then
   echo "usage: scripts/ctest.sh BUILD_DIR [CTEST_ARGS...] (BUILD_DIR: a configured build folder)" >&2
@@ -29,9 +29,21 @@ status=${PIPESTATUS[0]}
 if [ "$status" -eq 0 ]; then
   exit 0
 fi
+# What CI shows of a failed run is the last lines of its log: the failed tests' output comes last,
+# after the rerun, and ends with a one-line recap.
 log="$build/Testing/Temporary/LastTest.log"
-if [ -f "$log" ]; then
-  echo "== output of the failed tests (from $log), each at most its last 300 lines:"
+first="$build/Testing/failed-tests-output.log"
+[ -f "$log" ] && cp "$log" "$first"
+failed=$(grep -E '^[ 	]+[0-9]+ - ' "$progress" | sed -E 's/^[ 	]+[0-9]+ - //' | tr '\n' ';')
+echo "== the failed tests once more, alone (output in $build/Testing/rerun.log):"
+if ctest --test-dir "$build" --rerun-failed --output-on-failure -j 1 >"$build/Testing/rerun.log" 2>&1; then
+  rerun="passed when run alone"
+else
+  rerun="failed again when run alone"
+fi
+grep -E 'Test +#|tests passed' "$build/Testing/rerun.log"
+if [ -f "$first" ]; then
+  echo "== output of the failed tests (from $first), each at most its last 60 lines:"
   awk '
     /^[0-9]+\/[0-9]+ Testing: / { n = 0; inblock = 1 }
     inblock { lines[n++] = $0 }
@@ -39,13 +51,12 @@ if [ -f "$log" ]; then
       inblock = 0; failed = 1
       for (i = 0; i < n; ++i) if (lines[i] == "Test Passed.") failed = 0
       if (failed) {
-        start = n > 300 ? n - 300 : 0
+        print lines[0]
+        start = n > 60 ? n - 60 : 1
         for (i = start; i < n; ++i) print lines[i]
         print ""
       }
-    }' "$log"
+    }' "$first"
 fi
-echo "== the failed tests once more, alone:"
-ctest --test-dir "$build" --rerun-failed --output-on-failure -j 1 || true
-echo "== tests failed in $build (see above)"
+echo "== tests failed in $build: $failed $rerun"
 exit 1

@@ -2,6 +2,7 @@
 depend on the thread count; the GIL is released while a frame computes."""
 
 import gc
+import math
 import threading
 import time
 
@@ -130,12 +131,17 @@ def test_same_hairs_for_any_thread_count(monkey, threads):
 
 def test_the_gil_is_released_while_a_frame_computes(monkey):
     fur = monkey.fur(hairs=200000)
+    # Dynamic fur simulates every frame from the clip's start: the clip time sets the call's length.
+    # Long enough on any machine: about 0.6 s, scaled from one call's time at 1 s.
+    start = time.perf_counter()
+    fur.hairs(clip="tumble", time=1.0, dynamics=True)
+    clip_time = min(1000.0, max(1.0, math.ceil(0.6 / (time.perf_counter() - start))))
     done = threading.Event()
     result = {}
 
     def work():
         start = time.perf_counter()
-        result["hairs"] = fur.hairs(clip="tumble", time=1.0, dynamics=True)
+        result["hairs"] = fur.hairs(clip="tumble", time=clip_time, dynamics=True)
         result["seconds"] = time.perf_counter() - start
         done.set()
 
@@ -152,6 +158,6 @@ def test_the_gil_is_released_while_a_frame_computes(monkey):
         last = now
         ticks += 1
     worker.join()
-    assert result["seconds"] > 0.2, "the frame was too quick to tell"
+    assert result["seconds"] > 0.2, ("the frame was too quick to tell", clip_time)
     assert longest < result["seconds"] / 4, (longest, result["seconds"])
     assert ticks > 1000

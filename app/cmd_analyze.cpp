@@ -259,8 +259,7 @@ void addAnalyzeCommand(CLI::App& app) {
     opt.clock.fps = range->fps;
     opt.clock.preRollFrames = dyn->preRoll;
     opt.holdSeconds = o->hold;
-    opt.groups =
-        o->groups == "segment" ? scene::AnalysisGroups::Segment : scene::AnalysisGroups::Region;
+    opt.groups = scene::parseAnalysisGroups(o->groups);
     if (!(o->hold >= 0.0 && o->hold <= 1000.0))
       inputError("--hold ", o->hold, " is out of range [0, 1000] seconds");
     if (!o->plot.empty() && std::filesystem::path(o->plot).extension() != ".png")
@@ -274,15 +273,14 @@ void addAnalyzeCommand(CLI::App& app) {
     }
     if (!range->frames.empty()) scene::parseFrameRange(range->frames);
     const bool quiet = common->quiet;
-    scene::Model m = model->load(quiet);
+    scene::Model m = model->load();
     scene::PlaybackOptions po;
     pose->sequence(m, po);
     opt.clip = po.clip;
     opt.stillPose = po.stillPose;
     opt.clock.startSeconds = po.startSeconds;
-    const scene::FrameRange frames = range->range(m, opt.clip);
-    opt.firstFrame = frames.first;
-    opt.lastFrame = frames.last;
+    const scene::FrameRange frames = range->range(m, opt.clip, po.startSeconds, quiet);
+    opt.frames = frames;
     const std::string clipName =
         opt.clip >= 0 ? m.clips[static_cast<std::size_t>(opt.clip)].name : "still pose";
     const scene::Fur fur =

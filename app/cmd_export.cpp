@@ -46,12 +46,16 @@ void runExport(ExportArgs& a) {
   if (!a.range.frames.empty()) eo.frames = scene::parseFrameRange(a.range.frames);
   eo.out = a.out;
   eo.resume = a.resume;
-  // Output place first: a bad path fails before the model is built.
+  // Output place first: a bad path fails before the model is built (and a bad model removes the
+  // folders made for it).
+  const NewFolders folders(eo.format == scene::ExportFormat::Usda
+                               ? std::filesystem::path(eo.out).parent_path().string()
+                               : eo.out);
   scene::validateExportOutput(eo);
   const fur::FurParams params = a.fur.resolve();
   const fur::DynamicsParams dynamics = a.dynamics.resolve();
   const bool quiet = a.common.quiet;
-  scene::Model model = a.model.load(quiet);
+  scene::Model model = a.model.load();
   scene::PlaybackOptions& po = eo.playback;
   a.pose.sequence(model, po);
   po.framesPerSecond = a.range.fps;
@@ -61,7 +65,7 @@ void runExport(ExportArgs& a) {
   const int clip = po.clip;
   if (po.dynamics && clip < 0)
     inputError("--dynamics on needs a clip (--clip): the rest pose does not move");
-  if (a.range.frames.empty()) eo.frames = a.range.range(model, clip);
+  eo.frames = a.range.range(model, clip, po.startSeconds, quiet);
   const int first = eo.frames.first, last = eo.frames.last;
   const scene::Fur fur = scene::growFur(model, params, "fur '" + params.name + "'");
   if (!quiet) {

@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <memory>
 
+#include <filesystem>
+
 #include "commands.h"
 #include "options.h"
 #include "pelage/fur/culling.h"
@@ -15,6 +17,7 @@
 #include "pelage/scene/frame.h"
 #include "pelage/scene/playback.h"
 #include "pelage/skin/deform.h"
+#include "pelage/util/atomic_file.h"
 #include "pelage/util/error.h"
 
 namespace pelage::app {
@@ -91,11 +94,20 @@ void addHairCommand(CLI::App& app) {
     if (distanceOpt->count() > 0 && !(*distance >= 0.0 && *distance <= 1e4))
       inputError("--distance ", *distance, " is out of range [0, 10000] (metres)");
     frames->validateFps();
+    std::string ext = std::filesystem::path(*out).extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (ext != ".ply")
+      inputError("--out ", *out, ": hairs are written as binary PLY; the file must end in .ply");
+    // The output folder as `render` and `export` make theirs: created when missing (and removed
+    // again if the run fails).
+    const std::string folder = std::filesystem::path(*out).parent_path().string();
+    const NewFolders folders(folder.empty() ? "." : folder);
+    if (!folder.empty()) ensureWritableDirectory(folder);
     // Options first: bad values fail before the model is built.
     const fur::FurParams params = furArgs->resolve();
     const fur::DynamicsParams dyn = dynamics->resolve();
     const bool quiet = common->quiet;
-    scene::Model m = model->load(quiet);
+    scene::Model m = model->load();
     const scene::Fur fur = scene::growFur(m, params, "fur '" + params.name + "'");
     const fur::FurRoots& roots = fur.roots;
     fur::FurView view;

@@ -104,6 +104,8 @@ void runRender(RenderArgs& a) {
   o.shadows = a.view.shadows;
   o.selfShadowing = a.view.selfShadowed();
   o.skinColor = a.view.skin();
+  o.look.background = a.view.backgroundColor();
+  o.transparentBackground = a.view.transparentBackground();
   const std::string ext = std::filesystem::path(o.outDir).extension().string();
   if ((ext == ".png" || ext == ".jpg" || ext == ".mp4" || ext == ".gif") &&
       !std::filesystem::is_directory(o.outDir))
@@ -112,17 +114,27 @@ void runRender(RenderArgs& a) {
                "--video)");
   viewer::validateSequenceOptions(o);  // before the model is built; dynamics once the clip is known
   const fur::DynamicsParams dynamics = a.dynamics.resolve();
+  const NewFolders folders(o.outDir);  // removed again if the model or a value is bad
   ensureWritableDirectory(o.outDir);
   if (!o.video.empty() && viewer::findOnPath("ffmpeg").empty())
     inputError("--video ", o.video,
                " needs the ffmpeg program, which is not on PATH (Debian: apt-get install ffmpeg)");
+  if (!o.video.empty()) {
+    // A place that cannot be written fails now, before the model is built (a temporary file
+    // beside the video, removed at once).
+    try {
+      AtomicFileWriter probe(o.video);
+    } catch (const InputError& e) {
+      inputError("--video ", e.what());
+    }
+  }
 
   fur::FurParams params = a.fur.resolve();
   if (a.view.noCulling) params.culling.enabled = false;
   const bool quiet = a.common.quiet;
-  scene::Model model = a.model.load(quiet);
+  scene::Model model = a.model.load();
   a.pose.sequence(model, o.playback);
-  if (a.range.frames.empty()) o.frames = a.range.range(model, o.playback.clip);
+  o.frames = a.range.range(model, o.playback.clip, o.playback.startSeconds, quiet);
   o.playback.dynamics = a.dynamics.enabled();
   o.playback.dynamicsParams = dynamics;
   o.playback.preRollFrames = a.dynamics.preRoll;
@@ -183,7 +195,11 @@ void addRenderCommand(CLI::App& app) {
   a->dynamics.add(*cmd, true);
   cmd->add_option("--encoders", a->encoders, "PNG encoder threads [0, 256] (default 0: --threads)");
   a->common.add(*cmd, true);
-  cmd->callback([a] { runRender(*a); });
+  cmd->callback([a, cmd] {
+    if (!a->cameraFile.empty() && cmd->count("--camera") > 0)
+      inputError("--camera-file and --camera both set the camera: give one of them");
+    runRender(*a);
+  });
 }
 
 }  // namespace pelage::app

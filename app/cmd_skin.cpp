@@ -20,7 +20,7 @@ void addSkinCommand(CLI::App& app) {
   cmd->add_option("--out", *out, "Output file (.obj or .ply)")->required();
   common->add(*cmd, true);
   cmd->callback([model, pose, common, out] {
-    scene::Model m = model->load(common->quiet);
+    scene::Model m = model->load();
     scene::PlaybackOptions po;
     po.stillPose = pose->stillPose(m);
     const scene::Fur none;  // the skin only

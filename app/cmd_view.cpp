@@ -66,6 +66,8 @@ void addViewCommand(CLI::App& app) {
     o->selfShadowing = view->selfShadowed();
     o->noCulling = view->noCulling;
     o->skinColor = view->skin();
+    o->background = view->backgroundColor();
+    o->transparentBackground = view->transparentBackground();
     o->fur = furArgs->resolve();
     o->dynamics = dyn->enabled();
     o->dynamicsParams = dyn->resolve();

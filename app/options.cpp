@@ -1,6 +1,7 @@
 #include "options.h"
 
 #include <array>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -13,6 +14,7 @@
 #include "pelage/animation/clip.h"
 #include "pelage/fur/preset.h"
 #include "pelage/skin/skin_mesh.h"
+#include "pelage/util/color.h"
 #include "pelage/util/log.h"
 #include "pelage/util/parallel.h"
 
@@ -117,7 +119,7 @@ void ModelOptions::add(CLI::App& cmd) {
                  "<model>.directions.json if it exists)");
 }
 
-scene::Model ModelOptions::load(bool quiet) const {
+scene::Model ModelOptions::load() const {
   scene::LoadOptions opt;
   opt.triangles = triangles;
   if (unitScale != 0.0 && !(unitScale > 0.0 && unitScale <= 1e6))
@@ -127,7 +129,7 @@ scene::Model ModelOptions::load(bool quiet) const {
   opt.segmentDirections = directions;
   scene::Model m = scene::loadModel(model, opt);
   const float size = scene::modelSizeMeters(m);
-  if (!quiet && (size > scene::kPlausibleSizeMeters[1] || size < scene::kPlausibleSizeMeters[0]))
+  if (size > scene::kPlausibleSizeMeters[1] || size < scene::kPlausibleSizeMeters[0])
     warn(str(m.source, ": the creature is ", size,
              " m long, implausible for an animal; if the "
              "file is not in metres, give --unit-scale (metres per file unit, e.g. 0.01 for "
@@ -367,10 +369,26 @@ void FrameOptions::validateFps() const {
   if (!(fps >= 1.0 && fps <= 1000.0)) inputError("--fps ", fps, " is out of range [1, 1000]");
 }
 
-scene::FrameRange FrameOptions::range(const scene::Model& model, int clip) const {
+scene::FrameRange FrameOptions::range(const scene::Model& model, int clip, double startSeconds,
+                                      bool quiet) const {
   validateFps();
-  if (!frames.empty()) return scene::parseFrameRange(frames);
-  return scene::wholeClip(model, clip, fps);
+  if (frames.empty()) return scene::wholeClip(model, clip, fps);
+  const scene::FrameRange r = scene::parseFrameRange(frames);
+  if (!quiet && clip >= 0) {
+    const animation::Clip& c = model.clips[static_cast<std::size_t>(clip)];
+    const double end = static_cast<double>(c.duration);
+    const double lastSeconds = startSeconds + r.last / fps;
+    if (lastSeconds > end + 1e-9) {
+      // The first frame whose time is past the end.
+      const int firstPast = static_cast<int>(std::floor((end - startSeconds) * fps + 1e-9)) + 1;
+      std::fprintf(stderr,
+                   "pelage: note: frames %d..%d lie past the end of clip '%s' (%g s at %g fps): "
+                   "%s\n",
+                   std::max(r.first, firstPast), r.last, c.name.c_str(), end, fps,
+                   c.loop ? "they show it looped" : "they hold its last pose");
+    }
+  }
+  return r;
 }
 
 // ---- ViewOptions ---------------------------------------------------------------------------
@@ -418,6 +436,11 @@ void ViewOptions::add(CLI::App& cmd) {
   cmd.add_option("--skin-color", skinColor,
                  "Skin colour R G B, each in [0, 1] (default: the model's)")
       ->expected(3);
+  cmd.add_option("--background", background,
+                 "The frames' background: R G B (sRGB, each in [0, 1]; default 0.80 0.82 0.86), or "
+                 "'transparent' (PNGs with straight alpha, 0 where nothing is drawn; over the "
+                 "default colour they equal the opaque frames). Frames are opaque otherwise")
+      ->expected(1, 3);
 }
 
 int ViewOptions::width() const {
@@ -448,6 +471,25 @@ scene::HairWidth ViewOptions::hairWidth() const {
   return lines ? scene::HairWidth::Lines : scene::HairWidth::Strands;
 }
 
+Eigen::Vector3f ViewOptions::backgroundColor() const {
+  if (background.size() != 3) return scene::kDefaultBackground;
+  Eigen::Vector3f srgb;
+  for (int c = 0; c < 3; ++c) {
+    const std::string& text = background[static_cast<std::size_t>(c)];
+    float v = 0.0f;
+    const auto r = std::from_chars(text.data(), text.data() + text.size(), v);
+    if (r.ec != std::errc() || r.ptr != text.data() + text.size() || !(v >= 0.0f && v <= 1.0f))
+      inputError("--background ", "RGB"[c], " = '", excerpt(text),
+                 "' is not a number in [0, 1] (give R G B in [0, 1], or transparent)");
+    srgb[c] = v;
+  }
+  return srgbToLinear(srgb);
+}
+
+bool ViewOptions::transparentBackground() const {
+  return background.size() == 1 && background[0] == "transparent";
+}
+
 std::optional<Eigen::Vector3f> ViewOptions::skin() const {
   if (skinColor.empty()) return std::nullopt;
   return Eigen::Vector3f(skinColor[0], skinColor[1], skinColor[2]);
@@ -461,6 +503,12 @@ void ViewOptions::validate() const {
   cameraPreset();
   source();
   hairShading();
+  if (background.size() == 1 && background[0] != "transparent")
+    inputError("--background '", excerpt(background[0]),
+               "': give R G B (sRGB, each in [0, 1]) or transparent");
+  if (background.size() == 2)
+    inputError("--background takes R G B (3 values) or transparent, got 2 values");
+  backgroundColor();
   if (!skinColor.empty()) {
     if (skinColor.size() != 3)
       inputError("--skin-color takes 3 values (R G B in [0, 1]), got ", skinColor.size());
@@ -469,6 +517,24 @@ void ViewOptions::validate() const {
       if (!(v >= 0.0f && v <= 1.0f))
         inputError("--skin-color ", "RGB"[c], " = ", v, " is out of range [0, 1]");
     }
+  }
+}
+
+// ---- Output folders --------------------------------------------------------------------------
+
+NewFolders::NewFolders(const std::string& dir) : exceptions_(std::uncaught_exceptions()) {
+  std::error_code ec;
+  for (std::filesystem::path p = std::filesystem::absolute(dir, ec).lexically_normal();
+       !p.empty() && !std::filesystem::exists(p, ec) && p != p.parent_path(); p = p.parent_path())
+    created_.push_back(p.string());
+}
+
+NewFolders::~NewFolders() {
+  if (std::uncaught_exceptions() <= exceptions_) return;
+  for (const std::string& d : created_) {
+    std::error_code ec;
+    if (!std::filesystem::is_directory(d, ec) || !std::filesystem::is_empty(d, ec)) return;
+    std::filesystem::remove(d, ec);
   }
 }
 
@@ -488,8 +554,8 @@ bool isModelSpec(const std::string& token) {
 }
 
 bool takesSeveralValues(const std::string& token) {
-  for (const char* o :
-       {"--no-fur", "--fur-set", "--frequency", "--damping", "--skin-color", "--benchmark-hairs"})
+  for (const char* o : {"--no-fur", "--fur-set", "--frequency", "--damping", "--skin-color",
+                        "--background", "--benchmark-hairs"})
     if (token == o) return true;
   return false;
 }

@@ -31,6 +31,23 @@ std::string_view optionForField(std::string_view field);
 // An error's message in the command line's words: a field error names the option instead.
 std::string describe(const InputError& error);
 
+// ---- Output folders --------------------------------------------------------------------------
+
+// The output folder rule of every command that writes files: a missing folder is created (with
+// its parents), and the folders a failed command created are removed again while still empty, so
+// a bad model or value leaves nothing behind. Construct before the folder is created.
+class NewFolders {
+ public:
+  explicit NewFolders(const std::string& dir);
+  ~NewFolders();  // on an exception: removes the empty folders this run created, deepest first
+  NewFolders(const NewFolders&) = delete;
+  NewFolders& operator=(const NewFolders&) = delete;
+
+ private:
+  std::vector<std::string> created_;  // the folders that did not exist, deepest first
+  int exceptions_ = 0;
+};
+
 // ---- Shared option groups -------------------------------------------------------------------
 
 // --threads (every command) and --quiet (every command that writes files).
@@ -50,8 +67,9 @@ struct ModelOptions {
   std::vector<std::string> noFur;
   std::string directions;
   void add(CLI::App& cmd);
-  // Loads the model; warns (unless quiet) when its size is implausible for an animal.
-  scene::Model load(bool quiet = false) const;
+  // Loads the model; warns (a warning: --quiet keeps it) when its size is implausible for an
+  // animal.
+  scene::Model load() const;
 };
 
 // The pose: --pose FILE, or --clip NAME|FILE at --time T (a still frame); for sequences --clip is
@@ -111,7 +129,10 @@ struct FrameOptions {
   void add(CLI::App& cmd);
   void addFps(CLI::App& cmd);  // --fps alone (`pelage hair`: the frames simulated for dynamics)
   // The range for `clip` of `model` (-1: the still pose, frame 0).
-  scene::FrameRange range(const scene::Model& model, int clip) const;
+  // With `quiet` false, a note on stderr (once) when frames lie past the clip's end, where it
+  // loops (or holds its last pose); `startSeconds` is the clip time of frame 0 (--time).
+  scene::FrameRange range(const scene::Model& model, int clip, double startSeconds = 0.0,
+                          bool quiet = true) const;
   void validateFps() const;
 };
 
@@ -130,6 +151,7 @@ struct ViewOptions {
   std::string selfShadowing = "on";
   bool noCulling = false;
   std::vector<float> skinColor;
+  std::vector<std::string> background;  // "transparent", or R G B (sRGB, [0, 1])
   void add(CLI::App& cmd);
   int width() const;
   int height() const;
@@ -138,6 +160,10 @@ struct ViewOptions {
   scene::HairShading hairShading() const;
   scene::HairWidth hairWidth() const;  // strands, or the paper's lines with --lines
   bool transparent() const { return transparency == "on"; }
+  // --background: the colour (linear RGB; the default's when not given or transparent), and
+  // whether frames get straight alpha with a transparent background.
+  Eigen::Vector3f backgroundColor() const;
+  bool transparentBackground() const;
   bool selfShadowed() const { return selfShadowing == "on"; }
   std::optional<Eigen::Vector3f> skin() const;
   // Parses and checks every value (size, samples, fov, names, colour).

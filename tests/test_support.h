@@ -1,6 +1,9 @@
 // Small helpers shared by the test suites: temporary directories, running the pelage binary.
 #pragma once
 
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <array>
@@ -9,6 +12,9 @@
 #include <fstream>
 #include <random>
 #include <string>
+#include <vector>
+
+extern char** environ;
 
 namespace pelage::test {
 
@@ -67,6 +73,42 @@ inline RunResult runShell(const std::string& command) {
 // Runs `build/bin/pelage <args>` through the shell, capturing output and exit status.
 inline RunResult runPelage(const std::string& args) {
   return runShell(std::string(PELAGE_BIN_DIR) + "/pelage " + args);
+}
+
+// Starts `build/bin/pelage <args...>` without a shell, stdout and stderr to `log`, with the
+// environment plus `env` ("NAME=value" each, replacing a variable of that name); returns its pid.
+inline pid_t spawnPelage(std::vector<std::string> args, const std::string& log,
+                         const std::vector<std::string>& env = {}) {
+  args.insert(args.begin(), std::string(PELAGE_BIN_DIR) + "/pelage");
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  std::vector<std::string> vars = env;
+  for (char** e = environ; *e; ++e) {
+    const std::string v(*e);
+    bool replaced = false;
+    for (const std::string& x : env)
+      replaced = replaced || v.rfind(x.substr(0, x.find('=') + 1), 0) == 0;
+    if (!replaced) vars.push_back(v);
+  }
+  std::vector<char*> envp;
+  for (std::string& v : vars) envp.push_back(v.data());
+  envp.push_back(nullptr);
+  posix_spawn_file_actions_t fa;
+  posix_spawn_file_actions_init(&fa);
+  posix_spawn_file_actions_addopen(&fa, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&fa, 1, 2);
+  pid_t pid = -1;
+  if (posix_spawn(&pid, argv[0], &fa, nullptr, argv.data(), envp.data()) != 0) pid = -1;
+  posix_spawn_file_actions_destroy(&fa);
+  return pid;
+}
+
+// Waits for `pid`; its exit status, or 128 + the signal that killed it.
+inline int waitExit(pid_t pid) {
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }
 
 }  // namespace pelage::test

@@ -201,12 +201,13 @@ tinygltf::Model loadModelFile(const std::string& path) {
                                           reinterpret_cast<const char*>(data.data()),
                                           static_cast<unsigned int>(data.size()), baseDir);
   } catch (const std::exception& e) {
-    inputError(path, ": malformed glTF (", e.what(), ")");
+    inputError(path, ": malformed glTF (", shortenLongWords(e.what()), ")");
   }
   if (!ok || !err.empty())
-    inputError(path, ": malformed glTF: ",
-               err.empty() ? std::string("tinygltf could not parse it") : trim(err));
-  if (!warnings.empty()) warn(path + ": " + trim(warnings));
+    inputError(
+        path, ": malformed glTF: ",
+        err.empty() ? std::string("tinygltf could not parse it") : shortenLongWords(trim(err)));
+  if (!warnings.empty()) warn(path + ": " + shortenLongWords(trim(warnings)));
 
   for (const std::string& e : model.extensionsRequired)
     if (!supportedRequiredExtension(e))

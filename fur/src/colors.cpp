@@ -68,9 +68,10 @@ GroomMaps loadGroomMaps(const GroomMapPaths& paths, const skin::SkinMesh& skin,
     const char* field = !paths.density.empty()  ? "maps.density"
                         : !paths.length.empty() ? "maps.length"
                                                 : "maps.color";
-    fieldError(field, "model '", modelName,
+    fieldError(field, ": model '", modelName,
                "' has no texture coordinates, so groom maps cannot be placed on it (they need a "
-               "glTF model with TEXCOORD_0)");
+               "glTF model with TEXCOORD_0); remove the maps and set the coat in the preset "
+               "instead (hairs or density, lengthScale, lengthRegion, color)");
   }
   m.density = loadMap(paths.density, "maps.density", false, skin::Filter::Nearest);
   m.length = loadMap(paths.length, "maps.length", false, skin::Filter::Linear);

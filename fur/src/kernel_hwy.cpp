@@ -529,11 +529,18 @@ const std::vector<std::int64_t>& cpuTargets() {
   static const std::vector<std::int64_t> targets = hwy::SupportedAndGeneratedTargets();
   return targets;
 }
+// A target as users know it: Highway's AVX3 family is AVX-512.
+std::string targetName(std::int64_t t) {
+  const std::string name = hwy::TargetName(t);
+  if (name == "AVX3") return "AVX-512";
+  if (name.rfind("AVX3_", 0) == 0) return "AVX-512_" + name.substr(5);
+  return name;
+}
 }  // namespace
 
 std::vector<std::string> kernelTargets() {
   std::vector<std::string> names;
-  for (const std::int64_t t : cpuTargets()) names.emplace_back(hwy::TargetName(t));
+  for (const std::int64_t t : cpuTargets()) names.emplace_back(targetName(t));
   return names;
 }
 
@@ -544,7 +551,7 @@ bool setKernelTarget(const std::string& name) {
     return true;
   }
   for (const std::int64_t t : targets)
-    if (name == hwy::TargetName(t)) {
+    if (name == targetName(t)) {
       hwy::SetSupportedTargetsForTest(t);
       return true;
     }
@@ -553,7 +560,7 @@ bool setKernelTarget(const std::string& name) {
 
 std::string activeKernelTarget() {
   const std::vector<std::int64_t> targets = hwy::SupportedAndGeneratedTargets();
-  return targets.empty() ? std::string("?") : hwy::TargetName(targets.front());
+  return targets.empty() ? std::string("?") : targetName(targets.front());
 }
 
 }  // namespace pelage::fur

@@ -17,6 +17,7 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -32,7 +33,10 @@
 #include "pelage/scene/export.h"
 #include "pelage/scene/model.h"
 #include "pelage/scene/playback.h"
+#include "pelage/util/color.h"
 #include "pelage/util/error.h"
+#include "pelage/util/interrupt.h"
+#include "pelage/util/log.h"
 #include "pelage/util/parallel.h"
 #ifdef PELAGE_HAVE_RENDER
 #include "pelage/viewer/gl_context.h"
@@ -59,6 +63,74 @@ std::string pythonMessage(const InputError& e) {
   std::string list;
   for (const std::string& a : accepted) list += (list.empty() ? "" : ", ") + a;
   throw py::value_error(function + "(): unknown keyword '" + key + "' (accepted: " + list + ")");
+}
+
+// A function's keyword arguments, checked against the ones it accepts (an unknown one is a
+// ValueError listing them, as fur() does), read with their defaults.
+class Keywords {
+ public:
+  Keywords(std::string function, const py::kwargs& kwargs, std::vector<std::string> accepted)
+      : function_(std::move(function)), kwargs_(kwargs) {
+    for (const auto& item : kwargs) {
+      const std::string key = py::str(item.first);
+      if (std::find(accepted.begin(), accepted.end(), key) == accepted.end())
+        badKeyword(function_, key, accepted);
+    }
+  }
+  // The keyword's value, or None.
+  py::object object(const char* name) const {
+    return kwargs_.contains(name) ? py::reinterpret_borrow<py::object>(kwargs_[name]) : py::none();
+  }
+  // The keyword's value as T, or `fallback`; TypeError naming it for a value of another type.
+  template <typename T>
+  T get(const char* name, T fallback) const {
+    if (!kwargs_.contains(name)) return fallback;
+    const py::handle v = kwargs_[name];
+    try {
+      return v.cast<T>();
+    } catch (const py::cast_error&) {
+      throw py::type_error(function_ + "(): " + name + " cannot be a " +
+                           py::str(py::type::of(v).attr("__name__")).cast<std::string>());
+    }
+  }
+
+ private:
+  std::string function_;
+  const py::kwargs& kwargs_;
+};
+
+// ---- Warnings and interrupts -------------------------------------------------------------------
+
+// pelage's warnings, queued by whichever thread warns (no GIL needed), raised as Python
+// UserWarnings by flushWarnings() on the calling thread: after each call, and each frame.
+std::mutex gWarningMutex;
+std::vector<std::string> gWarnings;
+
+void queueWarning(const std::string& message) {
+  std::lock_guard<std::mutex> lock(gWarningMutex);
+  gWarnings.push_back(message);
+}
+
+// Raises the queued warnings through Python's `warnings` (needs the GIL); an exception a filter
+// turns a warning into propagates.
+void flushWarnings() {
+  std::vector<std::string> pending;
+  {
+    std::lock_guard<std::mutex> lock(gWarningMutex);
+    pending.swap(gWarnings);
+  }
+  for (const std::string& w : pending)
+    if (PyErr_WarnEx(PyExc_UserWarning, ("pelage: " + w).c_str(), 1) != 0)
+      throw py::error_already_set();
+}
+
+// checkInterrupt()'s poll (util/interrupt.h), once a frame: Python's pending signals (Ctrl-C raises
+// KeyboardInterrupt through the running call, whose unwinding removes what it half-wrote), and the
+// queued warnings.
+void pollPython() {
+  py::gil_scoped_acquire gil;
+  if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+  flushWarnings();
 }
 
 // ---- Conversions --------------------------------------------------------------------------------
@@ -110,27 +182,39 @@ py::object fromJson(const nlohmann::json& j) {
   return d;
 }
 
-// The frames of `frames`: None (the default of `fallback`), an int, a (first, last) pair, or a
-// range with step 1.
+// The frames of `frames`: None (the default of `fallback`), an int, a (first, last) pair (both
+// included), or a range (any positive step; its stop excluded, as Python's).
 scene::FrameRange frameRange(const py::object& frames, const scene::FrameRange& fallback) {
   if (frames.is_none()) return fallback;
   scene::FrameRange r;
+  const auto integer = [](const py::handle& v) {
+    if (!py::isinstance<py::int_>(v) || py::isinstance<py::bool_>(v))
+      throw py::type_error("frames: frame numbers are ints, got " +
+                           py::str(py::type::of(v).attr("__name__")).cast<std::string>());
+    const long long x = v.cast<long long>();
+    return static_cast<int>(std::clamp<long long>(x, -1, scene::kMaxFrameNumber + 1LL));
+  };
   if (py::isinstance<py::int_>(frames)) {
-    r.first = r.last = frames.cast<int>();
+    r.first = r.last = integer(frames);
   } else if (py::isinstance(frames, py::module_::import("builtins").attr("range"))) {
-    const int start = frames.attr("start").cast<int>(), stop = frames.attr("stop").cast<int>();
-    if (frames.attr("step").cast<int>() != 1 || stop <= start)
-      throw py::value_error("frames: a range of step 1 with at least one frame is needed");
+    const int start = integer(frames.attr("start")), stop = integer(frames.attr("stop")),
+              step = integer(frames.attr("step"));
+    if (step < 1 || stop <= start)
+      throw py::value_error("frames: " + py::repr(frames).cast<std::string>() +
+                            " has no frames (a range with a positive step and stop > start)");
     r.first = start;
-    r.last = stop - 1;
+    r.step = step;
+    r.last = start + (stop - 1 - start) / step * step;
+  } else if (py::isinstance<py::sequence>(frames) && !py::isinstance<py::str>(frames) &&
+             py::len(frames) == 2) {
+    const py::sequence pair = frames.cast<py::sequence>();
+    r.first = integer(pair[0]);
+    r.last = integer(pair[1]);
   } else {
-    const auto pair = frames.cast<std::vector<int>>();
-    if (pair.size() != 2) throw py::value_error("frames: an int, a (first, last) pair or a range");
-    r.first = pair[0];
-    r.last = pair[1];
+    throw py::value_error("frames: an int, a (first, last) pair or a range");
   }
-  // The one frame-range rule (and its message).
-  return scene::parseFrameRange(std::to_string(r.first) + ":" + std::to_string(r.last));
+  scene::validateFrameRange(r);  // the one frame-range rule (and its message)
+  return r;
 }
 
 // Dynamic fur from `dynamics`: None or False (off), True (the defaults), or a dict with
@@ -384,6 +468,7 @@ std::shared_ptr<PyHairs> hairsOf(const PyFur& f, const py::object& clip, double 
     playback.evaluateFur(fur::FurView{});
     h = takeHairs(playback, f.fur, frame);
   }
+  flushWarnings();
   return h;
 }
 
@@ -395,99 +480,134 @@ struct FrameIterator {
   int next = 0;
   std::shared_ptr<PyHairs> step() {
     if (next > range.last) throw py::stop_iteration();
-    const int f = next++;
-    py::gil_scoped_release release;
-    playback->poseFrame(f);
-    playback->evaluateFur(fur::FurView{});
-    return takeHairs(*playback, fur.fur, f);
+    const int f = next;
+    next += range.step;
+    std::shared_ptr<PyHairs> h;
+    {
+      py::gil_scoped_release release;
+      playback->poseFrame(f);
+      playback->evaluateFur(fur::FurView{});
+      h = takeHairs(*playback, fur.fur, f);
+    }
+    flushWarnings();
+    return h;
   }
 };
 
 // ---- Analysis
 // -------------------------------------------------------------------------------------
 
-// The CSV text as a dict of numpy columns named by its header.
-py::dict columns(const std::string& csv) {
-  std::istringstream in(csv);
-  std::string header;
-  std::getline(in, header);
-  std::vector<std::string> names;
-  std::stringstream hs(header);
-  for (std::string n; std::getline(hs, n, ',');) names.push_back(n);
-  std::vector<std::vector<double>> values(names.size());
-  for (std::string line; std::getline(in, line);) {
-    std::stringstream ls(line);
-    std::size_t c = 0;
-    for (std::string cell; std::getline(ls, cell, ',') && c < names.size(); ++c)
-      values[c].push_back(cell == "nan" ? std::nan("") : std::stod(cell));
-  }
+// A table as a dict of numpy columns in its order: "frame" and "held" int64, the rest float64, the
+// library's values as computed (no text round trip).
+py::dict columns(const scene::AnalysisTable& t) {
   py::dict d;
-  for (std::size_t c = 0; c < names.size(); ++c) {
-    if (names[c] == "frame" || names[c] == "held") {
-      std::vector<std::int64_t> ints(values[c].begin(), values[c].end());
-      d[py::str(names[c])] =
-          py::array_t<std::int64_t>(static_cast<py::ssize_t>(ints.size()), ints.data());
+  for (std::size_t c = 0; c < t.names.size(); ++c) {
+    const std::vector<double>& v = t.columns[c];
+    if (t.names[c] == "frame" || t.names[c] == "held") {
+      py::array_t<std::int64_t> a(static_cast<py::ssize_t>(v.size()));
+      auto w = a.mutable_unchecked<1>();
+      for (std::size_t i = 0; i < v.size(); ++i)
+        w(static_cast<py::ssize_t>(i)) = static_cast<std::int64_t>(std::llround(v[i]));
+      d[py::str(t.names[c])] = a;
     } else {
-      d[py::str(names[c])] =
-          py::array_t<double>(static_cast<py::ssize_t>(values[c].size()), values[c].data());
+      d[py::str(t.names[c])] = py::array_t<double>(static_cast<py::ssize_t>(v.size()), v.data());
     }
   }
   return d;
 }
 
+// A sweep: "NAME=A:B:N" as the command line's, {"NAME": [v, ...]} (the values) or
+// {"NAME": (first, last, count)} (count values evenly from first to last).
+scene::SweepSpec sweepOf(const py::object& sweep) {
+  if (py::isinstance<py::str>(sweep)) return scene::parseSweep(sweep.cast<std::string>());
+  if (!py::isinstance<py::dict>(sweep) || py::len(sweep) != 1)
+    throw py::value_error(
+        "sweep: 'NAME=A:B:N', {NAME: [values]} or {NAME: (first, last, count)} with NAME "
+        "stiffness, frequency or damping (one parameter)");
+  const auto item = *sweep.cast<py::dict>().begin();
+  const std::string name = py::str(item.first);
+  const py::handle v = item.second;
+  const auto number = [&](const py::handle& x) {
+    if (!py::isinstance<py::int_>(x) && !py::isinstance<py::float_>(x) && !py::hasattr(x, "dtype"))
+      throw py::value_error("sweep['" + name + "']: values are numbers, got " +
+                            py::str(py::type::of(x).attr("__name__")).cast<std::string>());
+    return x.cast<double>();
+  };
+  if (py::isinstance<py::tuple>(v)) {
+    const py::tuple t = v.cast<py::tuple>();
+    if (t.size() != 3 || !py::isinstance<py::int_>(t[2]))
+      throw py::value_error("sweep['" + name +
+                            "']: a tuple is a range (first, last, count); give a list for values");
+    return scene::sweepRange(name, number(t[0]), number(t[1]), t[2].cast<int>());
+  }
+  if (!py::isinstance<py::sequence>(v) && !py::hasattr(v, "tolist"))
+    throw py::value_error("sweep['" + name + "']: a list of values or (first, last, count)");
+  const py::sequence seq =
+      py::hasattr(v, "tolist") ? v.attr("tolist")().cast<py::sequence>() : v.cast<py::sequence>();
+  std::vector<double> values;
+  for (const py::handle x : seq) values.push_back(number(x));
+  return scene::sweepValues(name, std::move(values));
+}
+
 py::dict analyze(PyModel& m, const py::object& clip, const py::object& furArg,
-                 const py::object& frames, const py::object& dynamics, double hold,
-                 const std::string& groups, double fps, double time, const py::object& sweep) {
+                 const py::kwargs& kwargs) {
+  const Keywords kw("analyze", kwargs,
+                    {"frames", "dynamics", "hold", "groups", "fps", "time", "sweep"});
   scene::Model& model = *m.model;
   const std::shared_ptr<const scene::Fur> fur = furOf(m, furArg);
-  const Dynamics dyn = dynamicsFrom(dynamics);
+  const Dynamics dyn = dynamicsFrom(kw.object("dynamics"));
+  const double fps = kw.get("fps", 30.0);
   scene::AnalysisOptions opt;
   opt.clip = clipIndex(model, clip);
   opt.clock.fps = fps;  // (analyzeClip checks the values)
-  opt.clock.startSeconds = time;
+  opt.clock.startSeconds = kw.get("time", 0.0);
   opt.clock.preRollFrames = dyn.preRoll;
   opt.dynamics = dyn.on;
   opt.dynamicsParams = dyn.params;
-  opt.holdSeconds = hold;
-  if (groups != "region" && groups != "segment")
-    throw py::value_error("groups '" + groups + "' (accepted: region, segment)");
-  opt.groups = groups == "segment" ? scene::AnalysisGroups::Segment : scene::AnalysisGroups::Region;
-  const scene::FrameRange r = frameRange(frames, scene::wholeClip(model, opt.clip, fps));
-  opt.firstFrame = r.first;
-  opt.lastFrame = r.last;
-  std::string csv;
+  opt.holdSeconds = kw.get("hold", 0.0);
+  opt.groups = scene::parseAnalysisGroups(kw.get<std::string>("groups", "region"));
+  opt.frames = frameRange(kw.object("frames"), scene::wholeClip(model, opt.clip, fps));
+  scene::AnalysisTable table;
+  const py::object sweep = kw.object("sweep");
   if (!sweep.is_none()) {
-    const scene::SweepSpec spec = scene::parseSweep(sweep.cast<std::string>());
+    const scene::SweepSpec spec = sweepOf(sweep);
     py::gil_scoped_release release;
-    csv = scene::sweepCsv(scene::sweepClip(model, *fur, opt, spec));
+    table = scene::sweepTable(scene::sweepClip(model, *fur, opt, spec));
   } else {
     py::gil_scoped_release release;
-    csv = scene::analysisCsv(scene::analyzeClip(model, *fur, opt));
+    table = scene::analysisTable(scene::analyzeClip(model, *fur, opt));
   }
-  return columns(csv);
+  flushWarnings();
+  return columns(table);
 }
 
 // ---- Export
 // ---------------------------------------------------------------------------------------
 
 std::vector<std::string> exportFrames(PyModel& m, const py::object& clip, const py::object& furArg,
-                                      const py::object& frames, const std::string& format,
-                                      const std::string& out, double fps, double time,
-                                      const py::object& dynamics, bool resume) {
+                                      const py::kwargs& kwargs) {
+  const Keywords kw("export", kwargs,
+                    {"out", "frames", "format", "fps", "time", "dynamics", "resume"});
+  if (!kwargs.contains("out"))
+    throw py::value_error(
+        "export(): out is required (the directory for the frames, or the "
+        ".usda file)");
   scene::Model& model = *m.model;
   const std::shared_ptr<const scene::Fur> fur = furOf(m, furArg);
   scene::ExportOptions eo;
-  eo.format = scene::parseExportFormat(format);
-  eo.out = out;
-  eo.resume = resume;
-  const Dynamics dyn = dynamicsFrom(dynamics);
-  eo.playback = playbackOptions(model, clip, time, fps, dyn);
-  eo.frames = frameRange(frames, scene::wholeClip(model, eo.playback.clip, fps));
+  eo.format = scene::parseExportFormat(kw.get<std::string>("format", "ply"));
+  eo.out = py::str(kw.object("out")).cast<std::string>();  // a str or a pathlib.Path
+  eo.resume = kw.get("resume", false);
+  const double fps = kw.get("fps", 30.0);
+  const Dynamics dyn = dynamicsFrom(kw.object("dynamics"));
+  eo.playback = playbackOptions(model, clip, kw.get("time", 0.0), fps, dyn);
+  eo.frames = frameRange(kw.object("frames"), scene::wholeClip(model, eo.playback.clip, fps));
   scene::ExportReport r;
   {
     py::gil_scoped_release release;
     r = scene::exportClip(model, *fur, eo);
   }
+  flushWarnings();
   return r.files;
 }
 
@@ -495,31 +615,55 @@ std::vector<std::string> exportFrames(PyModel& m, const py::object& clip, const 
 // ---------------------------------------------------------------------------------------
 
 #ifdef PELAGE_HAVE_RENDER
+// render()'s background: None (the default colour, opaque), "transparent" (straight alpha), or an
+// (r, g, b) sRGB colour in [0, 1]; returns whether it is transparent.
+bool backgroundOf(const py::object& background, viewer::SequenceOptions& o) {
+  if (background.is_none()) return false;
+  if (py::isinstance<py::str>(background)) {
+    if (background.cast<std::string>() == "transparent") return true;
+    throw py::value_error("background: 'transparent' or (r, g, b) in [0, 1], got '" +
+                          excerpt(background.cast<std::string>()) + "'");
+  }
+  std::vector<float> c;
+  try {
+    c = background.cast<std::vector<float>>();
+  } catch (const py::cast_error&) {
+  }
+  if (c.size() != 3 ||
+      std::any_of(c.begin(), c.end(), [](float v) { return !(v >= 0.f && v <= 1.f); }))
+    throw py::value_error("background: three values in [0, 1] (r, g, b, sRGB), or 'transparent'");
+  o.look.background = srgbToLinear(Eigen::Vector3f(c[0], c[1], c[2]));
+  return false;
+}
+
 py::array_t<std::uint8_t> render(PyModel& m, const py::object& clip, const py::object& furArg,
-                                 int frame, double fps, double time, std::pair<int, int> size,
-                                 const std::string& camera, double fov, bool follow,
-                                 const std::string& hairSource, const std::string& shading,
-                                 bool lines, bool transparency, bool shadows, bool selfShadowing,
-                                 int samples, const py::object& dynamics,
-                                 const py::object& skinColor) {
+                                 const py::kwargs& kwargs) {
+  const Keywords kw("render", kwargs,
+                    {"frame", "fps", "time", "size", "camera", "fov", "follow", "hair_source",
+                     "shading", "lines", "transparency", "shadows", "self_shadowing", "samples",
+                     "dynamics", "skin_color", "background"});
   scene::Model& model = *m.model;
   const std::shared_ptr<const scene::Fur> fur = furOf(m, furArg);
   viewer::SequenceOptions o;
-  const Dynamics dyn = dynamicsFrom(dynamics);
-  o.playback = playbackOptions(model, clip, time, fps, dyn);
-  o.playback.hairSource = scene::parseHairSource(hairSource);
+  const Dynamics dyn = dynamicsFrom(kw.object("dynamics"));
+  o.playback = playbackOptions(model, clip, kw.get("time", 0.0), kw.get("fps", 30.0), dyn);
+  o.playback.hairSource = scene::parseHairSource(kw.get<std::string>("hair_source", "gpu"));
+  const int frame = kw.get("frame", 0);
   o.frames = {frame, frame};
+  const auto size = kw.get("size", std::pair<int, int>(1280, 720));
   o.width = size.first;
   o.height = size.second;
-  o.samples = samples;
-  o.camera.preset = scene::parseCameraPreset(camera);
-  o.camera.fovYDegrees = static_cast<float>(fov);
-  o.camera.track = follow;
-  o.look.hairShading = scene::parseHairShading(shading);
-  o.look.hairWidth = lines ? scene::HairWidth::Lines : scene::HairWidth::Strands;
-  o.look.transparency = transparency;
-  o.shadows = shadows;
-  o.selfShadowing = selfShadowing;
+  o.samples = kw.get("samples", -1);
+  o.camera.preset = scene::parseCameraPreset(kw.get<std::string>("camera", "three-quarter"));
+  o.camera.fovYDegrees = static_cast<float>(kw.get("fov", double{scene::kDefaultFovYDegrees}));
+  o.camera.track = kw.get("follow", false);
+  o.look.hairShading = scene::parseHairShading(kw.get<std::string>("shading", "paper"));
+  o.look.hairWidth = kw.get("lines", false) ? scene::HairWidth::Lines : scene::HairWidth::Strands;
+  o.look.transparency = kw.get("transparency", true);
+  o.shadows = kw.get("shadows", false);
+  o.selfShadowing = kw.get("self_shadowing", true);
+  o.transparentBackground = backgroundOf(kw.object("background"), o);
+  const py::object skinColor = kw.object("skin_color");
   if (!skinColor.is_none()) {
     const auto c = skinColor.cast<std::vector<float>>();
     if (c.size() != 3 ||
@@ -536,15 +680,18 @@ py::array_t<std::uint8_t> render(PyModel& m, const py::object& clip, const py::o
     viewer::SequenceRenderer renderer(model, *fur, o);
     renderer.render(frame, image);
   }
-  py::array_t<std::uint8_t> rgb({static_cast<py::ssize_t>(image.height),
-                                 static_cast<py::ssize_t>(image.width), py::ssize_t{3}});
-  auto out = rgb.mutable_unchecked<3>();
+  flushWarnings();
+  const int channels = o.transparentBackground ? 4 : 3;
+  py::array_t<std::uint8_t> pixels({static_cast<py::ssize_t>(image.height),
+                                    static_cast<py::ssize_t>(image.width),
+                                    static_cast<py::ssize_t>(channels)});
+  auto out = pixels.mutable_unchecked<3>();
   for (int y = 0; y < image.height; ++y)
     for (int x = 0; x < image.width; ++x) {
       const std::uint8_t* p = image.pixel(x, y);
-      for (int c = 0; c < 3; ++c) out(y, x, c) = p[c];
+      for (int c = 0; c < channels; ++c) out(y, x, c) = p[c];
     }
-  return rgb;
+  return pixels;
 }
 #endif
 
@@ -556,6 +703,11 @@ PYBIND11_MODULE(_pelage, m) {
   using namespace pelage::python;
   m.doc() = "pelage: animated furred creatures (Van Gelder & Wilhelms 1997 fur model)";
 
+  // pelage's warnings become Python warnings (UserWarning), Ctrl-C a KeyboardInterrupt within a
+  // frame of any long call.
+  setWarningSink(queueWarning);
+  setInterruptPoll(pollPython);
+
   static py::exception<InputError> inputError(m, "InputError", PyExc_ValueError);
   py::register_exception_translator([](std::exception_ptr p) {
     try {
@@ -564,8 +716,25 @@ PYBIND11_MODULE(_pelage, m) {
       PyErr_SetString(PyExc_FileNotFoundError, e.what());
     } catch (const InputError& e) {
       PyErr_SetString(inputError.ptr(), pythonMessage(e).c_str());
+    } catch (const Interrupted&) {
+      PyErr_SetNone(PyExc_KeyboardInterrupt);
     }
   });
+
+  // Every class is declared before the functions that take or return it, so that signatures
+  // show their Python names (pelage.Hairs, not the C++ type).
+  py::class_<PyModel> model(m, "Model", R"doc(A creature: body, skin and clips (constant).
+
+Made by pelage.load(); pass it to Model.fur(), analyze(), render() and export().)doc");
+  py::class_<PyFur> furClass(
+      m, "Fur", R"doc(A creature's fur: its parameters and the roots grown on the skin (constant).
+
+Made by Model.fur(); its hairs are recomputed for any frame by Fur.hairs() and Fur.frames().)doc");
+  py::class_<PyHairs, std::shared_ptr<PyHairs>> hairs(
+      m, "Hairs",
+      "One frame's hairs; every array is a view of pelage's buffers and keeps them alive.");
+  py::class_<FrameIterator, std::shared_ptr<FrameIterator>> frameIterator(
+      m, "FrameIterator", "The frames of a clip in order (Fur.frames()), one Hairs each.");
 
   m.def(
       "set_threads",
@@ -574,13 +743,19 @@ PYBIND11_MODULE(_pelage, m) {
           throw py::value_error("threads " + std::to_string(n) + " is out of range [0, 1024]");
         setThreadCount(n);
       },
-      py::arg("n"), "Worker threads for pelage's computations (0: all cores).");
-  m.def(
-      "threads", [] { return threadCount(); }, "The worker thread count in use.");
+      py::arg("n"), R"doc(Sets the worker threads of pelage's computations.
 
-  py::class_<PyModel>(m, "Model", "A creature: body, skin and clips (constant).")
-      .def_property_readonly("name", [](const PyModel& s) { return s.model->name; })
-      .def_property_readonly("source", [](const PyModel& s) { return s.model->source; })
+Args:
+    n: threads, 0 to 1024; 0 uses every core. Results are bit-identical whatever the count.)doc");
+  m.def(
+      "threads", [] { return threadCount(); }, "The worker thread count in use (an int).");
+
+  model
+      .def_property_readonly(
+          "name", [](const PyModel& s) { return s.model->name; }, "The creature's name (str).")
+      .def_property_readonly(
+          "source", [](const PyModel& s) { return s.model->source; },
+          "Where it was loaded from (str).")
       .def_property_readonly(
           "segments",
           [](const PyModel& s) {
@@ -588,8 +763,10 @@ PYBIND11_MODULE(_pelage, m) {
             for (const auto& seg : s.model->body.segments) names.push_back(seg.name);
             return names;
           },
-          "The body's segments, parents before children.")
-      .def_property_readonly("regions", [](const PyModel& s) { return s.model->skin.regionNames; })
+          "The body's segment names (list of str), parents before children.")
+      .def_property_readonly(
+          "regions", [](const PyModel& s) { return s.model->skin.regionNames; },
+          "The skin's region names (list of str): groups of analyze() and patterns of no_fur.")
       .def_property_readonly(
           "clips",
           [](const PyModel& s) {
@@ -597,7 +774,7 @@ PYBIND11_MODULE(_pelage, m) {
             for (const auto& c : s.model->clips) d[py::str(c.name)] = shortestDouble(c.duration);
             return d;
           },
-          "Clip name -> duration in seconds.")
+          "The clips (dict): name -> duration in seconds.")
       .def(
           "skin",
           [](PyModel& s, const py::object& clip, double time) {
@@ -613,6 +790,7 @@ PYBIND11_MODULE(_pelage, m) {
               for (const auto& n : playback.state().skin.normals)
                 nrm.insert(nrm.end(), {n.x(), n.y(), n.z()});
             }
+            flushWarnings();
             const auto nV = static_cast<py::ssize_t>(pos.size() / 3);
             const auto& tri = s.model->skin.triangles;
             return py::make_tuple(
@@ -621,8 +799,15 @@ PYBIND11_MODULE(_pelage, m) {
                 py::array_t<std::int32_t>(
                     {static_cast<py::ssize_t>(tri.size() / 3), py::ssize_t{3}}, tri.data()));
           },
-          py::arg("clip") = py::none(), py::arg("time") = 0.0,
-          "The posed skin: (positions (nV, 3), normals (nV, 3), triangles (nT, 3)), metres, Z up.")
+          py::arg("clip") = py::none(), py::arg("time") = 0.0, R"doc(The posed skin.
+
+Args:
+    clip: a clip name, or None for the rest pose.
+    time: seconds into the clip.
+
+Returns:
+    (positions, normals, triangles): (nV, 3) float32 metres (Z up), (nV, 3) float32 unit
+    normals, (nT, 3) int32 vertex indices.)doc")
       .def(
           "fur",
           [](PyModel& s, const std::string& preset, const py::kwargs& fields) {
@@ -633,29 +818,50 @@ PYBIND11_MODULE(_pelage, m) {
               py::gil_scoped_release release;
               f.fur = std::make_shared<scene::Fur>(scene::growFur(*s.model, params));
             }
+            flushWarnings();
             return f;
           },
-          py::arg("preset") = "default",
-          "Fur from a preset with any preset field set by keyword (hairs=..., overcoat={...}).")
+          py::arg("preset") = "default", R"doc(Grows fur on the creature.
+
+Args:
+    preset: a built-in preset name ("default", "fig9", ...) or a preset .json file.
+    **fields: any preset field by its file name, e.g. hairs=50000, seed=3,
+        overcoat={"stiffness": 0.6} (nested objects merge into the preset's). An unknown field
+        is a ValueError naming it.
+
+Returns:
+    Fur: the parameters and the roots, grown once; hairs are recomputed per frame.)doc")
       .def("__repr__", [](const PyModel& s) {
         return "<pelage.Model " + s.model->name + ": " + std::to_string(s.model->body.size()) +
                " segments, " + std::to_string(s.model->skin.numTriangles()) + " triangles, " +
                std::to_string(s.model->clips.size()) + " clips>";
       });
 
-  py::class_<PyFur>(m, "Fur", "A creature's fur: parameters and grown roots (constant).")
+  furClass
       .def_property_readonly(
           "params",
           [](const PyFur& f) {
             return fromJson(nlohmann::json::parse(fur::furPresetJson(f.fur->params)));
           },
-          "The parameters, as the preset file's fields.")
+          "The parameters (dict), as the preset file's fields.")
       .def_property_readonly(
-          "roots", [](const PyFur& f) { return f.fur->roots.total(); }, "Hairs grown (both coats).")
+          "roots", [](const PyFur& f) { return f.fur->roots.total(); },
+          "Hairs grown, both coats (int).")
       .def("hairs", &hairsOf, py::arg("clip") = py::none(), py::arg("time") = 0.0,
            py::arg("dynamics") = py::none(), py::arg("fps") = 30.0,
-           "One frame's hairs (every hair, no culling): the clip at `time` (None: the rest "
-           "pose); with dynamics, the clip's frames from its start up to `time` at `fps`.")
+           R"doc(One frame's hairs (every hair: no culling).
+
+Args:
+    clip: a clip name, or None for the rest pose.
+    time: seconds into the clip.
+    dynamics: None or False (the paper's quasi-static hairs), True (damped springs with the
+        defaults), or {"frequency": Hz, "damping": ratio, "preroll": frames} (one value, or one
+        per coat): the clip's frames are played from its start up to `time`, as
+        `pelage hair --dynamics on` does.
+    fps: frames per second of that play.
+
+Returns:
+    Hairs: points, normals, colours and roots as numpy views.)doc")
       .def(
           "frames",
           [](const PyFur& f, const py::object& clip, double fps, const py::object& frames,
@@ -672,19 +878,28 @@ PYBIND11_MODULE(_pelage, m) {
           },
           py::arg("clip"), py::arg("fps") = 30.0, py::arg("frames") = py::none(),
           py::arg("dynamics") = py::none(), py::arg("time") = 0.0,
-          "Iterates the frames of a clip in order (frame f at clip time time + f / fps), the "
-          "dynamic springs stepping from one frame to the next.");
+          R"doc(Iterates over a clip's frames in order.
 
-  py::class_<FrameIterator, std::shared_ptr<FrameIterator>>(m, "FrameIterator")
-      .def("__iter__", [](std::shared_ptr<FrameIterator> self) { return self; })
+Args:
+    clip: a clip name.
+    fps: frame f shows clip time time + f / fps.
+    frames: None (the whole clip), an int, a (first, last) pair (both included) or a range
+        (any positive step).
+    dynamics: as Fur.hairs(); the springs step from one frame to the next (skipped frames are
+        played through, so a frame equals what a whole run gives).
+    time: the clip time of frame 0, seconds.
+
+Returns:
+    FrameIterator: yields one Hairs per frame.)doc");
+
+  frameIterator.def("__iter__", [](std::shared_ptr<FrameIterator> self) { return self; })
       .def("__next__", &FrameIterator::step);
 
-  py::class_<PyHairs, std::shared_ptr<PyHairs>>(
-      m, "Hairs",
-      "One frame's hairs; every array is a view of pelage's buffers and keeps them alive.")
-      .def("__len__", &PyHairs::count)
-      .def_property_readonly("frame", [](const PyHairs& h) { return h.frameNumber; })
-      .def_property_readonly("time", [](const PyHairs& h) { return h.seconds; })
+  hairs.def("__len__", &PyHairs::count)
+      .def_property_readonly(
+          "frame", [](const PyHairs& h) { return h.frameNumber; }, "The frame number (int).")
+      .def_property_readonly(
+          "time", [](const PyHairs& h) { return h.seconds; }, "The clip time, seconds (float).")
       .def_property_readonly(
           "points",
           [](py::object self) {
@@ -731,33 +946,93 @@ PYBIND11_MODULE(_pelage, m) {
           },
           "(n, 2, 3) uint8: each hair's root and tip colour, 8-bit sRGB (its points are graded "
           "between them, in linear light)")
-      .def_property_readonly("styles", [](const PyHairs& h) {
-        return py::make_tuple(fur::styleName(h.frame.coats[0].layout.style),
-                              fur::styleName(h.frame.coats[1].layout.style));
-      });
+      .def_property_readonly(
+          "styles",
+          [](const PyHairs& h) {
+            return py::make_tuple(fur::styleName(h.frame.coats[0].layout.style),
+                                  fur::styleName(h.frame.coats[1].layout.style));
+          },
+          "(overcoat, undercoat) style names (tuple of str).");
 
-  m.def("load", &load, py::arg("model") = "monkey",
-        "Loads a creature: 'monkey' (built-in), a creature .json, a .gltf/.glb, or a mesh; "
-        "keywords triangles, unit_scale, no_fur, directions as the command line's options.");
+  m.def("load", &load, py::arg("model") = "monkey", R"doc(Loads a creature.
+
+Args:
+    model: "monkey" (built-in), a creature .json, a .gltf/.glb, or a mesh (.obj, .ply, .off, .stl).
+    **options: triangles (skin size of shape creatures), unit_scale (metres per file unit),
+        no_fur (region patterns without fur), directions (per-joint directions file), as the
+        command line's options. An unknown keyword is a ValueError listing these.
+
+Returns:
+    Model.
+
+Raises:
+    FileNotFoundError: the file does not exist.
+    pelage.InputError: the file is malformed or a value is out of range.)doc");
   m.def("analyze", &analyze, py::arg("model"), py::arg("clip") = py::none(),
-        py::arg("fur") = py::none(), py::kw_only(), py::arg("frames") = py::none(),
-        py::arg("dynamics") = py::none(), py::arg("hold") = 0.0, py::arg("groups") = "region",
-        py::arg("fps") = 30.0, py::arg("time") = 0.0, py::arg("sweep") = py::none(),
-        "`pelage analyze` in Python: a dict of numpy columns named as the CSV's.");
+        py::arg("fur") = py::none(),
+        R"doc(`pelage analyze` in Python: the fur's droop under gravity, frame by frame.
+
+Args:
+    model: a Model.
+    clip: a clip name, or None for the still pose.
+    fur: a Fur grown on `model` (None: the default preset).
+    frames: None (the whole clip), an int, a (first, last) pair (both included) or a range
+        (any positive step: every frame is played, the frames on the step are reported).
+    dynamics: as Fur.hairs(); adds the dyn_ columns.
+    hold: seconds the last pose is held still afterwards, [0, 1000].
+    groups: "region" (skin regions, the default) or "segment" (body segments).
+    fps: frames per second (frame f shows clip time time + f / fps).
+    time: the clip time of frame 0, seconds.
+    sweep: one parameter over several values: "stiffness=0.2:0.8:4" (as the command line's),
+        {"stiffness": [0.2, 0.5, 0.8]} (the values) or {"stiffness": (0.2, 0.8, 4)} (first,
+        last, count); parameters stiffness [0, 1], frequency (0, 100] Hz, damping [0, 10]
+        (frequency and damping need dynamics).
+
+An unknown keyword is a ValueError listing these.
+
+Returns:
+    dict: column name -> numpy array, one value per frame, in the CSV's order and with its
+    names ("frame" and "held" int64, the rest float64 at full precision): frame, time_s, held,
+    pitch_deg, ..., qs_droop_mean_deg, ... (dyn_ columns with dynamics); with a sweep,
+    qs_droop_mean_deg[stiffness=0.2], ... (dyn_ with dynamics).)doc");
   m.def("export", &exportFrames, py::arg("model"), py::arg("clip") = py::none(),
-        py::arg("fur") = py::none(), py::kw_only(), py::arg("frames") = py::none(),
-        py::arg("format") = "ply", py::arg("out"), py::arg("fps") = 30.0, py::arg("time") = 0.0,
-        py::arg("dynamics") = py::none(), py::arg("resume") = false,
-        "`pelage export` in Python: writes the files and returns their paths.");
+        py::arg("fur") = py::none(),
+        R"doc(`pelage export` in Python: writes hair geometry per frame.
+
+Args:
+    model: a Model.
+    clip: a clip name, or None for the rest pose.
+    fur: a Fur grown on `model` (None: the default preset).
+    out: the directory for frame_NNNNN.ply/.glb, or the .usda file (required).
+    frames: None (the whole clip), an int, a (first, last) pair or a range (any positive step).
+    format: "ply" (default), "glb" or "usda".
+    fps: frames per second; time: the clip time of frame 0.
+    dynamics: as Fur.hairs().
+    resume: keep complete frame files already there (ply, glb).
+
+Files are written atomically: Ctrl-C (KeyboardInterrupt) leaves only complete files.
+
+Returns:
+    list of str: the files written.)doc");
 #ifdef PELAGE_HAVE_RENDER
   m.def("render", &render, py::arg("model"), py::arg("clip") = py::none(),
-        py::arg("fur") = py::none(), py::kw_only(), py::arg("frame") = 0, py::arg("fps") = 30.0,
-        py::arg("time") = 0.0, py::arg("size") = std::pair<int, int>(1280, 720),
-        py::arg("camera") = "three-quarter", py::arg("fov") = 35.0, py::arg("follow") = false,
-        py::arg("hair_source") = "gpu", py::arg("shading") = "paper", py::arg("lines") = false,
-        py::arg("transparency") = true, py::arg("shadows") = false,
-        py::arg("self_shadowing") = true, py::arg("samples") = -1, py::arg("dynamics") = py::none(),
-        py::arg("skin_color") = py::none(),
-        "`pelage render` of one frame in Python (EGL, no display): an (H, W, 3) uint8 image.");
+        py::arg("fur") = py::none(), R"doc(`pelage render` of one frame in Python (EGL, no display).
+
+Args:
+    model: a Model.
+    clip: a clip name, or None for the rest pose.
+    fur: a Fur grown on `model` (None: the default preset).
+    frame: the frame (clip time time + frame / fps); fps, time as analyze().
+    size: (width, height), 16 to 16384 each; default (1280, 720).
+    camera: "three-quarter" (default), "side", "front", "top", ...; fov: degrees; follow: bool.
+    hair_source: "gpu" (default) or "cpu"; shading: "paper", "kajiya-kay" or "marschner".
+    lines, transparency, shadows, self_shadowing: bools as the command line's switches.
+    samples: MSAA samples (-1: 4 on a GPU, none on a software rasteriser).
+    dynamics: as Fur.hairs(); skin_color: (r, g, b) in [0, 1].
+    background: None (the default colour), (r, g, b) sRGB in [0, 1], or "transparent".
+
+Returns:
+    numpy.ndarray: (H, W, 3) uint8 sRGB, or (H, W, 4) with straight alpha for
+    background="transparent" (0 where nothing is drawn).)doc");
 #endif
 }

@@ -62,3 +62,21 @@ def test_export_equals_the_command_line(monkey, cli, tmp_path, fmt):
     # Resume keeps the complete frames and writes none again.
     assert pelage.export(monkey, "walk", fur=fur, frames=(2, 4), format=fmt, out=str(py_dir),
                          resume=True) == []
+
+
+@pytest.mark.skipif(render is None, reason="built without the renderer (PELAGE_BUILD_VIEWER)")
+def test_render_background_colour_and_transparent(monkey, cli, tmp_path):
+    from PIL import Image
+
+    fur = monkey.fur(hairs=4000)
+    rgba = render(monkey, "walk", fur=fur, frame=2, size=(160, 90), background="transparent")
+    assert rgba.shape == (90, 160, 4)
+    assert rgba[0, 0, 3] == 0 and rgba[45, 80, 3] == 255
+    cli("render", "--clip", "walk", "--hairs", 4000, "--frames", 2, "--size", "160x90",
+        "--background", "transparent", "--out", tmp_path)
+    png = np.asarray(Image.open(tmp_path / "frame_00002.png"))
+    np.testing.assert_array_equal(rgba, png)
+    green = render(monkey, "walk", fur=fur, frame=2, size=(160, 90), background=(0.0, 1.0, 0.0))
+    np.testing.assert_array_equal(green[0, 0], [0, 255, 0])
+    with pytest.raises(ValueError, match="background"):
+        render(monkey, "walk", fur=fur, size=(32, 32), background="clear")

@@ -342,9 +342,7 @@ void checkOptions(const Model& model, const AnalysisOptions& o) {
     fieldError("dynamics", "on needs a clip: the rest pose does not move");
   if (!(o.clock.fps >= 1.0 && o.clock.fps <= 1000.0))
     fieldError("fps", o.clock.fps, " is out of range [1, 1000]");
-  if (o.firstFrame < 0 || o.lastFrame < o.firstFrame || o.lastFrame > 10000000)
-    fieldError("frames", o.firstFrame, ":", o.lastFrame,
-               " is not a range A:B with 0 <= A <= B <= 10000000");
+  validateFrameRange(o.frames);
   if (!(o.holdSeconds >= 0.0 && o.holdSeconds <= 1000.0))
     fieldError("hold", o.holdSeconds, " is out of range [0, 1000] seconds");
   if (!(o.settleTolerance > 0.0 && o.settleTolerance < 1.0))
@@ -352,11 +350,19 @@ void checkOptions(const Model& model, const AnalysisOptions& o) {
   if (o.dynamics) fur::validateDynamicsParams(o.dynamicsParams, "dynamics");
 }
 
-std::string number(double v) {
-  if (std::isnan(v)) return "nan";
+// A header label's number ("stiffness=0.2"): six significant digits.
+std::string label(double v) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.6g", v);
   return buf;
+}
+
+// A value as the shortest decimal that reads back as the same double.
+std::string number(double v) {
+  if (std::isnan(v)) return "nan";
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, r.ptr);
 }
 
 std::string columnName(const std::string& name) {
@@ -366,20 +372,43 @@ std::string columnName(const std::string& name) {
   return s;
 }
 
-void appendEndHeader(std::string& h, const std::string& p, const std::vector<std::string>& groups) {
-  for (const char* c : {"droop_mean_deg", "droop_std_deg", "gravity_angle_deg", "tip_height_mm",
-                        "droop_body_up_mm", "tip_speed_m_per_s"})
-    h += "," + p + c;
-  for (const std::string& g : groups) h += "," + p + "droop_mean_deg[" + columnName(g) + "]";
-  for (const std::string& g : groups) h += "," + p + "droop_std_deg[" + columnName(g) + "]";
+// Appends a column named `name` whose row i is value(frames[i]).
+template <typename F>
+void addColumn(AnalysisTable& t, const std::string& name, const std::vector<FrameAnalysis>& frames,
+               F value) {
+  t.names.push_back(name);
+  std::vector<double>& c = t.columns.emplace_back();
+  c.reserve(frames.size());
+  for (const FrameAnalysis& f : frames) c.push_back(value(f));
 }
 
-void appendEndRow(std::string& row, const EndStats& e) {
-  for (double v : {e.all.droopMeanDeg, e.all.droopStdDeg, e.gravityAngleDeg, e.tipHeightMm,
-                   e.droopBodyUpMm, e.tipSpeed})
-    row += "," + number(v);
-  for (const DroopStats& g : e.groups) row += "," + number(g.droopMeanDeg);
-  for (const DroopStats& g : e.groups) row += "," + number(g.droopStdDeg);
+// The end-point columns of one model (quasi-static or dynamic), prefixed `p`.
+void addEndColumns(AnalysisTable& t, const std::string& p, const std::vector<std::string>& groups,
+                   const std::vector<FrameAnalysis>& frames, EndStats FrameAnalysis::*end) {
+  const std::pair<const char*, double EndStats::*> scalars[] = {
+      {"gravity_angle_deg", &EndStats::gravityAngleDeg},
+      {"tip_height_mm", &EndStats::tipHeightMm},
+      {"droop_body_up_mm", &EndStats::droopBodyUpMm},
+      {"tip_speed_m_per_s", &EndStats::tipSpeed}};
+  addColumn(t, p + "droop_mean_deg", frames,
+            [&](const FrameAnalysis& f) { return (f.*end).all.droopMeanDeg; });
+  addColumn(t, p + "droop_std_deg", frames,
+            [&](const FrameAnalysis& f) { return (f.*end).all.droopStdDeg; });
+  for (const auto& [name, member] : scalars)
+    addColumn(t, p + name, frames, [&](const FrameAnalysis& f) { return (f.*end).*member; });
+  for (std::size_t g = 0; g < groups.size(); ++g)
+    addColumn(t, p + "droop_mean_deg[" + columnName(groups[g]) + "]", frames,
+              [&](const FrameAnalysis& f) { return (f.*end).groups[g].droopMeanDeg; });
+  for (std::size_t g = 0; g < groups.size(); ++g)
+    addColumn(t, p + "droop_std_deg[" + columnName(groups[g]) + "]", frames,
+              [&](const FrameAnalysis& f) { return (f.*end).groups[g].droopStdDeg; });
+}
+
+// The columns every table starts with: frame, time_s, held.
+void addFrameColumns(AnalysisTable& t, const std::vector<FrameAnalysis>& frames) {
+  addColumn(t, "frame", frames, [](const FrameAnalysis& f) { return double(f.frame); });
+  addColumn(t, "time_s", frames, [](const FrameAnalysis& f) { return f.seconds; });
+  addColumn(t, "held", frames, [](const FrameAnalysis& f) { return f.held ? 1.0 : 0.0; });
 }
 
 double parseNumber(const std::string& text, const std::string& field, const std::string& spec) {
@@ -393,6 +422,12 @@ double parseNumber(const std::string& text, const std::string& field, const std:
 }
 
 }  // namespace
+
+AnalysisGroups parseAnalysisGroups(const std::string& name, const std::string& field) {
+  if (name == "region") return AnalysisGroups::Region;
+  if (name == "segment") return AnalysisGroups::Segment;
+  fieldError(field, "'", name, "' (accepted: region, segment)");
+}
 
 AnalysisResult analyzeClip(const Model& model, const Fur& fur, const AnalysisOptions& options) {
   checkOptions(model, options);
@@ -415,93 +450,152 @@ AnalysisResult analyzeClip(const Model& model, const Fur& fur, const AnalysisOpt
   result.orientationSegment =
       model.body.segments[static_cast<std::size_t>(run.orientationSegment)].name;
   const auto holdFrames = static_cast<int>(std::lround(options.holdSeconds * options.clock.fps));
-  for (int f = options.firstFrame; f <= options.lastFrame; ++f) {
+  const FrameRange& range = options.frames;
+  for (int f = range.first; f <= range.last; ++f) {
     playback.poseFrame(f);
     if (options.dynamics) playback.stepDynamics();
-    result.frames.push_back(
-        run.measure(f, false, f == options.lastFrame && holdFrames > 0 ? 1 : 0));
+    FrameAnalysis a = run.measure(f, false, f == range.last && holdFrames > 0 ? 1 : 0);
+    if (range.contains(f)) result.frames.push_back(std::move(a));
   }
   for (int k = 1; k <= holdFrames; ++k) {  // the last pose, still: the springs go on
     playback.holdFrame();
     if (options.dynamics) playback.stepDynamics();
-    result.frames.push_back(run.measure(options.lastFrame + k, true, 2));
+    result.frames.push_back(run.measure(range.last + k, true, 2));
   }
   result.settling = settle(result, options, run.meanOvercoatLength());
   return result;
 }
 
-std::string analysisCsv(const AnalysisResult& r) {
-  std::string out = "frame,time_s,held,body_up_x,body_up_y,body_up_z,pitch_deg,roll_deg,tilt_deg";
-  appendEndHeader(out, "qs_", r.groupNames);
+AnalysisTable analysisTable(const AnalysisResult& r) {
+  AnalysisTable t;
+  const std::vector<FrameAnalysis>& frames = r.frames;
+  addFrameColumns(t, frames);
+  addColumn(t, "body_up_x", frames, [](const FrameAnalysis& f) { return f.bodyUp.x(); });
+  addColumn(t, "body_up_y", frames, [](const FrameAnalysis& f) { return f.bodyUp.y(); });
+  addColumn(t, "body_up_z", frames, [](const FrameAnalysis& f) { return f.bodyUp.z(); });
+  addColumn(t, "pitch_deg", frames, [](const FrameAnalysis& f) { return f.pitchDeg; });
+  addColumn(t, "roll_deg", frames, [](const FrameAnalysis& f) { return f.rollDeg; });
+  addColumn(t, "tilt_deg", frames, [](const FrameAnalysis& f) { return f.tiltDeg; });
+  addEndColumns(t, "qs_", r.groupNames, frames, &FrameAnalysis::quasiStatic);
   if (r.dynamics) {
-    appendEndHeader(out, "dyn_", r.groupNames);
-    out += ",lag_deg,dyn_offset_mm,dyn_stop_response_mm";
+    addEndColumns(t, "dyn_", r.groupNames, frames, &FrameAnalysis::dynamic);
+    addColumn(t, "lag_deg", frames, [](const FrameAnalysis& f) { return f.lagDeg; });
+    addColumn(t, "dyn_offset_mm", frames, [](const FrameAnalysis& f) { return f.offsetMm; });
+    addColumn(t, "dyn_stop_response_mm", frames,
+              [](const FrameAnalysis& f) { return f.stopResponseMm; });
   }
+  return t;
+}
+
+std::string tableCsv(const AnalysisTable& t) {
+  PELAGE_CHECK(t.names.size() == t.columns.size(), "table of ", t.names.size(), " names, ",
+               t.columns.size(), " columns");
+  std::string out;
+  for (std::size_t c = 0; c < t.names.size(); ++c) out += (c ? "," : "") + t.names[c];
   out += "\n";
-  for (const FrameAnalysis& f : r.frames) {
-    std::string row =
-        std::to_string(f.frame) + "," + number(f.seconds) + "," + (f.held ? "1" : "0");
-    for (double v : {f.bodyUp.x(), f.bodyUp.y(), f.bodyUp.z(), f.pitchDeg, f.rollDeg, f.tiltDeg})
-      row += "," + number(v);
-    appendEndRow(row, f.quasiStatic);
-    if (r.dynamics) {
-      appendEndRow(row, f.dynamic);
-      row += "," + number(f.lagDeg) + "," + number(f.offsetMm) + "," + number(f.stopResponseMm);
+  for (std::size_t row = 0; row < t.rows(); ++row) {
+    for (std::size_t c = 0; c < t.columns.size(); ++c) {
+      const double v = t.columns[c][row];
+      const bool integer = t.names[c] == "frame" || t.names[c] == "held";
+      out += (c ? "," : "") + (integer ? std::to_string(std::llround(v)) : number(v));
     }
-    out += row + "\n";
+    out += "\n";
   }
   return out;
 }
 
-std::vector<double> SweepSpec::values() const {
+std::string analysisCsv(const AnalysisResult& r) {
+  return tableCsv(analysisTable(r));
+}
+
+namespace {
+
+// The accepted range of each sweep parameter.
+struct SweepParameter {
+  const char* name;
+  double lo, hi;
+  bool openLow;
+};
+constexpr SweepParameter kSweepParameters[] = {
+    {"stiffness", 0.0, 1.0, false}, {"frequency", 0.0, 100.0, true}, {"damping", 0.0, 10.0, false}};
+constexpr const char* kSweepForm =
+    " (expected NAME=A:B:N with NAME stiffness [0, 1], frequency (0, 100] Hz or damping [0, 10], "
+    "N in [1, 100])";
+
+// `count` values from `first` to `last`, evenly spaced.
+std::vector<double> evenly(double first, double last, int count) {
   std::vector<double> v;
   for (int i = 0; i < count; ++i)
-    v.push_back(count == 1 ? from : from + (to - from) * i / (count - 1));
+    v.push_back(count == 1 ? first : first + (last - first) * i / (count - 1));
   return v;
 }
 
-SweepSpec parseSweep(const std::string& text, const std::string& field) {
+SweepSpec checkedSweep(SweepSpec s, const std::string& field, const std::string& text) {
+  const SweepParameter* p = nullptr;
+  for (const SweepParameter& q : kSweepParameters)
+    if (s.parameter == q.name) p = &q;
+  if (!p) fieldError(field, "'", text, "': unknown parameter '", s.parameter, "'", kSweepForm);
+  if (s.list.empty() || s.count() > kMaxSweepValues)
+    fieldError(field, "'", text, "': ", s.count(), " values (accepted: 1 to ", kMaxSweepValues,
+               ")");
+  for (double v : s.list)
+    if (!std::isfinite(v) || v > p->hi || (p->openLow ? v <= p->lo : v < p->lo))
+      fieldError(field, "'", text, "': ", s.parameter, " ", v, " is out of range ",
+                 p->openLow ? "(" : "[", p->lo, ", ", p->hi, "]");
+  return s;
+}
+
+}  // namespace
+
+SweepSpec sweepRange(const std::string& parameter, double first, double last, int count,
+                     const std::string& field) {
+  const std::string text = str(parameter, "=", first, ":", last, ":", count);
+  if (count < 1 || count > kMaxSweepValues)
+    fieldError(field, "'", text, "': N = ", count, " is not a whole number in [1, ",
+               kMaxSweepValues, "]");
   SweepSpec s;
+  s.parameter = parameter;
+  s.list = evenly(first, last, count);
+  return checkedSweep(std::move(s), field, text);
+}
+
+SweepSpec sweepValues(const std::string& parameter, std::vector<double> values,
+                      const std::string& field) {
+  std::string text = parameter + "=[";
+  for (std::size_t i = 0; i < values.size() && i < 8; ++i)
+    text += (i ? ", " : "") + label(values[i]);
+  text += values.size() > 8 ? ", ...]" : "]";
+  SweepSpec s;
+  s.parameter = parameter;
+  s.list = std::move(values);
+  return checkedSweep(std::move(s), field, text);
+}
+
+SweepSpec parseSweep(const std::string& text, const std::string& field) {
   const std::size_t eq = text.find('=');
-  const std::string form =
-      " (expected NAME=A:B:N with NAME stiffness [0, 1], frequency (0, 100] Hz or damping [0, 10], "
-      "N in [1, 100])";
-  if (eq == std::string::npos) fieldError(field, "'", text, "' has no '='", form);
-  s.parameter = text.substr(0, eq);
+  if (eq == std::string::npos) fieldError(field, "'", text, "' has no '='", kSweepForm);
+  const std::string parameter = text.substr(0, eq);
   const std::string rest = text.substr(eq + 1);
   const std::size_t c1 = rest.find(':');
   const std::size_t c2 = c1 == std::string::npos ? std::string::npos : rest.find(':', c1 + 1);
   if (c2 == std::string::npos || rest.find(':', c2 + 1) != std::string::npos)
-    fieldError(field, "'", text, "' is not of the form NAME=A:B:N", form);
-  s.from = parseNumber(rest.substr(0, c1), field, text);
-  s.to = parseNumber(rest.substr(c1 + 1, c2 - c1 - 1), field, text);
+    fieldError(field, "'", text, "' is not of the form NAME=A:B:N", kSweepForm);
+  const double from = parseNumber(rest.substr(0, c1), field, text);
+  const double to = parseNumber(rest.substr(c1 + 1, c2 - c1 - 1), field, text);
   const double n = parseNumber(rest.substr(c2 + 1), field, text);
-  if (!(n >= 1 && n <= 100 && n == std::floor(n)))
-    fieldError(field, "'", text, "': N = ", n, " is not a whole number in [1, 100]");
-  s.count = static_cast<int>(n);
-  double lo = 0.0, hi = 0.0;
-  bool openLow = false;
-  if (s.parameter == "stiffness") {
-    hi = 1.0;
-  } else if (s.parameter == "frequency") {
-    hi = 100.0;
-    openLow = true;
-  } else if (s.parameter == "damping") {
-    hi = 10.0;
-  } else {
-    fieldError(field, "'", text, "': unknown parameter '", s.parameter, "'", form);
-  }
-  for (double v : {s.from, s.to})
-    if (v > hi || (openLow ? v <= lo : v < lo))
-      fieldError(field, "'", text, "': ", s.parameter, " ", v, " is out of range ",
-                 openLow ? "(" : "[", lo, ", ", hi, "]");
-  return s;
+  if (!(n >= 1 && n <= kMaxSweepValues && n == std::floor(n)))
+    fieldError(field, "'", text, "': N = ", n, " is not a whole number in [1, ", kMaxSweepValues,
+               "]");
+  SweepSpec s;
+  s.parameter = parameter;
+  s.list = evenly(from, to, static_cast<int>(n));
+  return checkedSweep(std::move(s), field, text);
 }
 
 SweepResult sweepClip(const Model& model, const Fur& fur, const AnalysisOptions& options,
                       const SweepSpec& spec, int index) {
-  if (index < -1 || index >= spec.count)
-    fieldError("sweep index", index, " is out of range [0, ", spec.count - 1, "] (", spec.count,
+  if (index < -1 || index >= spec.count())
+    fieldError("sweep index", index, " is out of range [0, ", spec.count() - 1, "] (", spec.count(),
                " values)");
   SweepResult out;
   out.spec = spec;
@@ -527,33 +621,48 @@ SweepResult sweepClip(const Model& model, const Fur& fur, const AnalysisOptions&
   return out;
 }
 
+AnalysisTable sweepTable(const SweepResult& sweep) {
+  PELAGE_CHECK(!sweep.runs.empty() && sweep.runs.size() == sweep.values.size(), "sweep of ",
+               sweep.runs.size(), " runs");
+  const std::vector<FrameAnalysis>& frames = sweep.runs.front().frames;
+  AnalysisTable t;
+  addFrameColumns(t, frames);
+  addColumn(t, "pitch_deg", frames, [](const FrameAnalysis& f) { return f.pitchDeg; });
+  addColumn(t, "tilt_deg", frames, [](const FrameAnalysis& f) { return f.tiltDeg; });
+  const std::string prefix = sweep.runs.front().dynamics ? "dyn_" : "qs_";
+  const auto end =
+      sweep.runs.front().dynamics ? &FrameAnalysis::dynamic : &FrameAnalysis::quasiStatic;
+  const std::pair<const char*, bool> blocks[] = {{"droop_mean_deg", true},
+                                                 {"tip_height_mm", false}};
+  for (const auto& [column, droop] : blocks)
+    for (std::size_t v = 0; v < sweep.values.size(); ++v) {
+      const std::vector<FrameAnalysis>& run = sweep.runs[v].frames;
+      PELAGE_CHECK(run.size() == frames.size(), "sweep runs of different lengths");
+      t.names.push_back(prefix + column + "[" + sweep.spec.parameter + "=" +
+                        label(sweep.values[v]) + "]");
+      std::vector<double>& c = t.columns.emplace_back();
+      for (const FrameAnalysis& f : run)
+        c.push_back(droop ? (f.*end).all.droopMeanDeg : (f.*end).tipHeightMm);
+    }
+  return t;
+}
+
 std::string sweepCsv(const SweepResult& sweep) {
-  PELAGE_CHECK(!sweep.runs.empty(), "empty sweep");
-  const AnalysisResult& first = sweep.runs.front();
-  const std::vector<double>& values = sweep.values;
-  std::string out = "frame,time_s,held,pitch_deg,tilt_deg";
-  for (const char* column : {"droop_mean_deg", "tip_height_mm"})
-    for (double v : values)
-      out += std::string(",") + column + "[" + sweep.spec.parameter + "=" + number(v) + "]";
-  out += "\n";
-  for (std::size_t i = 0; i < first.frames.size(); ++i) {
-    const FrameAnalysis& f = first.frames[i];
-    std::string row = std::to_string(f.frame) + "," + number(f.seconds) + "," +
-                      (f.held ? "1" : "0") + "," + number(f.pitchDeg) + "," + number(f.tiltDeg);
-    for (const AnalysisResult& r : sweep.runs) {
-      const FrameAnalysis& g = r.frames[i];
-      row += "," + number(r.dynamics ? g.dynamic.all.droopMeanDeg : g.quasiStatic.all.droopMeanDeg);
-    }
-    for (const AnalysisResult& r : sweep.runs) {
-      const FrameAnalysis& g = r.frames[i];
-      row += "," + number(r.dynamics ? g.dynamic.tipHeightMm : g.quasiStatic.tipHeightMm);
-    }
-    out += row + "\n";
-  }
-  return out;
+  return tableCsv(sweepTable(sweep));
 }
 
 namespace {
+
+// A sweep CSV's first value column: "qs_droop_mean_deg[NAME=V]" or "dyn_droop_mean_deg[NAME=V]".
+bool isSweepDroopColumn(const std::string& h) {
+  return h.rfind("qs_droop_mean_deg[", 0) == 0 || h.rfind("dyn_droop_mean_deg[", 0) == 0;
+}
+
+// The swept parameter of a value column's name ("stiffness" of "qs_droop_mean_deg[stiffness=0.2]").
+std::string sweptName(const std::string& h) {
+  const std::size_t open = h.find('[');
+  return h.substr(open + 1, h.find('=', open) - open - 1);
+}
 
 std::vector<std::string> splitLine(const std::string& line) {
   std::vector<std::string> cells;
@@ -594,8 +703,7 @@ std::string mergeSweepCsv(const std::vector<std::string>& texts,
     const std::vector<std::string>& h = p.rows.front();
     const std::size_t columns = h.size();
     if (columns < kShared + 2 || (columns - kShared) % 2 != 0 ||
-        !std::equal(shared.begin(), shared.end(), h.begin()) ||
-        h[kShared].rfind("droop_mean_deg[", 0) != 0)
+        !std::equal(shared.begin(), shared.end(), h.begin()) || !isSweepDroopColumn(h[kShared]))
       inputError(sources[i], ": not a sweep CSV of `pelage analyze --sweep` (its header is '",
                  texts[i].substr(0, texts[i].find('\n')), "')");
     p.values = (columns - kShared) / 2;
@@ -613,12 +721,16 @@ std::string mergeSweepCsv(const std::vector<std::string>& texts,
           inputError(sources[i], ": row ", r + 1, " (frame ", p.rows[r][0], ") differs from ",
                      sources[0],
                      " in frame, time or body orientation: not the same clip and frames");
-      const std::string parameter = h[kShared].substr(0, h[kShared].find('='));
-      const std::string firstParameter =
-          first.rows[0][kShared].substr(0, first.rows[0][kShared].find('='));
+      const std::string parameter = sweptName(h[kShared]);
+      const std::string firstParameter = sweptName(first.rows[0][kShared]);
+      if (h[kShared].substr(0, h[kShared].find('[')) !=
+          first.rows[0][kShared].substr(0, first.rows[0][kShared].find('[')))
+        inputError(sources[i], ": ", h[kShared].substr(0, h[kShared].find('[')), ", ", sources[0],
+                   " has ", first.rows[0][kShared].substr(0, first.rows[0][kShared].find('[')),
+                   " (parts of one sweep use the same fur model: dynamic or not)");
       if (parameter != firstParameter)
-        inputError(sources[i], ": sweeps ", parameter.substr(15), ", ", sources[0], " sweeps ",
-                   firstParameter.substr(15));
+        inputError(sources[i], ": sweeps ", parameter, ", ", sources[0], " sweeps ",
+                   firstParameter);
     }
     parts.push_back(std::move(p));
   }

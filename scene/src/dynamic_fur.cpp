@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "pelage/util/error.h"
+#include "pelage/util/interrupt.h"
 
 namespace pelage::scene {
 
@@ -17,6 +18,7 @@ void preRollDynamics(const Model& model, const Fur& fur, const fur::DynamicsPara
   PELAGE_CHECK(clock.fps >= 1.0 && clock.fps <= 1000.0, "fps ", clock.fps);
   fur::resetFurDynamics(fur.roots, state);
   for (int f = preRollStart(firstFrame, clock); f < firstFrame; ++f) {
+    checkInterrupt();
     evaluateClipFrame(model, clip, clock.startSeconds + f / clock.fps, scratch);
     stepClipDynamics(model, fur, dynamics, clock, nullptr, state, scratch);
   }

@@ -53,7 +53,8 @@ ExportReport exportClip(const Model& model, const Fur& fur, const ExportOptions&
   validateExportOutput(options);
   PlaybackOptions po = options.playback;
   po.hairSource = HairSource::Cpu;  // export writes the CPU fur model's hairs
-  const int first = options.frames.first, last = options.frames.last;
+  validateFrameRange(options.frames);
+  const int first = options.frames.first, last = options.frames.last, step = options.frames.step;
   const int clip = po.clip;
   ExportReport report;
   std::unique_ptr<UsdaWriter> usd;
@@ -76,12 +77,12 @@ ExportReport exportClip(const Model& model, const Fur& fur, const ExportOptions&
   if (!usd && options.resume)
     report.removedTemporaries = removeStaleTemporaries(options.out, [&](const std::string& name) {
       const int f = frameOfFileName(name, ext);
-      return f >= first && f <= last;
+      return options.frames.contains(f);
     });
   const auto t0 = std::chrono::steady_clock::now();
   ExportProgress p;
-  p.total = last - first + 1;
-  for (int f = first; f <= last; ++f) {
+  p.total = options.frames.count();
+  for (int f = first; f <= last; f += step) {
     ++p.done;
     if (!usd && options.resume &&
         (options.format == ExportFormat::Ply ? fur::isCompleteHairPly(framePath(f))

@@ -15,20 +15,39 @@ bool parseInt(std::string_view s, int& out) {
 }
 }  // namespace
 
-FrameRange parseFrameRange(std::string_view text, std::string_view field) {
-  FrameRange r;
-  const std::size_t colon = text.find(':');
-  const bool parsed =
-      colon == std::string_view::npos
-          ? parseInt(text, r.first) && ((r.last = r.first), true)
-          : parseInt(text.substr(0, colon), r.first) && parseInt(text.substr(colon + 1), r.last);
-  if (!parsed)
-    fieldError(std::string(field), "'", text,
-               "' is not a frame range FIRST:LAST (inclusive frame numbers, e.g. 0:99) or a single "
-               "frame number");
+void validateFrameRange(const FrameRange& r, std::string_view field) {
   if (r.first < 0 || r.last > kMaxFrameNumber || r.first > r.last)
     fieldError(std::string(field), r.first, ":", r.last,
                " is out of range: need 0 <= FIRST <= LAST <= ", kMaxFrameNumber);
+  if (r.step < 1 || r.step > kMaxFrameNumber)
+    fieldError(std::string(field), "step ", r.step, " is out of range [1, ", kMaxFrameNumber, "]");
+  if ((r.last - r.first) % r.step != 0)
+    fieldError(std::string(field), r.first, ":", r.last, ":", r.step, ": the last frame ", r.last,
+               " is not on the step");
+}
+
+FrameRange parseFrameRange(std::string_view text, std::string_view field) {
+  FrameRange r;
+  const std::size_t colon = text.find(':');
+  const std::size_t colon2 =
+      colon == std::string_view::npos ? std::string_view::npos : text.find(':', colon + 1);
+  bool parsed = false;
+  if (colon == std::string_view::npos) {
+    parsed = parseInt(text, r.first);
+    r.last = r.first;
+  } else if (colon2 == std::string_view::npos) {
+    parsed = parseInt(text.substr(0, colon), r.first) && parseInt(text.substr(colon + 1), r.last);
+  } else {
+    parsed = parseInt(text.substr(0, colon), r.first) &&
+             parseInt(text.substr(colon + 1, colon2 - colon - 1), r.last) &&
+             parseInt(text.substr(colon2 + 1), r.step);
+  }
+  if (!parsed)
+    fieldError(std::string(field), "'", text,
+               "' is not a frame range FIRST:LAST (inclusive frame numbers, e.g. 0:99), "
+               "FIRST:LAST:STEP or a single frame number");
+  if (r.step >= 1 && r.last >= r.first) r.last -= (r.last - r.first) % r.step;
+  validateFrameRange(r, field);
   return r;
 }
 

@@ -66,7 +66,7 @@ Model loadModel(const std::string& spec, const LoadOptions& options) {
   const bool gltf = ext == ".gltf" || ext == ".glb";
   const bool mesh = ext == ".obj" || ext == ".ply" || ext == ".off" || ext == ".stl";
   if (!gltf && (options.noFurRegions || !options.segmentDirections.empty()))
-    inputError(spec,
+    inputError(spec.empty() ? std::string(kDefaultModel) : spec,
                ": no-fur regions and segment directions apply to glTF models (.gltf/.glb) "
                "only");
   if (!gltf && !mesh && options.unitScale != 0.0f)

@@ -5,6 +5,7 @@
 
 #include "pelage/animation/clip.h"
 #include "pelage/util/error.h"
+#include "pelage/util/interrupt.h"
 
 namespace pelage::scene {
 
@@ -84,6 +85,7 @@ void Playback::evaluatePose(int frame, FrameState& into) const {
 
 void Playback::poseFrame(int frame) {
   PELAGE_CHECK(frame >= 0, "frame ", frame);
+  checkInterrupt();  // every frame any command or binding plays: a stop asked for ends it here
   if (options_.dynamics && frame != nextFrame_) {
     // Reached out of order (the first frame, or one after skipped frames): pre-roll the springs
     // through the frames before it, exactly as a whole run from frame 0 reaches it.
@@ -101,6 +103,7 @@ void Playback::poseFrame(int frame) {
 }
 
 void Playback::holdFrame() {
+  checkInterrupt();
   clock_.fps = options_.framesPerSecond;
   stepPending_ = true;
   nextFrame_ = -1;

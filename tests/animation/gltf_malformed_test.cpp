@@ -215,6 +215,30 @@ TEST_F(Corpus, MissingBuffers) {
       "buffer");
 }
 
+// A data-URI buffer cut short: the message names the file and quotes a few dozen characters of
+// the URI, not the whole buffer (it was 2 MB for the Horse).
+TEST_F(Corpus, AShortenedBase64BufferGivesAShortMessage) {
+  const std::string path = simple("short.gltf", [](GltfParts& g) {
+    g.buffers[0].resize(g.buffers[0].size() + 300000, 0);
+    g.json["buffers"][0]["byteLength"] = g.buffers[0].size();
+  });
+  std::string text = test::readText(path);
+  const std::size_t at = text.find("base64,");
+  ASSERT_NE(at, std::string::npos);
+  const std::size_t end = text.find('"', at);
+  text.erase(end - 1000, 1000);
+  test::writeText(path, text);
+  try {
+    importGltf(path);
+    ADD_FAILURE() << "a shortened buffer was accepted";
+  } catch (const InputError& e) {
+    const std::string m = e.what();
+    EXPECT_THAT(m, HasSubstr(path));
+    EXPECT_THAT(m, HasSubstr("bytes)"));
+    EXPECT_LT(m.size(), path.size() + 300) << m.substr(0, 500);
+  }
+}
+
 TEST_F(Corpus, UnsupportedRequiredExtensions) {
   expectRejected(simple("draco.gltf",
                         [](GltfParts& g) {

@@ -5,6 +5,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include <filesystem>
+
 #include "test_support.h"
 
 namespace pelage {
@@ -100,8 +102,74 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"UnwritableOutput", "", "skin <tet> --out /proc/pelage/skin.obj", "cannot write"},
         BadCase{"BadPose", R"({"pose": {"nosuch": {}}})", "skin <tet> --pose {} --out <dir>/s.obj",
                 "unknown segment 'nosuch'"},
-        BadCase{"MissingOut", "", "skin", "--out is required"}),
+        BadCase{"MissingOut", "", "skin", "--out is required"},
+        // The command line's rough edges (issue 25), one case each.
+        BadCase{"HairOutNotPly", "", "hair <tet> --hairs 10 --out <dir>/x.obj",
+                "x.obj: hairs are written as binary PLY; the file must end in .ply"},
+        BadCase{"NoFurOnTheMonkeyNamesIt", "", "hair --no-fur face --out <dir>/x.ply",
+                "error: monkey: no-fur regions"},
+        BadCase{"DidYouMean", "", "render --frame 3 --out <dir>/f",
+                "unknown option --frame (did you mean --frames?)"},
+        BadCase{"DidYouMeanHairs", "", "hair --hair 3 --out <dir>/f.ply",
+                "unknown option --hair (did you mean --hairs?)"},
+        BadCase{"CameraTwice", R"({"eye": [1, 1, 1], "target": [0, 0, 0]})",
+                "render <tet> --camera-file {} --camera side --frames 0 --out <dir>/f",
+                "--camera-file and --camera both set the camera"},
+        BadCase{"VideoUnwritable", "", "render <tet> --frames 0 --video /proc/x.mp4 --out <dir>/f",
+                "--video /proc/x.mp4: cannot write"},
+        BadCase{"BackgroundWord", "", "render <tet> --background clear --frames 0 --out <dir>/f",
+                "--background 'clear': give R G B"},
+        BadCase{"BackgroundTwoValues", "",
+                "render <tet> --background 0.5 0.5 --frames 0 --out <dir>/f",
+                "--background takes R G B (3 values) or transparent"},
+        BadCase{"BackgroundRange", "", "render <tet> --background 0 2 0 --frames 0 --out <dir>/f",
+                "--background G = '2' is not a number in [0, 1]"}),
     [](const auto& p) { return p.param.name; });
+
+// A bad model leaves no output folder behind (the folders a failed command made are removed),
+// and an output folder that does not exist is made by every command that writes files.
+TEST(Cli, OutputFoldersAreMadeForAGoodRunAndRemovedAfterABadOne) {
+  test::TempDir dir;
+  test::writeText(dir.file("bad.glb"), "not a glb at all");
+  for (const std::string line :
+       {"render <bad> --frames 0 --out <dir>/r/frames", "export <bad> --format ply --out <dir>/e/x",
+        "export <bad> --format usda --out <dir>/u/x.usda", "hair <bad> --out <dir>/h/x.ply"}) {
+    std::string args = line;
+    args.replace(args.find("<bad>"), 5, dir.file("bad.glb"));
+    args.replace(args.find("<dir>"), 5, dir.path().string());
+    const auto r = runPelage(args);
+    EXPECT_EQ(r.exitCode, 2) << line << "\n" << r.output;
+  }
+  for (const char* made : {"r", "e", "u", "h"})
+    EXPECT_FALSE(std::filesystem::exists(dir.file(made))) << made << " was left behind";
+  test::writeText(dir.file("tet.obj"),
+                  "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n");
+  const auto r = runPelage("hair " + dir.file("tet.obj") + " --hairs 20 --out " +
+                           dir.file("new/sub/x.ply") + " --quiet");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_TRUE(std::filesystem::exists(dir.file("new/sub/x.ply")));
+}
+
+// The model-size warning is a warning: printed once, and --quiet keeps it.
+TEST(Cli, TheImplausibleSizeWarningIsPrintedOnceQuietOrNot) {
+  test::TempDir dir;
+  // A 10 m tetrahedron.
+  test::writeText(dir.file("big.obj"),
+                  "v 0 0 0\nv 10 0 0\nv 0 10 0\nv 0 0 10\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n");
+  for (const std::string line : {"info <big>", "hair <big> --hairs 20 --out <dir>/x.ply --quiet",
+                                 "hair <big> --hairs 20 --out <dir>/y.ply"}) {
+    std::string args = line;
+    args.replace(args.find("<big>"), 5, dir.file("big.obj"));
+    if (const auto p = args.find("<dir>"); p != std::string::npos)
+      args.replace(p, 5, dir.path().string());
+    const auto r = runPelage(args);
+    ASSERT_EQ(r.exitCode, 0) << line << "\n" << r.output;
+    const auto first = r.output.find("implausible");
+    EXPECT_NE(first, std::string::npos) << line << "\n" << r.output;
+    EXPECT_EQ(r.output.find("implausible", first + 1), std::string::npos) << line << "\n"
+                                                                          << r.output;
+  }
+}
 
 }  // namespace
 }  // namespace pelage

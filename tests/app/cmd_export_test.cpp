@@ -293,3 +293,29 @@ TEST_F(ExportCommand, ResumeCompletesPerFrameExportsToTheSameBytes) {
 
 }  // namespace
 }  // namespace pelage::test
+
+namespace pelage::test {
+namespace {
+
+// Frames past the clip's end are played (the clip loops), with one note saying so; --quiet
+// drops the note.
+TEST_F(ExportCommand, FramesPastTheClipsEndGetANote) {
+  const RunResult r = runPelage("export " + base() +
+                                " --format ply --fps 12 --frames 10:14 --out " + dir.file("f"));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const std::string note =
+      "pelage: note: frames 13..14 lie past the end of clip 'wag' (1 s at 12 fps): they show it "
+      "looped";
+  const auto at = r.output.find(note);
+  EXPECT_NE(at, std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("pelage: note", at + 1), std::string::npos) << r.output;
+  const RunResult inside = runPelage("export " + base() + " --format ply --fps 12 --frames 0:12 " +
+                                     "--out " + dir.file("g"));
+  EXPECT_EQ(inside.output.find("note"), std::string::npos) << inside.output;
+  const RunResult quiet = runPelage("export " + base() + " --format ply --fps 12 --frames 10:14 " +
+                                    "--quiet --out " + dir.file("h"));
+  EXPECT_EQ(quiet.output.find("note"), std::string::npos) << quiet.output;
+}
+
+}  // namespace
+}  // namespace pelage::test

@@ -1,11 +1,8 @@
 // `pelage render` as a user and a render farm run it: two processes on disjoint frame ranges equal
 // one run byte for byte; a killed run leaves only complete frames and --resume finishes it; video;
 // clear errors (exit 2) for bad input.
-#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
-#include <spawn.h>
-#include <sys/wait.h>
 
 #include <algorithm>
 #include <chrono>
@@ -15,8 +12,6 @@
 #include "pelage/viewer/render_sequence.h"
 #include "test_support.h"
 #include "viewer/render_test_support.h"
-
-extern char** environ;
 
 namespace pelage::test {
 namespace {
@@ -42,29 +37,6 @@ class RenderCommand : public ::testing::Test {
   }
   TempDir dir;
 };
-
-// Starts `pelage <args...>` without a shell; returns its pid.
-pid_t spawnPelage(const std::vector<std::string>& args, const std::string& log) {
-  std::vector<std::string> all = {std::string(PELAGE_BIN_DIR) + "/pelage"};
-  all.insert(all.end(), args.begin(), args.end());
-  std::vector<char*> argv;
-  for (std::string& a : all) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t fa;
-  posix_spawn_file_actions_init(&fa);
-  posix_spawn_file_actions_addopen(&fa, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_adddup2(&fa, 1, 2);
-  pid_t pid = -1;
-  EXPECT_EQ(posix_spawn(&pid, argv[0], &fa, nullptr, argv.data(), environ), 0);
-  posix_spawn_file_actions_destroy(&fa);
-  return pid;
-}
-
-int waitExit(pid_t pid) {
-  int status = 0;
-  ::waitpid(pid, &status, 0);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-}
 
 std::vector<std::string> split(const std::string& s) {
   std::vector<std::string> out;

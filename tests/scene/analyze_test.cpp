@@ -78,8 +78,7 @@ const Fur& ballFur() {
 AnalysisOptions options(int clip, int last, bool dynamics) {
   AnalysisOptions o;
   o.clip = clip;
-  o.firstFrame = 0;
-  o.lastFrame = last;
+  o.frames = {0, last};
   o.dynamics = dynamics;
   o.dynamicsParams.coats = {fur::CoatDynamics{3.0f, 0.3f}, fur::CoatDynamics{3.0f, 0.3f}};
   return o;
@@ -135,15 +134,54 @@ TEST(Analyze, StifferCoatsDroopLessMonotonically) {
       EXPECT_GT(s.runs[i].frames[f].quasiStatic.tipHeightMm,
                 s.runs[i - 1].frames[f].quasiStatic.tipHeightMm);
     }
-  // Its CSV: a column per value.
+  // Its CSV: a column per value, named as the unswept columns are (qs_: quasi-static).
   const std::string csv = sweepCsv(s);
-  EXPECT_EQ(
-      csv.substr(0, csv.find('\n')),
-      "frame,time_s,held,pitch_deg,tilt_deg,droop_mean_deg[stiffness=0.1],droop_mean_deg[stiffness="
-      "0.3],"
-      "droop_mean_deg[stiffness=0.5],droop_mean_deg[stiffness=0.7],droop_mean_deg[stiffness=0.9],"
-      "tip_height_mm[stiffness=0.1],tip_height_mm[stiffness=0.3],tip_height_mm[stiffness=0.5],"
-      "tip_height_mm[stiffness=0.7],tip_height_mm[stiffness=0.9]");
+  EXPECT_EQ(csv.substr(0, csv.find('\n')),
+            "frame,time_s,held,pitch_deg,tilt_deg,qs_droop_mean_deg[stiffness=0.1],"
+            "qs_droop_mean_deg[stiffness=0.3],qs_droop_mean_deg[stiffness=0.5],"
+            "qs_droop_mean_deg[stiffness=0.7],qs_droop_mean_deg[stiffness=0.9],"
+            "qs_tip_height_mm[stiffness=0.1],qs_tip_height_mm[stiffness=0.3],"
+            "qs_tip_height_mm[stiffness=0.5],qs_tip_height_mm[stiffness=0.7],"
+            "qs_tip_height_mm[stiffness=0.9]");
+  // The table holds the values themselves; the CSV writes each as the shortest decimal that reads
+  // back as the same double (not 6 digits).
+  const AnalysisTable t = sweepTable(s);
+  ASSERT_EQ(t.names.size(), 15u);
+  EXPECT_EQ(t.rows(), s.runs[0].frames.size());
+  EXPECT_EQ(t.columns[7][2], s.runs[2].frames[2].quasiStatic.all.droopMeanDeg);
+  const std::string row =
+      csv.substr(csv.find('\n') + 1, csv.find('\n', csv.find('\n') + 1) - csv.find('\n') - 1);
+  std::vector<std::string> cells;
+  for (std::size_t at = 0, comma; at <= row.size(); at = comma + 1) {
+    comma = row.find(',', at);
+    if (comma == std::string::npos) comma = row.size();
+    cells.push_back(row.substr(at, comma - at));
+  }
+  ASSERT_EQ(cells.size(), 15u);
+  for (std::size_t c = 3; c < cells.size(); ++c)
+    EXPECT_EQ(std::stod(cells[c]), t.columns[c][0]) << t.names[c] << " = " << cells[c];
+  // An explicit list of values, in the given order; bad ones name the field.
+  const SweepSpec listed = sweepValues("stiffness", {0.8, 0.2});
+  EXPECT_EQ(listed.values(), (std::vector<double>{0.8, 0.2}));
+  EXPECT_THROW(sweepValues("stiffness", {}), InputError);
+  EXPECT_THROW(sweepValues("stiffness", {0.5, 1.5}), InputError);
+  EXPECT_THROW(sweepRange("damping", 0.0, 1.0, 0), InputError);
+  EXPECT_EQ(sweepRange("damping", 0.0, 1.0, 3).values(), (std::vector<double>{0.0, 0.5, 1.0}));
+}
+
+TEST(Analyze, AFrameStepReportsTheFramesOfAWholeRun) {
+  const AnalysisResult whole = analyzeClip(ball(), ballFur(), options(1, 12, true));
+  AnalysisOptions stepped = options(1, 12, true);
+  stepped.frames.step = 4;
+  const AnalysisResult every4 = analyzeClip(ball(), ballFur(), stepped);
+  ASSERT_EQ(every4.frames.size(), 4u);
+  for (std::size_t i = 0; i < every4.frames.size(); ++i) {
+    const FrameAnalysis& a = every4.frames[i];
+    const FrameAnalysis& b = whole.frames[4 * i];
+    EXPECT_EQ(a.frame, b.frame);
+    EXPECT_EQ(a.dynamic.all.droopMeanDeg, b.dynamic.all.droopMeanDeg);
+    EXPECT_EQ(a.dynamic.tipSpeed, b.dynamic.tipSpeed);
+  }
 }
 
 // The jolt's answer from the spring alone: the target jumps by dT within one frame (moving at
@@ -282,7 +320,7 @@ TEST(Analyze, BitIdenticalWhateverTheThreadCount) {
 TEST(Analyze, AFrameRangePreRollsFromTheClipStartAndMatchesTheWholeRun) {
   const AnalysisResult whole = analyzeClip(ball(), ballFur(), options(1, 20, true));
   AnalysisOptions part = options(1, 20, true);
-  part.firstFrame = 12;
+  part.frames.first = 12;
   const AnalysisResult shard = analyzeClip(ball(), ballFur(), part);
   ASSERT_EQ(shard.frames.size(), 9u);
   for (std::size_t i = 0; i < shard.frames.size(); ++i) {
@@ -307,7 +345,7 @@ TEST(Analyze, AFrameRangePreRollsFromTheClipStartAndMatchesTheWholeRun) {
 
 TEST(Analyze, BadRangesAndSweepsAreInputErrors) {
   AnalysisOptions o = options(0, 5, false);
-  o.firstFrame = 6;
+  o.frames.first = 6;
   EXPECT_THROW(analyzeClip(ball(), ballFur(), o), InputError);
   o = options(0, 5, false);
   o.holdSeconds = -1.0;

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <thread>
 
@@ -14,6 +15,7 @@
 #include "pelage/animation/clip.h"
 #include "pelage/fur/preset.h"
 #include "pelage/util/color.h"
+#include "pelage/viewer/render_sequence.h"
 #include "test_support.h"
 
 namespace pelage::viewer::detail {
@@ -78,6 +80,7 @@ TEST_F(ViewerSessionTest, EditsApplyOnTheNextFrame) {
   // The skin colour: the model's, then the panel's (typed sRGB, drawn linear).
   EXPECT_TRUE(s.drawList().skin.material.diffuse.isApprox(srgbToLinear(s.model().skin.color)));
   s.skinColor = Eigen::Vector3f(0.1f, 0.2f, 0.3f);
+  s.ownSkinColor = true;  // as the panel's colour edit does
   s.frame(0.0, 96, 64);
   EXPECT_TRUE(
       s.drawList().skin.material.diffuse.isApprox(srgbToLinear(Eigen::Vector3f(0.1f, 0.2f, 0.3f))));
@@ -252,6 +255,63 @@ TEST_F(ViewerSessionTest, CameraControlsAndPresets) {
   EXPECT_LT(s.orbit.distanceMeters, o.distanceMeters * 0.5f);
   s.applyPreset(scene::CameraPreset::Follow);
   EXPECT_TRUE(s.follow);
+}
+
+}  // namespace
+}  // namespace pelage::viewer::detail
+
+namespace pelage::viewer::detail {
+namespace {
+
+// Mean absolute difference per channel (8-bit codes) between two images of one size.
+double meanDifference(const Image& a, const Image& b) {
+  double sum = 0.0;
+  for (std::size_t i = 0; i < a.rgba.size(); ++i)
+    if (i % 4 != 3) sum += std::abs(int(a.rgba[i]) - int(b.rgba[i]));
+  return sum / (static_cast<double>(a.rgba.size()) * 0.75);
+}
+
+// What the viewer shows is what `pelage render` writes: the Fox (orange, white chest, from its
+// texture) through the session and through the sequence renderer, same frame and camera.
+TEST_F(ViewerSessionTest, TheViewerDrawsTheFrameRenderDraws) {
+  const std::string file = std::string(PELAGE_SHARED_MODELS_DIR) + "/Fox/Fox.glb";
+  if (!std::filesystem::exists(file)) GTEST_SKIP() << "shared models absent: " << file;
+  const scene::Model fox = scene::loadModel(file);
+  ViewerOptions vo;
+  vo.fur = fur::loadFurPreset("default");
+  vo.fur.hairs = 30000;
+  vo.width = 320;
+  vo.height = 200;
+  vo.samples = 0;
+  vo.camera = scene::CameraPreset::Side;
+  ViewerSession session(vo, fox);
+  session.frame(0.0, vo.width, vo.height);
+  const Image viewed = session.renderer().readPixels();
+
+  const scene::Fur fur = scene::growFur(fox, vo.fur, "test");
+  SequenceOptions so;
+  so.playback.clip = 0;
+  so.playback.hairSource = vo.hairSource;
+  so.frames = {0, 0};
+  so.width = vo.width;
+  so.height = vo.height;
+  so.samples = 0;
+  so.outDir = ".";
+  so.camera.preset = scene::CameraPreset::Side;
+  SequenceRenderer sequence(fox, fur, so);
+  Image rendered;
+  sequence.render(0, rendered);
+  const double same = meanDifference(viewed, rendered);
+  EXPECT_LT(same, 0.5) << "the viewer's frame differs from render's";
+
+  // The viewer's old skin (the model's one base colour instead of its texture) is visibly
+  // different: the comparison can tell.
+  session.ownSkinColor = true;
+  session.frame(0.0, vo.width, vo.height);
+  const double old = meanDifference(session.renderer().readPixels(), rendered);
+  EXPECT_GT(old, 4.0 * std::max(same, 0.25)) << "same " << same << ", old " << old;
+  std::printf("viewer vs render, Fox: mean difference %.3f codes (with the old skin: %.2f)\n", same,
+              old);
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 #include <mutex>
 
 #include "pelage/util/error.h"
+#include "temporaries.h"
 
 namespace pelage {
 namespace fs = std::filesystem;
@@ -37,11 +38,8 @@ struct Slot {
 Slot gSlots[kMaxTemporaries];
 std::mutex gSlotMutex;  // registration only (never taken in the handler)
 
-extern "C" void removeTemporariesAndDie(int sig) {
-  for (Slot& s : gSlots)
-    if (s.used.load(std::memory_order_acquire)) ::unlink(s.path);
-  ::signal(sig, SIG_DFL);
-  ::raise(sig);
+extern "C" void onFatalSignal(int sig) {
+  detail::removeTemporariesAndDie(sig);
 }
 
 void installHandlers() {
@@ -51,7 +49,7 @@ void installHandlers() {
       ::sigaction(sig, nullptr, &old);
       if (old.sa_handler != SIG_DFL) continue;  // the program handles (or ignores) it itself
       struct sigaction sa {};
-      sa.sa_handler = removeTemporariesAndDie;
+      sa.sa_handler = onFatalSignal;
       sigemptyset(&sa.sa_mask);
       ::sigaction(sig, &sa, nullptr);
     }
@@ -64,6 +62,23 @@ bool processRuns(long pid) {
   return pid > 0 && (::kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM);
 }
 }  // namespace
+
+void detail::unlinkRegisteredTemporaries() {
+  for (Slot& s : gSlots)
+    if (s.used.load(std::memory_order_acquire)) ::unlink(s.path);
+}
+
+void detail::removeTemporariesAndDie(int sig) {
+  unlinkRegisteredTemporaries();
+  ::signal(sig, SIG_DFL);
+  ::raise(sig);
+  // Inside a handler the signal is blocked: unblock it, and its default action ends the process.
+  sigset_t set;
+  sigemptyset(&set);
+  sigaddset(&set, sig);
+  ::sigprocmask(SIG_UNBLOCK, &set, nullptr);
+  ::_exit(128 + sig);
+}
 
 void registerTemporary(const std::string& path) {
   if (path.size() + 1 > kPathBytes) return;

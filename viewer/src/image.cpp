@@ -2,14 +2,38 @@
 
 #include <stb_image_write.h>
 
+#include <algorithm>
 #include <cstring>
 #include <fstream>
 
 #include "pelage/util/atomic_file.h"
+#include "pelage/util/color.h"
 #include "pelage/util/error.h"
 #include "pelage/util/image.h"
 
 namespace pelage::viewer {
+
+void makeOpaque(Image& image) {
+  for (std::size_t i = 3; i < image.rgba.size(); i += 4) image.rgba[i] = 255;
+}
+
+void unblendBackground(Image& image, const Eigen::Vector3f& background) {
+  const float* toLinear = srgb8ToLinearTable();
+  for (std::size_t i = 0; i + 3 < image.rgba.size(); i += 4) {
+    std::uint8_t* p = image.rgba.data() + i;
+    if (p[3] == 255) continue;
+    if (p[3] == 0) {
+      p[0] = p[1] = p[2] = 0;
+      continue;
+    }
+    const float a = static_cast<float>(p[3]) / 255.0f;
+    for (int c = 0; c < 3; ++c) {
+      const float drawn = toLinear[p[c]];
+      const float straight = (drawn - (1.0f - a) * background[c]) / a;
+      p[c] = linearToSrgb8(std::clamp(straight, 0.0f, 1.0f));
+    }
+  }
+}
 
 std::vector<std::uint8_t> encodePng(const Image& image) {
   PELAGE_CHECK(image.width > 0 && image.height > 0 &&

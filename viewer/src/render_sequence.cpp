@@ -9,6 +9,7 @@
 #include "encoder_pool.h"
 #include "pelage/util/atomic_file.h"
 #include "pelage/util/error.h"
+#include "pelage/util/interrupt.h"
 #include "pelage/util/parallel.h"
 #include "pelage/viewer/video_encoder.h"
 
@@ -38,10 +39,7 @@ void validateSequenceOptions(const SequenceOptions& o) {
     fieldError("size", o.width, "x", o.height, " is out of range [16, 16384] per side");
   if (!(o.playback.framesPerSecond >= 1.0 && o.playback.framesPerSecond <= 1000.0))
     fieldError("fps", o.playback.framesPerSecond, " is out of range [1, 1000]");
-  if (o.frames.first < 0 || o.frames.first > o.frames.last ||
-      o.frames.last > scene::kMaxFrameNumber)
-    fieldError("frames", o.frames.first, ":", o.frames.last,
-               " is out of range: need 0 <= FIRST <= LAST <= ", scene::kMaxFrameNumber);
+  scene::validateFrameRange(o.frames);
   if (o.samples < -1 || o.samples > 64)
     fieldError("samples", o.samples, " is out of range [-1, 64]");
   if (o.encoderThreads < 0 || o.encoderThreads > 256)
@@ -114,7 +112,8 @@ RenderStats SequenceRenderer::render(int frame, Image& out) {
       m.playback.sequenceFrame(frame, m.options.camera, m.options.width, m.options.height,
                                m.light(), m.options.look, skin ? &*skin : nullptr);
   const RenderStats stats = m.renderer.render(list);
-  m.renderer.readPixels(out);
+  m.renderer.readPixels(
+      out, m.options.transparentBackground ? FrameAlpha::Straight : FrameAlpha::Opaque);
   return stats;
 }
 
@@ -131,7 +130,7 @@ SequenceReport renderSequence(const scene::Model& model, const scene::Fur& fur,
     report.removedTemporaries =
         removeStaleTemporaries(options.outDir, [&](const std::string& name) {
           const int f = scene::frameOfFileName(name, ".png");
-          return f >= options.frames.first && f <= options.frames.last;
+          return options.frames.contains(f);
         });
 
   // Which frames are already complete (--resume).
@@ -142,7 +141,7 @@ SequenceReport renderSequence(const scene::Model& model, const scene::Fur& fur,
   };
   if (options.resume)
     for (int i = 0; i < total; ++i)
-      if (isCompletePng(framePath(options.frames.first + i))) {
+      if (isCompletePng(framePath(options.frames.at(i)))) {
         done[static_cast<std::size_t>(i)] = 1;
         ++report.skipped;
       }
@@ -151,6 +150,7 @@ SequenceReport renderSequence(const scene::Model& model, const scene::Fur& fur,
   if (!options.video.empty())
     video = std::make_unique<VideoEncoder>(options.video, options.width, options.height,
                                            options.playback.framesPerSecond);
+  if (video) report.removedTemporaries += video->removedTemporaries();
 
   SequenceRenderer sequence(model, fur, options);
   const int toRender = total - report.skipped;
@@ -183,7 +183,8 @@ SequenceReport renderSequence(const scene::Model& model, const scene::Fur& fur,
   EncoderPool pool(threads, options.width, options.height,
                    writer ? writer : FileWriter(defaultWrite), onWritten);
   for (int i = 0; i < total; ++i) {
-    const int frame = options.frames.first + i;
+    const int frame = options.frames.at(i);
+    checkInterrupt();
     if (done[static_cast<std::size_t>(i)]) {
       if (video) {
         const Image img = readPng(framePath(frame));

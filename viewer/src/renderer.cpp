@@ -96,6 +96,7 @@ struct Renderer::Impl {
   RendererOptions options;
   int samples = 0;
   int width = 0, height = 0;
+  Eigen::Vector3f background = scene::kDefaultBackground;  // the last frame's (linear)
 
   Program skinProgram, skinTexturedProgram, hairProgram, strandProgram, strandOitProgram,
       compositeProgram, depthProgram, opacityProgram, opacityBlurProgram;
@@ -696,8 +697,11 @@ struct Renderer::Impl {
     // The background's sRGB code, written as it is (whether a driver encodes clear colours under
     // GL_FRAMEBUFFER_SRGB varies); everything drawn after is encoded by the framebuffer.
     glDisable(GL_FRAMEBUFFER_SRGB);
+    // Alpha 0: every surface drawn writes 1, the strands' resolve the coverage of what they cover
+    // (composite over), so the alpha channel holds each pixel's coverage (readPixels).
     glClearColor(linearToSrgb(list.background.x()), linearToSrgb(list.background.y()),
-                 linearToSrgb(list.background.z()), 1.0f);
+                 linearToSrgb(list.background.z()), 0.0f);
+    background = list.background;
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     glEnable(GL_FRAMEBUFFER_SRGB);
 
@@ -753,7 +757,9 @@ struct Renderer::Impl {
         if (isTransparent(f)) drawFurItem(f, strandOitProgram.get(), list, light, bias);
       glBindFramebuffer(GL_FRAMEBUFFER, resolveFbo.get());
       glDisable(GL_DEPTH_TEST);
-      glBlendFunc(GL_ONE_MINUS_SRC_ALPHA, GL_SRC_ALPHA);
+      // Colour: the strands' mean over what lies behind (c a + dst (1 - a)); alpha: coverage
+      // composited over (a + dst_a (1 - a)), a = 1 - revealage.
+      glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
       glBindTextureUnit(3, oitAccum.get());
       glBindTextureUnit(4, oitReveal.get());
       glUseProgram(compositeProgram.get());
@@ -781,7 +787,7 @@ RenderStats Renderer::render(const scene::DrawList& list) {
   return impl_->render(list);
 }
 
-void Renderer::readPixels(Image& out) {
+void Renderer::readPixels(Image& out, FrameAlpha alpha) {
   PELAGE_CHECK(impl_->width > 0, "readPixels before render");
   const int w = impl_->width, h = impl_->height;
   out.width = w;
@@ -799,11 +805,15 @@ void Renderer::readPixels(Image& out) {
         out.rgba.begin() + static_cast<std::ptrdiff_t>(row * static_cast<std::size_t>(y)),
         out.rgba.begin() + static_cast<std::ptrdiff_t>(row * static_cast<std::size_t>(y + 1)),
         out.rgba.begin() + static_cast<std::ptrdiff_t>(row * static_cast<std::size_t>(h - 1 - y)));
+  if (alpha == FrameAlpha::Opaque)
+    makeOpaque(out);
+  else
+    unblendBackground(out, impl_->background);
 }
 
-Image Renderer::readPixels() {
+Image Renderer::readPixels(FrameAlpha alpha) {
   Image img;
-  readPixels(img);
+  readPixels(img, alpha);
   return img;
 }
 

@@ -18,6 +18,7 @@
 #include <fstream>
 #include <string_view>
 
+#include "pelage/util/atomic_file.h"
 #include "pelage/util/error.h"
 
 extern char** environ;
@@ -54,6 +55,7 @@ std::string tailOf(const std::string& path, std::size_t bytes = 1500) {
   return s;
 }
 std::atomic<unsigned> videoCounter{0};
+constexpr const char* kFfmpegLogName = "pelage-ffmpeg.log";
 }  // namespace
 
 VideoEncoder::VideoEncoder(const std::string& path, int width, int height, double fps)
@@ -71,9 +73,29 @@ VideoEncoder::VideoEncoder(const std::string& path, int width, int height, doubl
     fieldError("video", path, ": the directory ", dir.string(), " does not exist");
   if (::access(dir.c_str(), W_OK) != 0)
     fieldError("video", path, ": cannot write (permission denied)");
+  // The temporary video and ffmpeg's log are named as util/atomic_file.h names temporaries
+  // (".FINAL.tmp-PID-N"): the signal handlers remove them, and leftovers of a killed run (SIGKILL)
+  // are removed here, by the next run for the same video.
   const std::string tag = std::to_string(::getpid()) + "-" + std::to_string(videoCounter++);
-  tempPath_ = (dir / ("." + p.stem().string() + ".tmp-" + tag + ext)).string();
-  logPath_ = (fs::temp_directory_path() / ("pelage-ffmpeg-" + tag + ".log")).string();
+  const std::string name = p.filename().string();
+  const fs::path logDir = fs::temp_directory_path();
+  removedTemporaries_ =
+      removeStaleTemporaries(dir.string(), [&](const std::string& f) { return f == name; }) +
+      removeStaleTemporaries(logDir.string(),
+                             [](const std::string& f) { return f == kFfmpegLogName; });
+  tempPath_ = (dir / ("." + name + ".tmp-" + tag)).string();
+  logPath_ = (logDir / ("." + std::string(kFfmpegLogName) + ".tmp-" + tag)).string();
+  registerTemporary(tempPath_);
+  registerTemporary(logPath_);
+  // The file ffmpeg will write, made now: a place that cannot be written (/proc, a full disk's
+  // quota) fails here, before the first frame is rendered, not when ffmpeg first writes.
+  const int probe = ::open(tempPath_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (probe < 0) {
+    const int err = errno;
+    forgetTemporaries();
+    fieldError("video", path, ": cannot write (", std::strerror(err), ")");
+  }
+  ::close(probe);
 
   char size[32], rate[32];
   std::snprintf(size, sizeof size, "%dx%d", width, height);
@@ -102,6 +124,12 @@ VideoEncoder::VideoEncoder(const std::string& path, int width, int height, doubl
   const int log = ::open(logPath_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0600);
   posix_spawn_file_actions_t fa;
   posix_spawn_file_actions_init(&fa);
+  // ffmpeg in a process group of its own: a terminal's Ctrl-C reaches pelage only, which then
+  // stops ffmpeg itself (rather than ffmpeg closing the pipe under a frame being written).
+  posix_spawnattr_t attr;
+  posix_spawnattr_init(&attr);
+  posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETPGROUP);
+  posix_spawnattr_setpgroup(&attr, 0);
   posix_spawn_file_actions_adddup2(&fa, fds[0], 0);
   if (log >= 0) {
     posix_spawn_file_actions_adddup2(&fa, log, 1);
@@ -111,13 +139,14 @@ VideoEncoder::VideoEncoder(const std::string& path, int width, int height, doubl
   for (std::string& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
   pid_t pid = -1;
-  const int rc = ::posix_spawn(&pid, ffmpeg.c_str(), &fa, nullptr, argv.data(), environ);
+  const int rc = ::posix_spawn(&pid, ffmpeg.c_str(), &fa, &attr, argv.data(), environ);
   posix_spawn_file_actions_destroy(&fa);
+  posix_spawnattr_destroy(&attr);
   ::close(fds[0]);
   if (log >= 0) ::close(log);
   if (rc != 0) {
     ::close(fds[1]);
-    std::remove(logPath_.c_str());
+    forgetTemporaries();
     fieldError("video", ": cannot start ", ffmpeg, " (", std::strerror(rc), ")");
   }
   pid_ = pid;
@@ -135,7 +164,13 @@ VideoEncoder::~VideoEncoder() {
     }
     std::remove(tempPath_.c_str());
   }
+  forgetTemporaries();
+}
+
+void VideoEncoder::forgetTemporaries() {
   std::remove(logPath_.c_str());
+  unregisterTemporary(tempPath_);
+  unregisterTemporary(logPath_);
 }
 
 void VideoEncoder::stop() {

@@ -168,7 +168,9 @@ int runWindow(const ViewerOptions& o, scene::Model model) {
     ++rendered;
     const bool last_frame = frames > 0 && rendered >= frames;
     if (last_frame && !o.screenshot.empty()) {
-      writeImage(o.screenshot, readBackBuffer(fbw, fbh));
+      Image shot = readBackBuffer(fbw, fbh);
+      makeOpaque(shot);
+      writeImage(o.screenshot, shot);
       std::printf("wrote %s (%dx%d, %lld hairs drawn, %d skin triangles)\n", o.screenshot.c_str(),
                   fbw, fbh, static_cast<long long>(session.hairsDrawn()),
                   session.model().skin.numTriangles());
@@ -209,7 +211,9 @@ int runHeadless(const ViewerOptions& o, scene::Model model) {
               frames, o.width, o.height, static_cast<long long>(session.hairsDrawn()),
               session.model().skin.numTriangles(), totalMs / frames);
   if (!o.screenshot.empty()) {
-    writeImage(o.screenshot, session.renderer().readPixels());
+    writeImage(o.screenshot,
+               session.renderer().readPixels(o.transparentBackground ? FrameAlpha::Straight
+                                                                     : FrameAlpha::Opaque));
     std::printf("wrote %s\n", o.screenshot.c_str());
   }
   return 0;
@@ -234,6 +238,10 @@ void validateViewerOptions(const ViewerOptions& o) {
       fieldError("screenshot", o.screenshot, ": the directory ", parent.string(),
                  " does not exist");
   }
+  if (o.transparentBackground && !o.headless)
+    fieldError("background",
+               "transparent needs the headless screenshot (a window's screenshot "
+               "holds the panel beside the view)");
   for (double h : o.benchmarkHairs)
     if (!(h >= 0.0 && h <= fur::kMaxHairs))
       fieldError("benchmark hairs", h, " is out of range [0, ", fur::kMaxHairs, "]");

@@ -236,8 +236,13 @@ void viewPanel(ViewerSession& s) {
   ImGui::SameLine();
   ImGui::Checkbox("skin", &s.drawSkin);
   ImGui::SameLine();
-  ImGui::ColorEdit3("##skin colour", s.skinColor.data(),
-                    ImGuiColorEditFlags_NoInputs | ImGuiColorEditFlags_Float);
+  if (ImGui::ColorEdit3("##skin colour", s.skinColor.data(),
+                        ImGuiColorEditFlags_NoInputs | ImGuiColorEditFlags_Float))
+    s.ownSkinColor = true;  // from now on the skin is drawn in this colour
+  if (s.ownSkinColor) {
+    ImGui::SameLine();
+    if (ImGui::SmallButton("model's")) s.ownSkinColor = false;  // back to the model's colours
+  }
   ImGui::SameLine();
   ImGui::Checkbox("fur", &s.drawFur);
   int shading = static_cast<int>(s.shading);

@@ -53,7 +53,9 @@ ViewerSession::ViewerSession(const ViewerOptions& options, scene::Model model)
         fieldError("skin color", "RGB"[c], " = ", v, " is out of range [0, 1]");
     }
     skinColor = *options.skinColor;
+    ownSkinColor = true;
   }
+  background = options.background;
   RendererOptions ro;
   ro.samples = options.samples;
   renderer_ = std::make_unique<Renderer>(ro);
@@ -285,8 +287,9 @@ void ViewerSession::frame(double dtSeconds, int width, int height) {
   opt.transparency = transparency;
   opt.drawSkin = drawSkin;
   opt.drawFur = drawFur;
+  opt.background = background;
   const Material skin = scene::skinMaterial(skinColor);
-  list_ = &playback_->drawList(cam, light, opt, &skin);
+  list_ = &playback_->drawList(cam, light, opt, ownSkinColor ? &skin : nullptr);
   const RenderStats stats = renderer_->render(*list_);
   hairsDrawn_ = stats.hairsDrawn;
   advance(dtSeconds);  // the first frame shows the start time exactly

@@ -42,6 +42,10 @@ class ViewerSession {
   scene::HairWidth hairWidth = scene::HairWidth::Strands;
   bool transparency = true;
   Eigen::Vector3f skinColor;  // the skin's diffuse colour (the model's, or --skin-color)
+  // The skin drawn in skinColor alone (set, or edited in the panel); else in the model's own
+  // colours (materials, textures, vertex colours), as `pelage render` draws it.
+  bool ownSkinColor = false;
+  Eigen::Vector3f background = scene::kDefaultBackground;  // linear RGB
   bool drawSkin = true;
   bool drawFur = true;
   float lightAzimuth = scene::kKeyLightAzimuthDegrees;

@@ -14,6 +14,7 @@
 #include "pelage/fur/dynamics.h"
 #include "pelage/scene/dynamic_fur.h"
 #include "pelage/scene/frame.h"
+#include "pelage/scene/frame_range.h"
 #include "pelage/scene/model.h"
 
 namespace pelage::scene {
@@ -21,13 +22,16 @@ namespace pelage::scene {
 // How hairs are grouped for the per-group columns: by skin region (the root's nearest vertex's
 // region: body, face, ears, ...) or by body segment (that vertex's closest segment).
 enum class AnalysisGroups { Region, Segment };
+// "region" or "segment"; InputError naming `field` and the accepted names otherwise.
+AnalysisGroups parseAnalysisGroups(const std::string& name, const std::string& field = "groups");
 
 struct AnalysisOptions {
-  int clip = 0;              // index into model.clips; -1: the still pose in every frame
-  anatomy::Pose stillPose;   // the pose without a clip (empty: the rest pose)
-  int firstFrame = 0;        // frame f shows clip time clock.startSeconds + f / fps
-  int lastFrame = 0;         // inclusive
-  double holdSeconds = 0.0;  // after lastFrame, the last pose held still this long, [0, 1000]
+  int clip = 0;             // index into model.clips; -1: the still pose in every frame
+  anatomy::Pose stillPose;  // the pose without a clip (empty: the rest pose)
+  // Frame f shows clip time clock.startSeconds + f / fps. With a step, every frame from first to
+  // last is played (the springs and speeds need them) and the frames on the step are reported.
+  FrameRange frames;
+  double holdSeconds = 0.0;  // after frames.last, the last pose held still this long, [0, 1000]
   bool dynamics = false;     // also the damped dynamic ends (fur/dynamics.h)
   fur::DynamicsParams dynamicsParams;
   DynamicsClock clock;  // fps, start time and pre-roll
@@ -112,21 +116,44 @@ struct AnalysisResult {
 // for a frame range or hold out of range.
 AnalysisResult analyzeClip(const Model& model, const Fur& fur, const AnalysisOptions& options);
 
-// The CSV text: a header row naming every column with its unit (time_s, pitch_deg, droop_mean_deg,
-// tip_height_mm, tip_speed_m_per_s, ...), then one row per frame. Quasi-static columns are
-// prefixed "qs_", dynamic ones "dyn_" (present in dynamic mode); group columns are
-// "qs_droop_mean_deg[face]" etc.
+// Measurements as named columns, one value per frame (row), in the order the CSV writes them: the
+// one owner of the column names and of what each holds (the CSV and the Python package read it).
+struct AnalysisTable {
+  std::vector<std::string> names;
+  std::vector<std::vector<double>> columns;  // columns[c][row]
+  std::size_t rows() const { return columns.empty() ? 0 : columns.front().size(); }
+};
+
+// The table of one analysis: every column named with its unit (frame, time_s, held, pitch_deg,
+// droop_mean_deg, tip_height_mm, tip_speed_m_per_s, ...). Quasi-static columns are prefixed "qs_",
+// dynamic ones "dyn_" (present in dynamic mode); group columns are "qs_droop_mean_deg[face]" etc.
+AnalysisTable analysisTable(const AnalysisResult& result);
+
+// A table as CSV text: the header, then one row per frame; "frame" and "held" as integers, every
+// other value as the shortest decimal that reads back as the same double ("nan" where undefined).
+std::string tableCsv(const AnalysisTable& table);
+
+// tableCsv(analysisTable(result)).
 std::string analysisCsv(const AnalysisResult& result);
 
 // A sweep over one parameter: "stiffness" (the paper's, both coats, [0, 1]), "frequency" (dynamic
 // spring, Hz, both coats) or "damping" (dynamic damping ratio, both coats).
 struct SweepSpec {
   std::string parameter;
-  double from = 0.0, to = 0.0;
-  int count = 0;  // values from, from + (to - from) / (count - 1), ..., to; [1, 100]
-  std::vector<double> values() const;
+  std::vector<double> list;  // the values, in the order run; 1 to kMaxSweepValues of them
+  std::vector<double> values() const { return list; }
+  int count() const { return static_cast<int>(list.size()); }
 };
-// Parses "NAME=A:B:N"; InputError naming `field` and the accepted form and ranges otherwise.
+inline constexpr int kMaxSweepValues = 100;
+
+// A sweep of `parameter` over `count` values evenly spaced from `first` to `last` (both included).
+SweepSpec sweepRange(const std::string& parameter, double first, double last, int count,
+                     const std::string& field = "sweep");
+// A sweep of `parameter` over the values given.
+SweepSpec sweepValues(const std::string& parameter, std::vector<double> values,
+                      const std::string& field = "sweep");
+// Parses "NAME=A:B:N" (sweepRange); InputError naming `field` and the accepted form and ranges
+// otherwise. Every constructor checks the parameter's name and range, and the count.
 SweepSpec parseSweep(const std::string& text, const std::string& field = "sweep");
 
 struct SweepResult {
@@ -140,8 +167,11 @@ struct SweepResult {
 SweepResult sweepClip(const Model& model, const Fur& fur, const AnalysisOptions& options,
                       const SweepSpec& spec, int index = -1);
 
-// The sweep's CSV: time_s, frame, held, pitch_deg, tilt_deg, then per value v the mean droop and
-// tip height of the model in use (dynamic in dynamic mode): "droop_mean_deg[stiffness=0.2]", ...
+// The sweep's table: frame, time_s, held, pitch_deg, tilt_deg, then per value v the mean droop and
+// tip height of the model in use, named as analysisTable names them ("qs_" quasi-static, "dyn_"
+// dynamic): "qs_droop_mean_deg[stiffness=0.2]", ..., "qs_tip_height_mm[stiffness=0.2]", ...
+AnalysisTable sweepTable(const SweepResult& sweep);
+// tableCsv(sweepTable(sweep)).
 std::string sweepCsv(const SweepResult& sweep);
 
 // Joins the CSVs of one sweep's parts (sweepCsv of runs of single values, in value order) into the

@@ -8,16 +8,26 @@
 
 namespace pelage::scene {
 
-// An inclusive range of frame numbers.
+// Frames first, first + step, ..., last (inclusive; last is first + k step).
 struct FrameRange {
   int first = 0;
   int last = 0;
-  int count() const { return last - first + 1; }
+  int step = 1;
+  int count() const { return (last - first) / step + 1; }
+  int at(int i) const { return first + i * step; }  // the i-th frame, i in [0, count())
+  bool contains(int frame) const {
+    return frame >= first && frame <= last && (frame - first) % step == 0;
+  }
 };
 inline constexpr int kMaxFrameNumber = 9999999;
 
-// Parses "A:B" (inclusive, 0 <= A <= B <= kMaxFrameNumber) or "A" (one frame); InputError naming
-// `field` and the accepted form otherwise. The one frame-range parser.
+// Checks 0 <= first <= last <= kMaxFrameNumber, step >= 1 and last on the step; InputError naming
+// `field` otherwise. The one frame-range rule (every command, the Python package).
+void validateFrameRange(const FrameRange& range, std::string_view field = "frames");
+
+// Parses "A:B" (inclusive), "A:B:STEP" (every STEP-th frame from A; B is rounded down onto the
+// step) or "A" (one frame), and validates it; InputError naming `field` and the accepted form
+// otherwise. The one frame-range parser.
 FrameRange parseFrameRange(std::string_view text, std::string_view field = "frames");
 
 // "frame_00042.png" for (42, ".png"): at least 5 digits.

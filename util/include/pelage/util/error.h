@@ -7,6 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace pelage {
 
@@ -38,6 +39,15 @@ class MissingFileError : public InputError {
  public:
   using InputError::InputError;
 };
+
+// Input text as an error message quotes it (excerpt): at most `maxChars` characters (then "..." and
+// the whole length), control characters as \xNN. Every message that quotes what a user or a file
+// gave goes through it, so a 2 MB buffer never becomes a 2 MB message.
+inline constexpr std::size_t kMaxQuotedChars = 48;
+std::string excerpt(std::string_view text, std::size_t maxChars = kMaxQuotedChars);
+// Another library's message with each run of non-blank characters longer than kMaxQuotedChars
+// (an echoed data URI, a whole buffer) cut as excerpt() cuts it.
+std::string shortenLongWords(std::string_view message);
 
 // Throws MissingFileError "<path>: <what> does not exist" unless `path` exists.
 void requireExistingFile(const std::string& path, const std::string& what = "file");

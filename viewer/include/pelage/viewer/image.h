@@ -1,6 +1,8 @@
 // An RGBA8 image as read back from the renderer (top row first), and PNG files.
 #pragma once
 
+#include <Eigen/Core>
+
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -18,6 +20,13 @@ struct Image {
                              4;
   }
 };
+
+// Sets every alpha to 255.
+void makeOpaque(Image& image);
+// Turns a frame drawn over `background` (linear RGB) whose alpha holds each pixel's coverage a into
+// straight alpha: each colour becomes c = (p - (1 - a) b) / a in linear light (clamped to [0, 1]),
+// a quantised first, so that a c + (1 - a) b gives back p; pixels of alpha 0 become (0, 0, 0, 0).
+void unblendBackground(Image& image, const Eigen::Vector3f& background);
 
 // Encodes `image` as PNG into memory (stb_image_write; thread-safe).
 std::vector<std::uint8_t> encodePng(const Image& image);

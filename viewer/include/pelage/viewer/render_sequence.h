@@ -37,8 +37,11 @@ struct SequenceOptions {
   int height = 720;
   int samples = -1;  // MSAA samples [0, 64]; -1 = 4 on a GPU, 0 on a software rasteriser
   scene::CameraRig camera;
-  // The look: hair shading, lines or ribbons, background (the hair source is the playback's).
+  // The look: hair shading, lines or strands, background colour (the hair source is the
+  // playback's).
   scene::DrawOptions look;
+  // Frames with straight alpha, 0 where nothing is drawn (FrameAlpha::Straight); else opaque.
+  bool transparentBackground = false;
   std::optional<Eigen::Vector3f> skinColor;  // the skin's diffuse colour; none: the model's
   bool shadows = false;
   bool selfShadowing = true;  // the fur's deep opacity shadow (scene::Light::selfShadowing)

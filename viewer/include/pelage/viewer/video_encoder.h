@@ -25,15 +25,19 @@ class VideoEncoder {
   void addFrame(const Image& image);  // in order; InputError (with ffmpeg's message) if it failed
   void finish();                      // InputError with ffmpeg's message if it failed
   int frames() const { return frames_; }
+  // Leftovers of runs killed before (their temporary video of this path, ffmpeg logs) removed.
+  int removedTemporaries() const { return removedTemporaries_; }
 
  private:
   [[noreturn]] void fail(const std::string& what);
   void stop();
+  void forgetTemporaries();
   std::string path_, tempPath_, logPath_;
   int width_ = 0, height_ = 0;
   int pipe_ = -1;
   int pid_ = -1;
   int frames_ = 0;
+  int removedTemporaries_ = 0;
   bool done_ = false;
 };
 

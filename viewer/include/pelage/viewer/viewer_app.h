@@ -39,7 +39,11 @@ struct ViewerOptions {
   bool noCulling = false;
   bool dynamics = false;  // dynamic fur (fur/dynamics.h): hair ends lag through damped springs
   fur::DynamicsParams dynamicsParams;
+  Eigen::Vector3f background = scene::kDefaultBackground;  // linear RGB
   std::string screenshot;  // write the last frame here (PNG) and exit
+  // The headless screenshot with straight alpha, 0 where nothing is drawn (FrameAlpha::Straight);
+  // a window's screenshot (the panel with the view) is opaque.
+  bool transparentBackground = false;
   int frames = 0;  // frames to run (0: until the window closes; with a screenshot, 3 in a window
                    // (the panel needs two to lay itself out), 1 headless)
   bool headless = false;   // EGL, no window, no UI

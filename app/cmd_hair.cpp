@@ -19,6 +19,7 @@
 #include "pelage/skin/deform.h"
 #include "pelage/util/atomic_file.h"
 #include "pelage/util/error.h"
+#include "pelage/util/path.h"
 
 namespace pelage::app {
 namespace {
@@ -94,9 +95,7 @@ void addHairCommand(CLI::App& app) {
     if (distanceOpt->count() > 0 && !(*distance >= 0.0 && *distance <= 1e4))
       inputError("--distance ", *distance, " is out of range [0, 10000] (metres)");
     frames->validateFps();
-    std::string ext = std::filesystem::path(*out).extension().string();
-    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    if (ext != ".ply")
+    if (lowerExtension(*out) != ".ply")
       inputError("--out ", *out, ": hairs are written as binary PLY; the file must end in .ply");
     // The output folder as `render` and `export` make theirs: created when missing (and removed
     // again if the run fails).

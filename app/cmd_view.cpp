@@ -72,12 +72,6 @@ void addViewCommand(CLI::App& app) {
     o->dynamics = dyn->enabled();
     o->dynamicsParams = dyn->resolve();
     if (!benchHairs->empty()) o->benchmarkHairs = *benchHairs;
-    if (!o->screenshot.empty()) {
-      std::string ext = std::filesystem::path(o->screenshot).extension().string();
-      for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-      if (ext != ".png" && ext != ".jpg" && ext != ".jpeg")
-        inputError("--screenshot ", o->screenshot, ": the file must end in .png or .jpg");
-    }
     viewer::validateViewerOptions(*o);
     scene::Model m = model->load();
     scene::PlaybackOptions po;

@@ -150,8 +150,7 @@ void PoseOptions::add(CLI::App& cmd) {
 }
 
 anatomy::Pose PoseOptions::stillPose(scene::Model& model) const {
-  if (!(time >= 0.0 && time <= 1e6))
-    inputError("--time ", time, " is out of range [0, 1000000] seconds");
+  scene::validateStartSeconds(time);
   if (clip.empty()) {
     if (timeOption && timeOption->count() > 0) inputError("--time needs --clip");
     return posePath.empty() ? anatomy::restPose(model.body)
@@ -165,8 +164,7 @@ anatomy::Pose PoseOptions::stillPose(scene::Model& model) const {
 }
 
 void PoseOptions::sequence(scene::Model& model, scene::PlaybackOptions& playback) const {
-  if (!(time >= 0.0 && time <= 1e6))
-    inputError("--time ", time, " is out of range [0, 1000000] seconds");
+  scene::validateStartSeconds(time);
   if (!posePath.empty()) {
     if (!clip.empty()) inputError("--pose and --clip cannot be used together");
     if (timeOption && timeOption->count() > 0) inputError("--time needs --clip");
@@ -339,8 +337,7 @@ fur::DynamicsParams DynamicsOptions::resolve() const {
   }
   fur::validateDynamicsParams(p, "--frequency/--damping");
   const bool preRollGiven = preRollOption && preRollOption->count() > 0;
-  if (preRollGiven && (preRoll < 0 || preRoll > 10000000))
-    inputError("--preroll ", preRoll, " is out of range [0, 10000000] frames");
+  if (preRollGiven) scene::validatePreRoll(preRoll, "preroll", false);
   // Options that cannot take effect are refused, never silently ignored.
   if (!enabled()) {
     const char* given = !frequency.empty() ? "--frequency"
@@ -366,7 +363,7 @@ void FrameOptions::addFps(CLI::App& cmd) {
 }
 
 void FrameOptions::validateFps() const {
-  if (!(fps >= 1.0 && fps <= 1000.0)) inputError("--fps ", fps, " is out of range [1, 1000]");
+  scene::validateFramesPerSecond(fps);
 }
 
 scene::FrameRange FrameOptions::range(const scene::Model& model, int clip, double startSeconds,
@@ -398,8 +395,7 @@ void parseSize(const std::string& text, const char* option, int& width, int& hei
   std::istringstream in(text);
   if (!(in >> width >> x >> height) || x != 'x' || !in.eof())
     inputError(option, " '", text, "' is not WIDTHxHEIGHT (e.g. 1920x1080)");
-  if (width < 16 || width > 16384 || height < 16 || height > 16384)
-    inputError(option, " ", width, "x", height, " is out of range [16, 16384] per side");
+  scene::validateImageSize(width, height, option);
 }
 
 void ViewOptions::add(CLI::App& cmd) {
@@ -498,8 +494,8 @@ std::optional<Eigen::Vector3f> ViewOptions::skin() const {
 void ViewOptions::validate() const {
   int w = 0, h = 0;
   parseSize(size, "--size", w, h);
-  if (samples < -1 || samples > 64) inputError("--samples ", samples, " is out of range [-1, 64]");
-  if (!(fov > 1.0 && fov < 179.0)) inputError("--fov ", fov, " is out of range (1, 179) degrees");
+  scene::validateSamples(samples);
+  scene::validateFov(fov);
   cameraPreset();
   source();
   hairShading();
@@ -512,11 +508,7 @@ void ViewOptions::validate() const {
   if (!skinColor.empty()) {
     if (skinColor.size() != 3)
       inputError("--skin-color takes 3 values (R G B in [0, 1]), got ", skinColor.size());
-    for (int c = 0; c < 3; ++c) {
-      const float v = skinColor[static_cast<std::size_t>(c)];
-      if (!(v >= 0.0f && v <= 1.0f))
-        inputError("--skin-color ", "RGB"[c], " = ", v, " is out of range [0, 1]");
-    }
+    scene::validateColor(Eigen::Vector3f(skinColor[0], skinColor[1], skinColor[2]), "skin color");
   }
 }
 
@@ -544,13 +536,9 @@ namespace {
 
 bool isModelSpec(const std::string& token) {
   if (token == scene::kDefaultModel) return true;
-  std::string ext = std::filesystem::path(token).extension().string();
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  static const char* kExtensions[] = {".gltf", ".glb", ".json", ".obj", ".ply", ".off", ".stl"};
-  bool modelExtension = false;
-  for (const char* e : kExtensions) modelExtension = modelExtension || ext == e;
   std::error_code ec;
-  return modelExtension && std::filesystem::is_regular_file(token, ec);
+  return scene::modelFileKind(token) != scene::ModelFileKind::None &&
+         std::filesystem::is_regular_file(token, ec);
 }
 
 bool takesSeveralValues(const std::string& token) {

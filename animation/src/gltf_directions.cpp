@@ -8,15 +8,10 @@
 #include "pelage/animation/gltf_import.h"
 #include "pelage/util/error.h"
 #include "pelage/util/json_reader.h"
+#include "pelage/util/path.h"
 
 namespace pelage::animation {
 namespace {
-
-std::string lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return s;
-}
 
 constexpr float kMinBone = 1e-6f;  // relative to the skeleton's size
 
@@ -30,7 +25,7 @@ const std::vector<std::string>& defaultNoFurRegions() {
 }
 
 bool regionMatches(const std::string& pattern, const std::string& name) {
-  const std::string p = lower(pattern), s = lower(name);
+  const std::string p = lowerCase(pattern), s = lowerCase(name);
   // Greedy wildcard match with backtracking to the last '*'.
   std::size_t i = 0, j = 0, star = std::string::npos, mark = 0;
   while (j < s.size()) {
@@ -103,7 +98,8 @@ std::vector<Eigen::Vector3f> headToTailDirections(const anatomy::Body& body,
   int head = -1;
   for (int i = 0; i < n; ++i)
     if (joint(i) &&
-        lower(body.segments[static_cast<std::size_t>(i)].name).find("head") != std::string::npos &&
+        lowerCase(body.segments[static_cast<std::size_t>(i)].name).find("head") !=
+            std::string::npos &&
         (head < 0 || depth[static_cast<std::size_t>(i)] < depth[static_cast<std::size_t>(head)]))
       head = i;
   if (head < 0) {

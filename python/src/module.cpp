@@ -25,6 +25,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "docstrings.h"
 #include "pelage/animation/clip.h"
 #include "pelage/fur/colors.h"
 #include "pelage/fur/dynamics.h"
@@ -257,9 +258,7 @@ Dynamics dynamicsFrom(const py::object& d) {
     }
   }
   fur::validateDynamicsParams(out.params, "dynamics");
-  if (out.preRoll < -1 || out.preRoll > 10000000)
-    throw py::value_error("dynamics['preroll'] " + std::to_string(out.preRoll) +
-                          " is out of range [0, 10000000] frames");
+  scene::validatePreRoll(out.preRoll, "dynamics['preroll']");
   return out;
 }
 
@@ -615,6 +614,20 @@ std::vector<std::string> exportFrames(PyModel& m, const py::object& clip, const 
 // ---------------------------------------------------------------------------------------
 
 #ifdef PELAGE_HAVE_RENDER
+// An (r, g, b) colour, each in [0, 1] (scene::validateColor names `keyword`).
+Eigen::Vector3f colorOf(const py::object& value, const char* keyword) {
+  std::vector<float> c;
+  try {
+    c = value.cast<std::vector<float>>();
+  } catch (const py::cast_error&) {
+  }
+  if (c.size() != 3)
+    throw py::value_error(std::string(keyword) + ": three values (r, g, b), each in [0, 1]");
+  const Eigen::Vector3f rgb(c[0], c[1], c[2]);
+  scene::validateColor(rgb, keyword);
+  return rgb;
+}
+
 // render()'s background: None (the default colour, opaque), "transparent" (straight alpha), or an
 // (r, g, b) sRGB colour in [0, 1]; returns whether it is transparent.
 bool backgroundOf(const py::object& background, viewer::SequenceOptions& o) {
@@ -624,15 +637,7 @@ bool backgroundOf(const py::object& background, viewer::SequenceOptions& o) {
     throw py::value_error("background: 'transparent' or (r, g, b) in [0, 1], got '" +
                           excerpt(background.cast<std::string>()) + "'");
   }
-  std::vector<float> c;
-  try {
-    c = background.cast<std::vector<float>>();
-  } catch (const py::cast_error&) {
-  }
-  if (c.size() != 3 ||
-      std::any_of(c.begin(), c.end(), [](float v) { return !(v >= 0.f && v <= 1.f); }))
-    throw py::value_error("background: three values in [0, 1] (r, g, b, sRGB), or 'transparent'");
-  o.look.background = srgbToLinear(Eigen::Vector3f(c[0], c[1], c[2]));
+  o.look.background = srgbToLinear(colorOf(background, "background"));
   return false;
 }
 
@@ -664,13 +669,7 @@ py::array_t<std::uint8_t> render(PyModel& m, const py::object& clip, const py::o
   o.selfShadowing = kw.get("self_shadowing", true);
   o.transparentBackground = backgroundOf(kw.object("background"), o);
   const py::object skinColor = kw.object("skin_color");
-  if (!skinColor.is_none()) {
-    const auto c = skinColor.cast<std::vector<float>>();
-    if (c.size() != 3 ||
-        std::any_of(c.begin(), c.end(), [](float v) { return !(v >= 0.f && v <= 1.f); }))
-      throw py::value_error("skin_color: three values in [0, 1] (r, g, b)");
-    o.skinColor = Eigen::Vector3f(c[0], c[1], c[2]);
-  }
+  if (!skinColor.is_none()) o.skinColor = colorOf(skinColor, "skin_color");
   o.outDir = ".";  // (nothing is written)
   viewer::validateSequenceOptions(o);
   viewer::Image image;
@@ -723,13 +722,8 @@ PYBIND11_MODULE(_pelage, m) {
 
   // Every class is declared before the functions that take or return it, so that signatures
   // show their Python names (pelage.Hairs, not the C++ type).
-  py::class_<PyModel> model(m, "Model", R"doc(A creature: body, skin and clips (constant).
-
-Made by pelage.load(); pass it to Model.fur(), analyze(), render() and export().)doc");
-  py::class_<PyFur> furClass(
-      m, "Fur", R"doc(A creature's fur: its parameters and the roots grown on the skin (constant).
-
-Made by Model.fur(); its hairs are recomputed for any frame by Fur.hairs() and Fur.frames().)doc");
+  py::class_<PyModel> model(m, "Model", doc::kModelDoc);
+  py::class_<PyFur> furClass(m, "Fur", doc::kFurDoc);
   py::class_<PyHairs, std::shared_ptr<PyHairs>> hairs(
       m, "Hairs",
       "One frame's hairs; every array is a view of pelage's buffers and keeps them alive.");
@@ -743,10 +737,7 @@ Made by Model.fur(); its hairs are recomputed for any frame by Fur.hairs() and F
           throw py::value_error("threads " + std::to_string(n) + " is out of range [0, 1024]");
         setThreadCount(n);
       },
-      py::arg("n"), R"doc(Sets the worker threads of pelage's computations.
-
-Args:
-    n: threads, 0 to 1024; 0 uses every core. Results are bit-identical whatever the count.)doc");
+      py::arg("n"), doc::kSetThreadsDoc);
   m.def(
       "threads", [] { return threadCount(); }, "The worker thread count in use (an int).");
 
@@ -799,15 +790,7 @@ Args:
                 py::array_t<std::int32_t>(
                     {static_cast<py::ssize_t>(tri.size() / 3), py::ssize_t{3}}, tri.data()));
           },
-          py::arg("clip") = py::none(), py::arg("time") = 0.0, R"doc(The posed skin.
-
-Args:
-    clip: a clip name, or None for the rest pose.
-    time: seconds into the clip.
-
-Returns:
-    (positions, normals, triangles): (nV, 3) float32 metres (Z up), (nV, 3) float32 unit
-    normals, (nT, 3) int32 vertex indices.)doc")
+          py::arg("clip") = py::none(), py::arg("time") = 0.0, doc::kSkinDoc)
       .def(
           "fur",
           [](PyModel& s, const std::string& preset, const py::kwargs& fields) {
@@ -821,16 +804,7 @@ Returns:
             flushWarnings();
             return f;
           },
-          py::arg("preset") = "default", R"doc(Grows fur on the creature.
-
-Args:
-    preset: a built-in preset name ("default", "fig9", ...) or a preset .json file.
-    **fields: any preset field by its file name, e.g. hairs=50000, seed=3,
-        overcoat={"stiffness": 0.6} (nested objects merge into the preset's). An unknown field
-        is a ValueError naming it.
-
-Returns:
-    Fur: the parameters and the roots, grown once; hairs are recomputed per frame.)doc")
+          py::arg("preset") = "default", doc::kGrowFurDoc)
       .def("__repr__", [](const PyModel& s) {
         return "<pelage.Model " + s.model->name + ": " + std::to_string(s.model->body.size()) +
                " segments, " + std::to_string(s.model->skin.numTriangles()) + " triangles, " +
@@ -848,20 +822,7 @@ Returns:
           "roots", [](const PyFur& f) { return f.fur->roots.total(); },
           "Hairs grown, both coats (int).")
       .def("hairs", &hairsOf, py::arg("clip") = py::none(), py::arg("time") = 0.0,
-           py::arg("dynamics") = py::none(), py::arg("fps") = 30.0,
-           R"doc(One frame's hairs (every hair: no culling).
-
-Args:
-    clip: a clip name, or None for the rest pose.
-    time: seconds into the clip.
-    dynamics: None or False (the paper's quasi-static hairs), True (damped springs with the
-        defaults), or {"frequency": Hz, "damping": ratio, "preroll": frames} (one value, or one
-        per coat): the clip's frames are played from its start up to `time`, as
-        `pelage hair --dynamics on` does.
-    fps: frames per second of that play.
-
-Returns:
-    Hairs: points, normals, colours and roots as numpy views.)doc")
+           py::arg("dynamics") = py::none(), py::arg("fps") = 30.0, doc::kHairsDoc)
       .def(
           "frames",
           [](const PyFur& f, const py::object& clip, double fps, const py::object& frames,
@@ -877,20 +838,7 @@ Returns:
             return it;
           },
           py::arg("clip"), py::arg("fps") = 30.0, py::arg("frames") = py::none(),
-          py::arg("dynamics") = py::none(), py::arg("time") = 0.0,
-          R"doc(Iterates over a clip's frames in order.
-
-Args:
-    clip: a clip name.
-    fps: frame f shows clip time time + f / fps.
-    frames: None (the whole clip), an int, a (first, last) pair (both included) or a range
-        (any positive step).
-    dynamics: as Fur.hairs(); the springs step from one frame to the next (skipped frames are
-        played through, so a frame equals what a whole run gives).
-    time: the clip time of frame 0, seconds.
-
-Returns:
-    FrameIterator: yields one Hairs per frame.)doc");
+          py::arg("dynamics") = py::none(), py::arg("time") = 0.0, doc::kFramesDoc);
 
   frameIterator.def("__iter__", [](std::shared_ptr<FrameIterator> self) { return self; })
       .def("__next__", &FrameIterator::step);
@@ -954,85 +902,13 @@ Returns:
           },
           "(overcoat, undercoat) style names (tuple of str).");
 
-  m.def("load", &load, py::arg("model") = "monkey", R"doc(Loads a creature.
-
-Args:
-    model: "monkey" (built-in), a creature .json, a .gltf/.glb, or a mesh (.obj, .ply, .off, .stl).
-    **options: triangles (skin size of shape creatures), unit_scale (metres per file unit),
-        no_fur (region patterns without fur), directions (per-joint directions file), as the
-        command line's options. An unknown keyword is a ValueError listing these.
-
-Returns:
-    Model.
-
-Raises:
-    FileNotFoundError: the file does not exist.
-    pelage.InputError: the file is malformed or a value is out of range.)doc");
+  m.def("load", &load, py::arg("model") = "monkey", doc::kLoadDoc);
   m.def("analyze", &analyze, py::arg("model"), py::arg("clip") = py::none(),
-        py::arg("fur") = py::none(),
-        R"doc(`pelage analyze` in Python: the fur's droop under gravity, frame by frame.
-
-Args:
-    model: a Model.
-    clip: a clip name, or None for the still pose.
-    fur: a Fur grown on `model` (None: the default preset).
-    frames: None (the whole clip), an int, a (first, last) pair (both included) or a range
-        (any positive step: every frame is played, the frames on the step are reported).
-    dynamics: as Fur.hairs(); adds the dyn_ columns.
-    hold: seconds the last pose is held still afterwards, [0, 1000].
-    groups: "region" (skin regions, the default) or "segment" (body segments).
-    fps: frames per second (frame f shows clip time time + f / fps).
-    time: the clip time of frame 0, seconds.
-    sweep: one parameter over several values: "stiffness=0.2:0.8:4" (as the command line's),
-        {"stiffness": [0.2, 0.5, 0.8]} (the values) or {"stiffness": (0.2, 0.8, 4)} (first,
-        last, count); parameters stiffness [0, 1], frequency (0, 100] Hz, damping [0, 10]
-        (frequency and damping need dynamics).
-
-An unknown keyword is a ValueError listing these.
-
-Returns:
-    dict: column name -> numpy array, one value per frame, in the CSV's order and with its
-    names ("frame" and "held" int64, the rest float64 at full precision): frame, time_s, held,
-    pitch_deg, ..., qs_droop_mean_deg, ... (dyn_ columns with dynamics); with a sweep,
-    qs_droop_mean_deg[stiffness=0.2], ... (dyn_ with dynamics).)doc");
+        py::arg("fur") = py::none(), doc::kAnalyzeDoc);
   m.def("export", &exportFrames, py::arg("model"), py::arg("clip") = py::none(),
-        py::arg("fur") = py::none(),
-        R"doc(`pelage export` in Python: writes hair geometry per frame.
-
-Args:
-    model: a Model.
-    clip: a clip name, or None for the rest pose.
-    fur: a Fur grown on `model` (None: the default preset).
-    out: the directory for frame_NNNNN.ply/.glb, or the .usda file (required).
-    frames: None (the whole clip), an int, a (first, last) pair or a range (any positive step).
-    format: "ply" (default), "glb" or "usda".
-    fps: frames per second; time: the clip time of frame 0.
-    dynamics: as Fur.hairs().
-    resume: keep complete frame files already there (ply, glb).
-
-Files are written atomically: Ctrl-C (KeyboardInterrupt) leaves only complete files.
-
-Returns:
-    list of str: the files written.)doc");
+        py::arg("fur") = py::none(), doc::kExportDoc);
 #ifdef PELAGE_HAVE_RENDER
   m.def("render", &render, py::arg("model"), py::arg("clip") = py::none(),
-        py::arg("fur") = py::none(), R"doc(`pelage render` of one frame in Python (EGL, no display).
-
-Args:
-    model: a Model.
-    clip: a clip name, or None for the rest pose.
-    fur: a Fur grown on `model` (None: the default preset).
-    frame: the frame (clip time time + frame / fps); fps, time as analyze().
-    size: (width, height), 16 to 16384 each; default (1280, 720).
-    camera: "three-quarter" (default), "side", "front", "top", ...; fov: degrees; follow: bool.
-    hair_source: "gpu" (default) or "cpu"; shading: "paper", "kajiya-kay" or "marschner".
-    lines, transparency, shadows, self_shadowing: bools as the command line's switches.
-    samples: MSAA samples (-1: 4 on a GPU, none on a software rasteriser).
-    dynamics: as Fur.hairs(); skin_color: (r, g, b) in [0, 1].
-    background: None (the default colour), (r, g, b) sRGB in [0, 1], or "transparent".
-
-Returns:
-    numpy.ndarray: (H, W, 3) uint8 sRGB, or (H, W, 4) with straight alpha for
-    background="transparent" (0 where nothing is drawn).)doc");
+        py::arg("fur") = py::none(), doc::kRenderDoc);
 #endif
 }

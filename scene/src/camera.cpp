@@ -11,6 +11,25 @@
 #include "pelage/util/json_reader.h"
 
 namespace pelage::scene {
+
+void validateImageSize(int width, int height, std::string_view field) {
+  if (width < kMinImageSide || width > kMaxImageSide || height < kMinImageSide ||
+      height > kMaxImageSide)
+    fieldError(std::string(field), width, "x", height, " is out of range [", kMinImageSide, ", ",
+               kMaxImageSide, "] per side");
+}
+
+void validateSamples(int samples, std::string_view field) {
+  if (samples < -1 || samples > kMaxSamples)
+    fieldError(std::string(field), samples, " is out of range [-1, ", kMaxSamples, "]");
+}
+
+void validateFov(double degrees, std::string_view field) {
+  if (!(degrees > kMinFovYDegrees && degrees < kMaxFovYDegrees))
+    fieldError(std::string(field), degrees, " is out of range (", kMinFovYDegrees, ", ",
+               kMaxFovYDegrees, ") degrees");
+}
+
 namespace {
 
 constexpr float kPi = 3.14159265358979f;
@@ -305,7 +324,8 @@ CameraPath parseCameraJson(const nlohmann::json& doc, const std::string& source)
     k.eye = j.vec3("eye");
     k.target = j.vec3("target");
     k.up = j.vec3("up", Eigen::Vector3f::UnitZ());
-    k.fovYDegrees = static_cast<float>(j.number("fovYDegrees", 35.0, 1.0, 179.0));
+    k.fovYDegrees = static_cast<float>(
+        j.number("fovYDegrees", kDefaultFovYDegrees, kMinFovYDegrees, kMaxFovYDegrees));
     if ((k.eye - k.target).norm() < 1e-6f) j.fail("eye and target must differ");
     if (k.up.norm() < 1e-6f ||
         (k.eye - k.target).normalized().cross(k.up.normalized()).norm() < 1e-4f)

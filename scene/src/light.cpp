@@ -1,8 +1,10 @@
 #include "pelage/scene/light.h"
 
 #include <cmath>
+#include <string>
 
 #include "pelage/util/color.h"
+#include "pelage/util/error.h"
 
 namespace pelage::scene {
 
@@ -10,6 +12,12 @@ Eigen::Vector3f lightDirection(float azimuthDegrees, float elevationDegrees) {
   constexpr float kPi = 3.14159265358979f;
   const float az = azimuthDegrees * kPi / 180.0f, el = elevationDegrees * kPi / 180.0f;
   return {std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el)};
+}
+
+void validateColor(const Eigen::Vector3f& rgb, std::string_view field) {
+  for (int c = 0; c < 3; ++c)
+    if (!(rgb[c] >= 0.0f && rgb[c] <= 1.0f))
+      fieldError(std::string(field), "RGB"[c], " = ", rgb[c], " is out of range [0, 1]");
 }
 
 Material skinMaterial(const Eigen::Vector3f& color) {

@@ -10,16 +10,10 @@
 #include "pelage/skin/build_from_shapes.h"
 #include "pelage/skin/mesh_io.h"
 #include "pelage/util/error.h"
+#include "pelage/util/path.h"
 
 namespace pelage::scene {
 namespace {
-
-std::string lowerExtension(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext;
-}
 
 Model fromCreature(const anatomy::Creature& c, const LoadOptions& options) {
   Model m;
@@ -59,12 +53,20 @@ anatomy::Creature builtinCreature(const std::string& name) {
   return anatomy::parseCreature(std::string(*text), "built-in " + name);
 }
 
+ModelFileKind modelFileKind(std::string_view path) {
+  const std::string ext = lowerExtension(path);
+  if (ext == ".gltf" || ext == ".glb") return ModelFileKind::Gltf;
+  if (ext == ".obj" || ext == ".ply" || ext == ".off" || ext == ".stl") return ModelFileKind::Mesh;
+  if (ext == ".json") return ModelFileKind::Creature;
+  return ModelFileKind::None;
+}
+
 Model loadModel(const std::string& spec, const LoadOptions& options) {
   if (options.triangles != 0 && (options.triangles < 2000 || options.triangles > 2000000))
     fieldError("triangles", options.triangles, " is out of range [2000, 2000000]");
-  const std::string ext = lowerExtension(spec);
-  const bool gltf = ext == ".gltf" || ext == ".glb";
-  const bool mesh = ext == ".obj" || ext == ".ply" || ext == ".off" || ext == ".stl";
+  const ModelFileKind kind = modelFileKind(spec);
+  const bool gltf = kind == ModelFileKind::Gltf;
+  const bool mesh = kind == ModelFileKind::Mesh;
   if (!gltf && (options.noFurRegions || !options.segmentDirections.empty()))
     inputError(spec.empty() ? std::string(kDefaultModel) : spec,
                ": no-fur regions and segment directions apply to glTF models (.gltf/.glb) "
@@ -74,8 +76,8 @@ Model loadModel(const std::string& spec, const LoadOptions& options) {
   if (gltf) return fromGltf(spec, options);
   if (spec.empty() || spec == kDefaultModel)
     return fromCreature(builtinCreature(kDefaultModel), options);
-  if (ext == ".json") return fromCreature(anatomy::loadCreature(spec), options);
-  if (ext == ".obj" || ext == ".ply" || ext == ".off" || ext == ".stl") {
+  if (kind == ModelFileKind::Creature) return fromCreature(anatomy::loadCreature(spec), options);
+  if (mesh) {
     Model m;
     m.name = std::filesystem::path(spec).stem().string();
     m.source = spec;
@@ -88,7 +90,7 @@ Model loadModel(const std::string& spec, const LoadOptions& options) {
   }
   if (!std::filesystem::exists(spec))
     throw MissingFileError(spec + ": no such file, and not a built-in model (built-in: monkey)");
-  inputError(spec, ": unsupported model format '", ext,
+  inputError(spec, ": unsupported model format '", lowerExtension(spec),
              "' (accepted: monkey, .json creature, .gltf/.glb, .obj .ply .off .stl mesh)");
 }
 

@@ -17,8 +17,7 @@ FrameRange wholeClip(const Model& model, int clip, double fps) {
 }
 
 int oneFrameAt(PlaybackOptions& options, double seconds) {
-  if (!(seconds >= 0.0 && seconds <= 1e6))
-    fieldError("time", seconds, " is out of range [0, 1000000] seconds");
+  validateStartSeconds(seconds);
   if (!options.dynamics) {
     options.startSeconds = seconds;
     return 0;
@@ -27,15 +26,29 @@ int oneFrameAt(PlaybackOptions& options, double seconds) {
   return static_cast<int>(std::lround(seconds * options.framesPerSecond));
 }
 
+void validateFramesPerSecond(double fps, std::string_view field) {
+  if (!(fps >= kMinFramesPerSecond && fps <= kMaxFramesPerSecond))
+    fieldError(std::string(field), fps, " is out of range [", kMinFramesPerSecond, ", ",
+               kMaxFramesPerSecond, "]");
+}
+
+void validateStartSeconds(double seconds, std::string_view field) {
+  if (!(seconds >= 0.0 && seconds <= kMaxStartSeconds))
+    fieldError(std::string(field), seconds, " is out of range [0, ",
+               static_cast<long long>(kMaxStartSeconds), "] seconds");
+}
+
+void validatePreRoll(int frames, std::string_view field, bool allowFromStart) {
+  if (frames < (allowFromStart ? -1 : 0) || frames > kMaxPreRollFrames)
+    fieldError(std::string(field), frames, " is out of range [0, ", kMaxPreRollFrames, "] frames");
+}
+
 void validatePlaybackOptions(const Model& model, const PlaybackOptions& o) {
   PELAGE_CHECK(o.clip >= -1 && o.clip < static_cast<int>(model.clips.size()), "clip ", o.clip,
                " of ", model.clips.size());
-  if (!(o.framesPerSecond >= 1.0 && o.framesPerSecond <= 1000.0))
-    fieldError("fps", o.framesPerSecond, " is out of range [1, 1000]");
-  if (!(o.startSeconds >= 0.0 && o.startSeconds <= 1e6))
-    fieldError("time", o.startSeconds, " is out of range [0, 1000000] seconds");
-  if (o.preRollFrames < -1 || o.preRollFrames > 10000000)
-    fieldError("preroll", o.preRollFrames, " is out of range [0, 10000000] frames");
+  validateFramesPerSecond(o.framesPerSecond);
+  validateStartSeconds(o.startSeconds);
+  validatePreRoll(o.preRollFrames);
   if (o.dynamics) {
     if (o.clip < 0) fieldError("dynamics", "on needs a clip: the rest pose does not move");
     fur::validateDynamicsParams(o.dynamicsParams, "dynamics");

@@ -10,23 +10,13 @@
 
 #include "pelage/scene/frame_range.h"
 #include "scene/export_test_support.h"
+#include "scene/scene_fixture.h"
 #include "test_support.h"
 
 namespace pelage::test {
 namespace {
 
 namespace fs = std::filesystem;
-
-// A clip for the critter: the tail wags, the head nods, the body moves forward.
-const char* kWagClip = R"({ "name": "wag", "duration": 1.0, "channels": [
-  { "segment": "tail", "path": "rotate", "interpolation": "cubic", "keys": [
-    { "time": 0, "axis": [0, 0, 1], "degrees": -30 }, { "time": 0.5, "axis": [0, 0, 1], "degrees": 30 },
-    { "time": 1, "axis": [0, 0, 1], "degrees": -30 } ] },
-  { "segment": "head", "path": "rotate", "keys": [
-    { "time": 0, "axis": [0, 1, 0], "degrees": 0 }, { "time": 0.5, "axis": [0, 1, 0], "degrees": 20 },
-    { "time": 1, "axis": [0, 1, 0], "degrees": 0 } ] },
-  { "segment": "body", "path": "translate", "keys": [
-    { "time": 0, "value": [0, 0, 0] }, { "time": 1, "value": [0.2, 0, 0] } ] } ] })";
 
 class ExportCommand : public ::testing::Test {
  protected:

@@ -10,8 +10,8 @@
 #include <filesystem>
 #include <thread>
 
+#include "scene/scene_fixture.h"
 #include "test_support.h"
-#include "viewer/render_test_support.h"
 
 namespace pelage::test {
 namespace {

@@ -10,8 +10,8 @@
 #include <thread>
 
 #include "pelage/viewer/render_sequence.h"
+#include "scene/scene_fixture.h"
 #include "test_support.h"
-#include "viewer/render_test_support.h"
 
 namespace pelage::test {
 namespace {

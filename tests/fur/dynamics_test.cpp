@@ -319,12 +319,12 @@ TEST(FurDynamics, ASuddenTurnLagsThenSettlesWithinThePredictedTime) {
     generateDynamicFur(plate.skin, plate.roots, plate.params, dyn, after, dt, {}, state, ws, frame);
     const double w = 2 * kPi * 3.0, wd = w * std::sqrt(1.0 - double(zeta) * zeta);
     double amplitude = 0.0;
-    const std::int64_t roots = state.rootCounts[0];
+    const std::int64_t roots = state.roots(0);
     for (std::int64_t r = 0; r < roots; ++r) {
       double a2 = 0.0;
       for (int q = 0; q < 3; ++q) {
-        const double x0 = state.coats[0][static_cast<std::size_t>(q * roots + r)];
-        const double v0 = state.coats[0][static_cast<std::size_t>((3 + q) * roots + r)];
+        const double x0 = planar(state.offset(0), roots, r, q);
+        const double v0 = planar(state.velocity(0), roots, r, q);
         a2 += x0 * x0 + std::pow((v0 + zeta * w * x0) / wd, 2);
       }
       amplitude = std::max(amplitude, std::sqrt(a2));

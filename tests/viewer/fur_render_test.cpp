@@ -20,7 +20,7 @@ namespace pelage::viewer {
 namespace {
 
 const scene::Model& critter() {
-  return test::testCritter();
+  return test::sceneCritter();
 }
 
 // fig9's colours with no specular term, so every lit fur pixel is Ka La + Kd t, t in [0, 1]: its

@@ -16,6 +16,7 @@
 #include "pelage/viewer/gl_context.h"
 #include "pelage/viewer/gl_debug.h"
 #include "pelage/viewer/image.h"
+#include "scene/scene_fixture.h"
 
 namespace pelage::test {
 
@@ -61,11 +62,6 @@ class GlTest : public ::testing::Test {
 
 // The test critter (tests/scene/critter.json: body, head facing +X with a "face" region, tail;
 // 40,000 triangles), built once per test binary: quick to build, also under the sanitizers.
-inline const scene::Model& testCritter() {
-  static const scene::Model m = scene::loadModel(PELAGE_SOURCE_DIR "/tests/scene/critter.json");
-  return m;
-}
-
 // Frames are stored sRGB-encoded: the 0..255 value a linear colour channel is written as, as a
 // real number (no rounding), and the linear value of a stored one.
 inline float encoded255(float linear) {

@@ -24,7 +24,7 @@ namespace pelage::viewer {
 namespace {
 
 const scene::Model& critter() {
-  return test::testCritter();
+  return test::sceneCritter();
 }
 
 // A pose that bends the body (so the skin is not the bind pose) and turns it a little.

@@ -10,8 +10,9 @@
 
 #include "pelage/util/atomic_file.h"
 #include "pelage/util/error.h"
+#include "scene/scene_fixture.h"
 #include "test_support.h"
-#include "viewer/render_test_support.h"
+#include "viewer/gl_fixture.h"
 
 namespace pelage::test {
 namespace {

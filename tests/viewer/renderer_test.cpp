@@ -19,7 +19,7 @@ using test::coverage;
 using test::differsFrom;
 
 const scene::Model& critter() {
-  return test::testCritter();
+  return test::sceneCritter();
 }
 
 // A CPU point-in-triangle rasteriser of the projected skin: the expected silhouette (pixel

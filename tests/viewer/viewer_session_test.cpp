@@ -23,7 +23,7 @@ namespace {
 
 // The critter with one clip that turns its head from side to side (2 s, looping).
 scene::Model critterWithClips() {
-  scene::Model m = test::testCritter();
+  scene::Model m = test::sceneCritter();
   const int head = m.body.find("head");
   for (const float sign : {1.0f, -1.0f}) {
     animation::Clip c;

@@ -10,6 +10,7 @@
 #include "pelage/util/color.h"
 #include "pelage/util/error.h"
 #include "pelage/util/image.h"
+#include "pelage/util/path.h"
 
 namespace pelage::viewer {
 
@@ -60,10 +61,7 @@ void writePng(const std::string& path, const Image& image) {
 }
 
 void writeImage(const std::string& path, const Image& image) {
-  std::string ext;
-  const std::size_t dot = path.rfind('.');
-  if (dot != std::string::npos && path.find('/', dot) == std::string::npos) ext = path.substr(dot);
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const std::string ext = lowerExtension(path);
   if (ext == ".png") {
     writePng(path, image);
     return;

@@ -35,26 +35,18 @@ void defaultWrite(const std::string& path, const std::vector<std::uint8_t>& byte
 }  // namespace
 
 void validateSequenceOptions(const SequenceOptions& o) {
-  if (o.width < 16 || o.width > 16384 || o.height < 16 || o.height > 16384)
-    fieldError("size", o.width, "x", o.height, " is out of range [16, 16384] per side");
-  if (!(o.playback.framesPerSecond >= 1.0 && o.playback.framesPerSecond <= 1000.0))
-    fieldError("fps", o.playback.framesPerSecond, " is out of range [1, 1000]");
+  scene::validateImageSize(o.width, o.height);
+  scene::validateFramesPerSecond(o.playback.framesPerSecond);
   scene::validateFrameRange(o.frames);
-  if (o.samples < -1 || o.samples > 64)
-    fieldError("samples", o.samples, " is out of range [-1, 64]");
+  scene::validateSamples(o.samples);
   if (o.encoderThreads < 0 || o.encoderThreads > 256)
     fieldError("encoders", o.encoderThreads, " is out of range [0, 256]");
-  if (!(o.camera.fovYDegrees > 1.0f && o.camera.fovYDegrees < 179.0f))
-    fieldError("fov", o.camera.fovYDegrees, " is out of range (1, 179) degrees");
+  scene::validateFov(o.camera.fovYDegrees);
   if (o.outDir.empty()) fieldError("out", ": an output directory is required");
   if (o.playback.dynamics && o.playback.clip < 0)
     fieldError("dynamics", "on needs a clip: the rest pose does not move");
-  if (o.playback.preRollFrames < -1 || o.playback.preRollFrames > 10000000)
-    fieldError("preroll", o.playback.preRollFrames, " is out of range [0, 10000000] frames");
-  if (o.skinColor)
-    for (int c = 0; c < 3; ++c)
-      if (!((*o.skinColor)[c] >= 0.0f && (*o.skinColor)[c] <= 1.0f))
-        fieldError("skin color", "RGB"[c], " = ", (*o.skinColor)[c], " is out of range [0, 1]");
+  scene::validatePreRoll(o.playback.preRollFrames);
+  if (o.skinColor) scene::validateColor(*o.skinColor, "skin color");
   if (!o.video.empty()) {
     const std::string ext = fs::path(o.video).extension().string();
     if (ext != ".mp4" && ext != ".gif")
@@ -189,9 +181,9 @@ SequenceReport renderSequence(const scene::Model& model, const scene::Fur& fur,
       if (video) {
         const Image img = readPng(framePath(frame));
         if (img.width != options.width || img.height != options.height)
-          inputError(framePath(frame), ": --resume found a ", img.width, "x", img.height,
+          fieldError("resume", framePath(frame), ": found a ", img.width, "x", img.height,
                      " frame, not ", options.width, "x", options.height,
-                     " (render into an empty directory, or without --resume)");
+                     " (render into an empty directory, or without resuming)");
         video->addFrame(img);
       }
       continue;

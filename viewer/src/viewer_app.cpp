@@ -17,6 +17,7 @@
 
 #include "pelage/fur/preset.h"
 #include "pelage/util/error.h"
+#include "pelage/util/path.h"
 #include "pelage/viewer/gl.h"
 #include "pelage/viewer/gl_context.h"
 #include "pelage/viewer/gl_debug.h"
@@ -195,7 +196,7 @@ int runHeadless(const ViewerOptions& o, scene::Model model) {
     log = std::make_unique<GlDebugLog>();
     log->setEcho(true);
   }
-  std::printf("pelage view --headless: %s, %s (%s)\n", context->info().renderer.c_str(),
+  std::printf("headless view: %s, %s (%s)\n", context->info().renderer.c_str(),
               context->info().version.c_str(), context->info().backend.c_str());
   detail::ViewerSession session(o, std::move(model));
   const int frames = o.frames > 0 ? o.frames : 1;
@@ -222,17 +223,18 @@ int runHeadless(const ViewerOptions& o, scene::Model model) {
 }  // namespace
 
 void validateViewerOptions(const ViewerOptions& o) {
-  if (o.width < 16 || o.width > 16384 || o.height < 16 || o.height > 16384)
-    fieldError("size", o.width, "x", o.height, " is out of range [16, 16384] per side");
+  scene::validateImageSize(o.width, o.height);
   if (o.frames < 0 || o.frames > 10000000)
     fieldError("frames", o.frames, " is out of range [0, 10000000]");
-  if (o.samples < -1 || o.samples > 64)
-    fieldError("samples", o.samples, " is out of range [-1, 64]");
-  if (!(o.time >= 0.0 && o.time <= 1e6))
-    fieldError("time", o.time, " is out of range [0, 1000000] s");
+  scene::validateSamples(o.samples);
+  scene::validateStartSeconds(o.time);
+  if (o.skinColor) scene::validateColor(*o.skinColor, "skin color");
   if (o.benchmarkFrames < 1 || o.benchmarkFrames > 100000)
     fieldError("benchmark frames", o.benchmarkFrames, " is out of range [1, 100000]");
   if (!o.screenshot.empty()) {
+    const std::string ext = lowerExtension(o.screenshot);
+    if (ext != ".png" && ext != ".jpg" && ext != ".jpeg")
+      fieldError("screenshot", o.screenshot, ": the file must end in .png or .jpg");
     const std::filesystem::path parent = std::filesystem::path(o.screenshot).parent_path();
     if (!parent.empty() && !std::filesystem::is_directory(parent))
       fieldError("screenshot", o.screenshot, ": the directory ", parent.string(),

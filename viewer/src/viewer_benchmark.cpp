@@ -25,7 +25,7 @@ int runBenchmark(const ViewerOptions& options, const scene::Model& model) {
   if (options.debugGl) log = std::make_unique<GlDebugLog>();
   const ContextInfo& info = context->info();
   std::printf(
-      "pelage view --benchmark: %s | %s | %s | %dx%d | %d CPU threads | hairs on the %s | model "
+      "viewer benchmark: %s | %s | %s | %dx%d | %d CPU threads | hairs on the %s | model "
       "%s\n",
       info.renderer.c_str(), info.version.c_str(), info.backend.c_str(), options.width,
       options.height, threadCount(),

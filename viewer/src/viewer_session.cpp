@@ -47,11 +47,7 @@ ViewerSession::ViewerSession(const ViewerOptions& options, scene::Model model)
   appliedDynamics_ = dynamicsParams;
   skinColor = model_.skin.color;
   if (options.skinColor) {
-    for (int c = 0; c < 3; ++c) {
-      const float v = (*options.skinColor)[c];
-      if (!(v >= 0.0f && v <= 1.0f))
-        fieldError("skin color", "RGB"[c], " = ", v, " is out of range [0, 1]");
-    }
+    scene::validateColor(*options.skinColor, "skin color");
     skinColor = *options.skinColor;
     ownSkinColor = true;
   }

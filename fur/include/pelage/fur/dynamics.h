@@ -79,7 +79,13 @@ double overshootFraction(double dampingRatio);
 struct FurDynamicsState {
   // Per coat, 9 x nRoots floats, planar (component q of root r at q * nRoots + r): 0-2 offset
   // u = E - E_qs (m), 3-5 end velocity E' (m/s), 6-8 the last quasi-static end E_qs (m); world.
+  // One block per coat for the kernel; read the fields through the accessors below.
   std::array<std::vector<float>, kCoatCount> coats;
+  // Coat c's fields, each (3, n) planar, n = rootCounts[c]: x of every root, then y, then z.
+  const float* offset(int c) const { return field(c, 0); }    // u = E - E_qs (m)
+  const float* velocity(int c) const { return field(c, 3); }  // E' (m/s)
+  const float* lastEnd(int c) const { return field(c, 6); }   // E_qs of the last step (m)
+  std::int64_t roots(int c) const { return rootCounts[static_cast<std::size_t>(c)]; }
   std::array<std::int64_t, kCoatCount> rootCounts{0, 0};
   std::int64_t steps = 0;  // frames advanced since the reset
   double dtSeconds = 0.0;  // the last step's frame time
@@ -87,7 +93,17 @@ struct FurDynamicsState {
   // (recomputed when they change).
   std::array<std::vector<float>, kCoatCount> springSteps;
   std::array<std::array<double, 3>, kCoatCount> stepKey{};
+
+ private:
+  const float* field(int c, int first) const {
+    return coats[static_cast<std::size_t>(c)].data() + first * roots(c);
+  }
 };
+
+// Component q (0 x, 1 y, 2 z) of root r in a (3, n) planar field of FurDynamicsState.
+inline float planar(const float* field, std::int64_t n, std::int64_t r, int q) {
+  return field[q * n + r];
+}
 
 // Sizes the state to `roots` and zeroes it: the next step starts on the quasi-static hairs, at
 // rest, and the one after moving with them. Allocates.
@@ -110,9 +126,7 @@ void generateDynamicFur(const skin::SkinMesh& skin, const FurRoots& roots, const
 // The dynamic ending point's offset from the quasi-static one, u (m, world), of root `root` of
 // coat `coat` after the last step.
 inline void dynamicOffset(const FurDynamicsState& state, int coat, std::int64_t root, float u[3]) {
-  const auto& s = state.coats[static_cast<std::size_t>(coat)];
-  const std::int64_t n = state.rootCounts[static_cast<std::size_t>(coat)];
-  for (int q = 0; q < 3; ++q) u[q] = s[static_cast<std::size_t>(q * n + root)];
+  for (int q = 0; q < 3; ++q) u[q] = planar(state.offset(coat), state.roots(coat), root, q);
 }
 
 }  // namespace pelage::fur

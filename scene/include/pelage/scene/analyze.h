@@ -31,13 +31,17 @@ struct AnalysisOptions {
   // Frame f shows clip time clock.startSeconds + f / fps. With a step, every frame from first to
   // last is played (the springs and speeds need them) and the frames on the step are reported.
   FrameRange frames;
-  double holdSeconds = 0.0;  // after frames.last, the last pose held still this long, [0, 1000]
+  double holdSeconds = 0.0;  // after frames.last, the last pose held still this long (see below)
   bool dynamics = false;     // also the damped dynamic ends (fur/dynamics.h)
   fur::DynamicsParams dynamicsParams;
   DynamicsClock clock;  // fps, start time and pre-roll
   AnalysisGroups groups = AnalysisGroups::Region;
   double settleTolerance = 0.02;  // settled: within this fraction of the largest swing, (0, 1)
 };
+
+// The hold after the last frame: [0, kMaxHoldSeconds]; InputError naming `field` otherwise.
+inline constexpr double kMaxHoldSeconds = 1000.0;
+void validateHoldSeconds(double seconds, const std::string& field = "hold");
 
 // Droop statistics of one set of hairs. Droop angle: between the hair's end direction e (root to
 // ending point) and its weightless direction d~ (root to weightless ending point, sec. 3.4-3.5).

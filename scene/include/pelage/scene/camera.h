@@ -43,6 +43,18 @@ fur::ViewCamera viewCamera(const Camera& camera);
 
 // The vertical field of view (degrees) of presets and orbits unless one is given.
 inline constexpr float kDefaultFovYDegrees = 35.0f;
+// The limits of an image and its camera, each checked by its validator (InputError naming
+// `field`): sides in [kMinImageSide, kMaxImageSide], the vertical field of view in the open
+// interval (kMinFovYDegrees, kMaxFovYDegrees).
+inline constexpr int kMinImageSide = 16;
+inline constexpr int kMaxImageSide = 16384;
+void validateImageSize(int width, int height, std::string_view field = "size");
+inline constexpr double kMinFovYDegrees = 1.0;
+inline constexpr double kMaxFovYDegrees = 179.0;
+void validateFov(double degrees, std::string_view field = "fov");
+// MSAA samples of an image: -1 (4 on a GPU, none on a software rasteriser) or [0, kMaxSamples].
+inline constexpr int kMaxSamples = 64;
+void validateSamples(int samples, std::string_view field = "samples");
 
 // The camera presets of the viewer and of `pelage render`.
 enum class CameraPreset { Front, Side, ThreeQuarter, Face, Follow };

@@ -4,6 +4,8 @@
 
 #include <Eigen/Core>
 
+#include <string_view>
+
 #include "pelage/util/material.h"
 
 namespace pelage::scene {
@@ -34,5 +36,8 @@ struct Light {
 // The skin's lighting material (linear) for a typed, sRGB-encoded diffuse colour (the same ambient,
 // small specular terms).
 Material skinMaterial(const Eigen::Vector3f& color);
+// Checks that each of r, g, b is in [0, 1] (a typed colour: skin, background); InputError naming
+// `field` and the channel otherwise ("skin color G = 2 is out of range [0, 1]").
+void validateColor(const Eigen::Vector3f& rgb, std::string_view field);
 
 }  // namespace pelage::scene

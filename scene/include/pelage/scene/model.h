@@ -43,6 +43,11 @@ struct LoadOptions {
 // The built-in creature's name.
 inline constexpr const char* kDefaultModel = "monkey";
 
+// What a model file is, by its extension (any case): a glTF creature (.gltf, .glb), a static
+// mesh (.obj, .ply, .off, .stl), a creature file (.json), or none of these.
+enum class ModelFileKind { None, Gltf, Mesh, Creature };
+ModelFileKind modelFileKind(std::string_view path);
+
 // Loads `spec`: "" or "monkey" (built-in), a .json creature, a .gltf/.glb creature, or a
 // .obj/.ply/.off/.stl mesh.
 // Throws InputError naming the file for anything missing or malformed.

@@ -18,6 +18,7 @@
 #include <Eigen/Core>
 
 #include <cstdint>
+#include <string_view>
 #include <utility>
 
 #include "pelage/anatomy/pose.h"
@@ -48,6 +49,18 @@ struct PlaybackOptions {
   // else this many frames earlier (faster, approximately equal), [0, 10000000].
   int preRollFrames = -1;
 };
+
+// The limits of a playback's clock, each checked by its validator (InputError naming `field`, as
+// every client reports it: the command line names the option, Python the keyword).
+inline constexpr double kMinFramesPerSecond = 1.0;
+inline constexpr double kMaxFramesPerSecond = 1000.0;
+void validateFramesPerSecond(double fps, std::string_view field = "fps");
+inline constexpr double kMaxStartSeconds = 1e6;
+void validateStartSeconds(double seconds, std::string_view field = "time");
+// [0, kMaxPreRollFrames], or -1 (from frame 0: the default, not a value to type) where
+// `allowFromStart`.
+inline constexpr int kMaxPreRollFrames = 10000000;
+void validatePreRoll(int frames, std::string_view field = "preroll", bool allowFromStart = true);
 
 // Checks the options against `model` (clip index, fps, pre-roll, dynamics parameters, dynamics
 // without a clip); InputError naming the field ("fps", "preroll", "dynamics", ...) otherwise.

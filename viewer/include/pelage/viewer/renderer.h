@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <string_view>
 
 #include "pelage/scene/draw_list.h"
 #include "pelage/viewer/gl.h"

@@ -1,0 +1,158 @@
+// The frame owner (scene/playback.h), tested directly: a clip's frame and the still pose pose the
+// skin the frame functions give, a frame reached out of order with dynamics equals a whole run's
+// bit for bit (the pre-roll), the GPU source counts the hairs the CPU draws, a playback's limits
+// name their fields, and a stop asked for ends a frame before it is posed.
+#include "pelage/scene/playback.h"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+
+#include "pelage/anatomy/pose.h"
+#include "pelage/util/error.h"
+#include "pelage/util/interrupt.h"
+#include "scene/scene_fixture.h"
+
+namespace pelage::scene {
+namespace {
+
+using test::wagCritter;
+using test::wagFur;
+
+bool sameSkin(const FrameState& a, const FrameState& b) {
+  if (a.skin.positions.size() != b.skin.positions.size()) return false;
+  for (std::size_t i = 0; i < a.skin.positions.size(); ++i)
+    if (a.skin.positions[i] != b.skin.positions[i] || a.skin.normals[i] != b.skin.normals[i])
+      return false;
+  return true;
+}
+
+bool sameHairs(const fur::FurFrame& a, const fur::FurFrame& b) {
+  if (a.drawn() != b.drawn() || a.positions.size() != b.positions.size()) return false;
+  return std::memcmp(a.positions.data(), b.positions.data(), a.positions.size() * sizeof(float)) ==
+         0;
+}
+
+TEST(Playback, AClipFrameIsTheClipAtItsTime) {
+  PlaybackOptions o;
+  o.clip = 0;
+  o.framesPerSecond = 12.0;
+  o.startSeconds = 0.25;
+  Playback p(wagCritter(), wagFur(), o);
+  FrameState expected;
+  for (const int f : {0, 5, 3, 17}) {  // any order, past the clip's end too (it loops)
+    p.poseFrame(f);
+    evaluateClipFrame(wagCritter(), 0, 0.25 + f / 12.0, expected);
+    EXPECT_TRUE(sameSkin(p.state(), expected)) << "frame " << f;
+  }
+  // Frames differ from one another: the critter moves.
+  p.poseFrame(0);
+  evaluateClipFrame(wagCritter(), 0, 0.25 + 6 / 12.0, expected);
+  EXPECT_FALSE(sameSkin(p.state(), expected));
+}
+
+TEST(Playback, TheStillPoseIsTheSameEveryFrame) {
+  PlaybackOptions o;  // clip -1
+  Playback p(wagCritter(), wagFur(), o);
+  FrameState rest;
+  evaluateFrame(wagCritter(), anatomy::restPose(wagCritter().body), rest);
+  for (const int f : {0, 7, 100}) {
+    p.poseFrame(f);
+    EXPECT_TRUE(sameSkin(p.state(), rest)) << "frame " << f;
+  }
+  EXPECT_EQ(wholeClip(wagCritter(), -1, 30.0).count(), 1);
+  EXPECT_EQ(wholeClip(wagCritter(), 0, 12.0).last, 12);  // 1 s at 12 frames/s: 0 to 12
+}
+
+TEST(Playback, AFrameReachedOutOfOrderEqualsAWholeRunWithDynamics) {
+  PlaybackOptions o;
+  o.clip = 0;
+  o.framesPerSecond = 24.0;
+  o.hairSource = HairSource::Cpu;
+  o.dynamics = true;
+  Playback whole(wagCritter(), wagFur(), o);
+  for (int f = 0; f <= 9; ++f) {
+    whole.poseFrame(f);
+    whole.evaluateFur(fur::FurView{});
+  }
+  Playback jump(wagCritter(), wagFur(), o);
+  jump.poseFrame(9);  // pre-rolled through frames 0..8
+  jump.evaluateFur(fur::FurView{});
+  ASSERT_GT(whole.state().fur.drawn(), 0);
+  EXPECT_TRUE(sameHairs(whole.state().fur, jump.state().fur));
+  // And the springs matter: the quasi-static hairs of frame 9 differ.
+  PlaybackOptions still = o;
+  still.dynamics = false;
+  Playback quasi(wagCritter(), wagFur(), still);
+  quasi.poseFrame(9);
+  quasi.evaluateFur(fur::FurView{});
+  EXPECT_FALSE(sameHairs(whole.state().fur, quasi.state().fur));
+}
+
+TEST(Playback, TheGpuSourceCountsTheHairsTheCpuDraws) {
+  CameraRig rig;
+  rig.preset = CameraPreset::Side;
+  std::int64_t total[2] = {0, 0};  // near, far
+  for (const bool far : {false, true}) {
+    std::array<std::int64_t, 2> counts[2];
+    for (const HairSource source : {HairSource::Cpu, HairSource::Gpu}) {
+      PlaybackOptions o;
+      o.clip = 0;
+      o.hairSource = source;
+      Playback p(wagCritter(), wagFur(), o);
+      // A far, narrow view culls (sec. 3.3); the near one draws every hair.
+      rig.fovYDegrees = far ? 2.0f : kDefaultFovYDegrees;
+      const DrawList& list =
+          p.sequenceFrame(4, rig, far ? 64 : 640, far ? 48 : 480, Light{}, DrawOptions{});
+      EXPECT_EQ(list.fur.empty(), false);
+      counts[source == HairSource::Gpu] = p.state().drawnHairs;
+      EXPECT_EQ(list.drawnHairs(), p.state().drawnHairs[0] + p.state().drawnHairs[1]);
+    }
+    EXPECT_EQ(counts[0], counts[1]) << (far ? "far" : "near");
+    total[far] = counts[0][0] + counts[0][1];
+  }
+  EXPECT_EQ(total[0], wagFur().roots.total());  // near: every hair
+  EXPECT_LT(total[1], total[0] / 2);            // far: culled
+}
+
+TEST(Playback, LimitsNameTheirFields) {
+  const auto fieldOf = [](auto f) {
+    try {
+      f();
+    } catch (const InputError& e) {
+      return e.field();
+    }
+    return std::string("(accepted)");
+  };
+  EXPECT_EQ(fieldOf([] { validateFramesPerSecond(0.5); }), "fps");
+  EXPECT_EQ(fieldOf([] { validateFramesPerSecond(1000.0); }), "(accepted)");
+  EXPECT_EQ(fieldOf([] { validateStartSeconds(-1.0, "time"); }), "time");
+  EXPECT_EQ(fieldOf([] { validatePreRoll(-1); }), "(accepted)");
+  EXPECT_EQ(fieldOf([] { validatePreRoll(-1, "preroll", false); }), "preroll");
+  EXPECT_EQ(fieldOf([] { validatePreRoll(kMaxPreRollFrames + 1); }), "preroll");
+  EXPECT_EQ(fieldOf([] { validateImageSize(15, 100); }), "size");
+  EXPECT_EQ(fieldOf([] { validateImageSize(kMaxImageSide, kMinImageSide); }), "(accepted)");
+  EXPECT_EQ(fieldOf([] { validateFov(179.0); }), "fov");
+  EXPECT_EQ(fieldOf([] { validateColor(Eigen::Vector3f(0, 1.5f, 0), "skin color"); }),
+            "skin color");
+  PlaybackOptions o;
+  o.framesPerSecond = 0.0;
+  EXPECT_THROW(Playback(wagCritter(), wagFur(), o), InputError);
+}
+
+void stopNow() {
+  throw Interrupted(0);
+}
+
+TEST(Playback, AStopAskedForEndsTheNextFrame) {
+  PlaybackOptions o;
+  o.clip = 0;
+  Playback p(wagCritter(), wagFur(), o);
+  setInterruptPoll(stopNow);
+  EXPECT_THROW(p.poseFrame(3), Interrupted);
+  setInterruptPoll(nullptr);
+  EXPECT_NO_THROW(p.poseFrame(3));
+}
+
+}  // namespace
+}  // namespace pelage::scene

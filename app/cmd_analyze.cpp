@@ -241,7 +241,8 @@ void addAnalyzeCommand(CLI::App& app) {
           inputError("--merge takes only --out (and --quiet, --threads), not ", opt->get_name());
       std::vector<std::string> texts;
       for (const std::string& f : o->merge) {
-        if (!std::filesystem::is_regular_file(f)) inputError(f, ": no such file to merge");
+        if (std::error_code ec; !std::filesystem::is_regular_file(f, ec))
+          inputError(f, ": no such file to merge");
         texts.push_back(readTextFile(f));
       }
       writeFileAtomically(o->out, scene::mergeSweepCsv(texts, o->merge));

@@ -107,8 +107,9 @@ void runRender(RenderArgs& a) {
   o.look.background = a.view.backgroundColor();
   o.transparentBackground = a.view.transparentBackground();
   const std::string ext = std::filesystem::path(o.outDir).extension().string();
+  std::error_code ignored;
   if ((ext == ".png" || ext == ".jpg" || ext == ".mp4" || ext == ".gif") &&
-      !std::filesystem::is_directory(o.outDir))
+      !std::filesystem::is_directory(o.outDir, ignored))
     inputError("--out ", o.outDir,
                " names a file; --out is the directory for frame_NNNNN.png (give the video with "
                "--video)");

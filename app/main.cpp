@@ -144,7 +144,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "pelage: error: out of memory\n");
     return 4;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "pelage: error: %s\n", e.what());
+    std::fprintf(stderr, "pelage: error: %s\n", pelage::shortenLongWords(e.what()).c_str());
     return 1;
   }
   return 0;

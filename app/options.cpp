@@ -394,7 +394,7 @@ void parseSize(const std::string& text, const char* option, int& width, int& hei
   char x = 0;
   std::istringstream in(text);
   if (!(in >> width >> x >> height) || x != 'x' || !in.eof())
-    inputError(option, " '", text, "' is not WIDTHxHEIGHT (e.g. 1920x1080)");
+    inputError(option, " '", excerpt(text), "' is not WIDTHxHEIGHT (e.g. 1920x1080)");
   scene::validateImageSize(width, height, option);
 }
 

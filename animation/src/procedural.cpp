@@ -480,7 +480,8 @@ const ClipDef kClips[] = {{"walk", kWalkDuration, walk},
 const ClipDef& clipDef(const std::string& name) {
   for (const ClipDef& c : kClips)
     if (name == c.name) return c;
-  inputError("unknown procedural clip '", name, "' (known: walk, tumble, hang, shake, idle)");
+  inputError("unknown procedural clip '", excerpt(name),
+             "' (known: walk, tumble, hang, shake, idle)");
 }
 
 }  // namespace

@@ -68,7 +68,7 @@ ColorSource parseColorSource(std::string_view name, const std::string& where) {
     if (n == name) return s;
     list += (list.empty() ? "" : ", ") + std::string(n);
   }
-  inputError(where, ": unknown colour source '", name, "' (accepted: ", list, ")");
+  inputError(where, ": unknown colour source '", excerpt(name), "' (accepted: ", list, ")");
 }
 
 namespace {}  // namespace

@@ -29,7 +29,7 @@ std::string styleNames() {
 HairStyle parseStyle(std::string_view name, const std::string& where) {
   for (HairStyle s : kHairStyles)
     if (name == styleName(s)) return s;
-  inputError(where, ": unknown hair style '", name, "' (accepted: ", styleNames(), ")");
+  inputError(where, ": unknown hair style '", excerpt(name), "' (accepted: ", styleNames(), ")");
 }
 
 HairLayout hairLayout(const CoatParams& coat) {

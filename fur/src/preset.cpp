@@ -229,10 +229,10 @@ FurParams loadFurPreset(const std::string& nameOrPath) {
     if (auto text = builtinPresetText(nameOrPath))
       return parsePreset(JsonReader::parseText(*text, "built-in preset " + nameOrPath),
                          "built-in preset " + nameOrPath, "");
-    if (!std::filesystem::exists(nameOrPath)) {
+    if (std::error_code ec; !std::filesystem::exists(nameOrPath, ec)) {
       std::string list;
       for (const std::string& n : builtinPresetNames()) list += (list.empty() ? "" : ", ") + n;
-      inputError("unknown fur preset '", nameOrPath, "' (built-in: ", list,
+      inputError("unknown fur preset '", excerpt(nameOrPath), "' (built-in: ", list,
                  "; or give a .json file)");
     }
   }

@@ -127,8 +127,8 @@ AnalysisTable sweepTable(const SweepResult& sweep) {
     for (std::size_t v = 0; v < sweep.values.size(); ++v) {
       const std::vector<FrameAnalysis>& run = sweep.runs[v].frames;
       PELAGE_CHECK(run.size() == frames.size(), "sweep runs of different lengths");
-      t.names.push_back(prefix + column + "[" + sweep.spec.parameter + "=" +
-                        str(sweep.values[v]) + "]");
+      t.names.push_back(prefix + column + "[" + sweep.spec.parameter + "=" + str(sweep.values[v]) +
+                        "]");
       std::vector<double>& c = t.columns.emplace_back();
       for (const FrameAnalysis& f : run)
         c.push_back(droop ? (f.*end).all.droopMeanDeg : (f.*end).tipHeightMm);

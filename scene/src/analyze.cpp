@@ -357,7 +357,7 @@ double parseNumber(const std::string& text, const std::string& field, const std:
   const char* end = text.data() + text.size();
   const auto [ptr, ec] = std::from_chars(text.data(), end, v);
   if (text.empty() || ec != std::errc() || ptr != end || !std::isfinite(v))
-    fieldError(field, "'", spec, "': '", text,
+    fieldError(field, "'", excerpt(spec), "': '", excerpt(text),
                "' is not a number (expected NAME=A:B:N, e.g. stiffness=0.2:1.0:5)");
   return v;
 }
@@ -372,7 +372,7 @@ void validateHoldSeconds(double seconds, const std::string& field) {
 AnalysisGroups parseAnalysisGroups(const std::string& name, const std::string& field) {
   if (name == "region") return AnalysisGroups::Region;
   if (name == "segment") return AnalysisGroups::Segment;
-  fieldError(field, "'", name, "' (accepted: region, segment)");
+  fieldError(field, "'", excerpt(name), "' (accepted: region, segment)");
 }
 
 AnalysisResult analyzeClip(const Model& model, const Fur& fur, const AnalysisOptions& options) {
@@ -438,13 +438,14 @@ SweepSpec checkedSweep(SweepSpec s, const std::string& field, const std::string&
   const SweepParameter* p = nullptr;
   for (const SweepParameter& q : kSweepParameters)
     if (s.parameter == q.name) p = &q;
-  if (!p) fieldError(field, "'", text, "': unknown parameter '", s.parameter, "'", kSweepForm);
+  if (!p)
+    fieldError(field, "'", excerpt(text), "': unknown parameter '", s.parameter, "'", kSweepForm);
   if (s.list.empty() || s.count() > kMaxSweepValues)
-    fieldError(field, "'", text, "': ", s.count(), " values (accepted: 1 to ", kMaxSweepValues,
-               ")");
+    fieldError(field, "'", excerpt(text), "': ", s.count(), " values (accepted: 1 to ",
+               kMaxSweepValues, ")");
   for (double v : s.list)
     if (!std::isfinite(v) || v > p->hi || (p->openLow ? v <= p->lo : v < p->lo))
-      fieldError(field, "'", text, "': ", s.parameter, " ", v, " is out of range ",
+      fieldError(field, "'", excerpt(text), "': ", s.parameter, " ", v, " is out of range ",
                  p->openLow ? "(" : "[", p->lo, ", ", p->hi, "]");
   return s;
 }
@@ -455,7 +456,7 @@ SweepSpec sweepRange(const std::string& parameter, double first, double last, in
                      const std::string& field) {
   const std::string text = str(parameter, "=", first, ":", last, ":", count);
   if (count < 1 || count > kMaxSweepValues)
-    fieldError(field, "'", text, "': N = ", count, " is not a whole number in [1, ",
+    fieldError(field, "'", excerpt(text), "': N = ", count, " is not a whole number in [1, ",
                kMaxSweepValues, "]");
   SweepSpec s;
   s.parameter = parameter;
@@ -476,19 +477,19 @@ SweepSpec sweepValues(const std::string& parameter, std::vector<double> values,
 
 SweepSpec parseSweep(const std::string& text, const std::string& field) {
   const std::size_t eq = text.find('=');
-  if (eq == std::string::npos) fieldError(field, "'", text, "' has no '='", kSweepForm);
+  if (eq == std::string::npos) fieldError(field, "'", excerpt(text), "' has no '='", kSweepForm);
   const std::string parameter = text.substr(0, eq);
   const std::string rest = text.substr(eq + 1);
   const std::size_t c1 = rest.find(':');
   const std::size_t c2 = c1 == std::string::npos ? std::string::npos : rest.find(':', c1 + 1);
   if (c2 == std::string::npos || rest.find(':', c2 + 1) != std::string::npos)
-    fieldError(field, "'", text, "' is not of the form NAME=A:B:N", kSweepForm);
+    fieldError(field, "'", excerpt(text), "' is not of the form NAME=A:B:N", kSweepForm);
   const double from = parseNumber(rest.substr(0, c1), field, text);
   const double to = parseNumber(rest.substr(c1 + 1, c2 - c1 - 1), field, text);
   const double n = parseNumber(rest.substr(c2 + 1), field, text);
   if (!(n >= 1 && n <= kMaxSweepValues && n == std::floor(n)))
-    fieldError(field, "'", text, "': N = ", n, " is not a whole number in [1, ", kMaxSweepValues,
-               "]");
+    fieldError(field, "'", excerpt(text), "': N = ", n, " is not a whole number in [1, ",
+               kMaxSweepValues, "]");
   SweepSpec s;
   s.parameter = parameter;
   s.list = evenly(from, to, static_cast<int>(n));

@@ -191,7 +191,7 @@ CameraPreset parseCameraPreset(std::string_view name, std::string_view field) {
   for (CameraPreset p : {CameraPreset::Front, CameraPreset::Side, CameraPreset::ThreeQuarter,
                          CameraPreset::Face, CameraPreset::Follow})
     if (name == cameraPresetName(p)) return p;
-  fieldError(std::string(field), ": unknown camera preset '", name,
+  fieldError(std::string(field), ": unknown camera preset '", excerpt(name),
              "' (accepted: ", cameraPresetNames(), ")");
 }
 

@@ -21,7 +21,7 @@ std::string_view hairShadingName(HairShading shading) {
 HairShading parseHairShading(std::string_view name, std::string_view field) {
   for (HairShading s : kHairShadings)
     if (name == hairShadingName(s)) return s;
-  fieldError(std::string(field), ": unknown hair shading '", name,
+  fieldError(std::string(field), ": unknown hair shading '", excerpt(name),
              "' (accepted: paper, kajiya-kay, marschner)");
 }
 
@@ -38,7 +38,7 @@ std::string_view hairSourceName(HairSource source) {
 HairSource parseHairSource(std::string_view name, std::string_view field) {
   for (HairSource s : {HairSource::Gpu, HairSource::Cpu})
     if (name == hairSourceName(s)) return s;
-  fieldError(std::string(field), "'", name, "' (accepted: gpu, cpu)");
+  fieldError(std::string(field), "'", excerpt(name), "' (accepted: gpu, cpu)");
 }
 
 std::int64_t DrawList::drawnHairs() const {

@@ -27,7 +27,7 @@ std::string_view exportFormatName(ExportFormat format) {
 ExportFormat parseExportFormat(std::string_view name) {
   for (ExportFormat f : {ExportFormat::Usda, ExportFormat::Ply, ExportFormat::Glb})
     if (name == exportFormatName(f)) return f;
-  fieldError("format", "'", name, "' (accepted: usda, ply, glb)");
+  fieldError("format", "'", excerpt(name), "' (accepted: usda, ply, glb)");
 }
 
 void validateExportOutput(const ExportOptions& o) {
@@ -41,7 +41,7 @@ void validateExportOutput(const ExportOptions& o) {
     ensureWritableDirectory(parent.empty() ? std::string(".") : parent.string());
     return;
   }
-  if (fs::path(o.out).has_extension() && !fs::is_directory(o.out))
+  if (std::error_code ec; fs::path(o.out).has_extension() && !fs::is_directory(o.out, ec))
     fieldError("out", o.out, ": ", exportFormatName(o.format),
                " frames go into a directory (frame_NNNNN.", exportFormatName(o.format),
                "), not a file");

@@ -43,7 +43,7 @@ FrameRange parseFrameRange(std::string_view text, std::string_view field) {
              parseInt(text.substr(colon2 + 1), r.step);
   }
   if (!parsed)
-    fieldError(std::string(field), "'", text,
+    fieldError(std::string(field), "'", excerpt(text),
                "' is not a frame range FIRST:LAST (inclusive frame numbers, e.g. 0:99), "
                "FIRST:LAST:STEP or a single frame number");
   if (r.step >= 1 && r.last >= r.first) r.last -= (r.last - r.first) % r.step;

@@ -123,7 +123,16 @@ INSTANTIATE_TEST_SUITE_P(
                 "render <tet> --background 0.5 0.5 --frames 0 --out <dir>/f",
                 "--background takes R G B (3 values) or transparent"},
         BadCase{"BackgroundRange", "", "render <tet> --background 0 2 0 --frames 0 --out <dir>/f",
-                "--background G = '2' is not a number in [0, 1]"}),
+                "--background G = '2' is not a number in [0, 1]"},
+        // Input quoted in a message is cut to a few dozen characters, with its length.
+        BadCase{"LongFramesQuoted", "",
+                "render <tet> --out <dir>/f --frames 1:" + std::string(5000, '9') + "x",
+                "(5003 bytes)"},
+        BadCase{"LongCameraQuoted", "",
+                "render <tet> --out <dir>/f --frames 0 --camera " + std::string(3000, 'c'),
+                "(3000 bytes)"},
+        BadCase{"LongPresetQuoted", "",
+                "hair <tet> --out <dir>/x.ply --fur " + std::string(900, 'p'), "(900 bytes)"}),
     [](const auto& p) { return p.param.name; });
 
 // A bad model leaves no output folder behind (the folders a failed command made are removed),

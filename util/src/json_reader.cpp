@@ -94,7 +94,7 @@ void JsonReader::rejectUnknown(std::initializer_list<const char*> allowed) const
       std::string list;
       for (const char* a : allowed) list += std::string(list.empty() ? "" : ", ") + a;
       const std::string sub = path_.empty() ? k : path_ + "." + k;
-      inputError(file_, ": unknown field '", sub, "' (accepted here: ", list, ")");
+      inputError(file_, ": unknown field '", excerpt(sub), "' (accepted here: ", list, ")");
     }
   }
 }

@@ -69,7 +69,7 @@ VideoEncoder::VideoEncoder(const std::string& path, int width, int height, doubl
     fieldError("video", path,
                " needs the ffmpeg program, which is not on PATH (Debian: apt-get install ffmpeg)");
   const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
-  if (!fs::is_directory(dir))
+  if (std::error_code ec; !fs::is_directory(dir, ec))
     fieldError("video", path, ": the directory ", dir.string(), " does not exist");
   if (::access(dir.c_str(), W_OK) != 0)
     fieldError("video", path, ": cannot write (permission denied)");

@@ -236,7 +236,7 @@ void validateViewerOptions(const ViewerOptions& o) {
     if (ext != ".png" && ext != ".jpg" && ext != ".jpeg")
       fieldError("screenshot", o.screenshot, ": the file must end in .png or .jpg");
     const std::filesystem::path parent = std::filesystem::path(o.screenshot).parent_path();
-    if (!parent.empty() && !std::filesystem::is_directory(parent))
+    if (std::error_code ec; !parent.empty() && !std::filesystem::is_directory(parent, ec))
       fieldError("screenshot", o.screenshot, ": the directory ", parent.string(),
                  " does not exist");
   }

@@ -86,8 +86,6 @@ CoatShape makeCoatShape(const FurParams& params, int coat) {
   c.curl = cp.curlRadius > 0.0f && (cp.style == HairStyle::Curve || cp.style == HairStyle::Tube);
   c.curlRadius = c.curl ? cp.curlRadius : 0.0f;
   const double turns = static_cast<double>(cp.curlTurns);
-  const double rootRadius = 0.5e-3 * static_cast<double>(cp.width.rootMm);
-  const double tipRadius = 0.5e-3 * static_cast<double>(cp.width.tipMm);
   for (int k = 0; k < K; ++k) {
     const double t = k / double(K - 1);
     c.curveC1[k] = static_cast<float>((1 - t) * (1 - t) * t);
@@ -98,7 +96,8 @@ CoatShape makeCoatShape(const FurParams& params, int coat) {
     c.curlEnvelope[k] = end ? 0.0f : static_cast<float>(std::sin(kPi * t));
     c.curlCos[k] = static_cast<float>(std::cos(2 * kPi * turns * t));
     c.curlSin[k] = static_cast<float>(std::sin(2 * kPi * turns * t));
-    c.tubeRadius[k] = static_cast<float>(rootRadius + (tipRadius - rootRadius) * t);
+    // The tube's radius: half the coat's width (the one taper, StrandWidth::metersAt).
+    c.tubeRadius[k] = 0.5f * cp.width.metersAt(static_cast<float>(t));
   }
   c.curveC1[K - 1] = 0.0f;  // the curve ends exactly at E
   c.curveC2[K - 1] = 1.0f;

@@ -398,7 +398,8 @@ UsdExportCounts UsdaWriter::finish() {
     t << "] (\n            interpolation = \"" << (cc.perHair ? "vertex" : "constant")
       << "\"\n        )\n";
     if (co.layout.topology == fur::HairTopology::Rings) {
-      // The tube's diameter at each segment end ("varying"): 2 r_k, tapering to the tip.
+      // The tube's diameter at each segment end ("varying"): the coat's width there, tapering to
+      // the tip (fur::StrandWidth, as the PLY and glb exports write it).
       const int ends = (V - 1) / 3 + 1;
       t << "        float[] widths = [";
       for (std::int64_t h = 0; h < co.curves; ++h)
@@ -406,7 +407,7 @@ UsdExportCounts UsdaWriter::finish() {
           const std::int64_t i = h * ends + e;
           if (i > 0) t << ((i % 16) == 0 ? ",\n            " : ", ");
           const int k = ends == 2 ? (e == 0 ? 0 : co.shape.curvePoints - 1) : e;
-          t.num(2.0f * co.shape.tubeRadius[k]);
+          t.num(cp.width.metersAt(co.layout.along(k * co.layout.ringSides)));
           if (t.str().size() > (1u << 20)) emit();
         }
       t << "] (\n            interpolation = \"varying\"\n        )\n";

@@ -5,8 +5,9 @@
 #include <cstdio>
 #include <cstring>
 
-#include "pelage/util/atomic_file.h"
 #include "pelage/util/error.h"
+#include "pelage/util/image.h"
+#include "pelage/util/path.h"
 
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wunused-function"
@@ -16,7 +17,6 @@
 #pragma GCC diagnostic ignored "-Wcast-align"
 #include <stb_easy_font.h>
 #pragma GCC diagnostic pop
-#include <stb_image_write.h>
 
 namespace pelage::scene {
 namespace {
@@ -255,18 +255,8 @@ RgbImage renderPlot(const PlotSpec& spec) {
 
 void writePlotPng(const std::string& path, const PlotSpec& spec) {
   const RgbImage img = renderPlot(spec);
-  std::vector<std::uint8_t> png;
-  stbi_write_png_to_func(
-      [](void* ctx, void* data, int size) {
-        auto* v = static_cast<std::vector<std::uint8_t>*>(ctx);
-        const auto* p = static_cast<const std::uint8_t*>(data);
-        v->insert(v->end(), p, p + size);
-      },
-      &png, img.width, img.height, 3, img.rgb.data(), img.width * 3);
-  PELAGE_CHECK(!png.empty(), "PNG encoding failed");
-  AtomicFileWriter w(path);
-  w.write(png.data(), png.size());
-  w.commit();
+  if (lowerExtension(path) != ".png") inputError(path, ": a plot is written as PNG (.png)");
+  writeImageFile(path, img.rgb.data(), img.width, img.height, 3);
 }
 
 }  // namespace pelage::scene

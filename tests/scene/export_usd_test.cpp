@@ -223,6 +223,11 @@ TEST(ExportUsd, TubesAreCentreCurvesWithTaperedWidths) {
   const fur::StrandWidth& w = fur.params.coats[0].width;
   EXPECT_FLOAT_EQ(static_cast<float>(widths[0]), 1e-3f * w.rootMm);
   EXPECT_NEAR(widths[1], 1e-3 * static_cast<double>(w.tipMm), 1e-9);
+  // The one taper: exactly the width the PLY and glb exports write (StrandWidth::metersAt).
+  for (std::int64_t h = 0; h < n; ++h) {
+    EXPECT_EQ(static_cast<float>(widths[static_cast<std::size_t>(2 * h)]), w.metersAt(0.0f));
+    EXPECT_EQ(static_cast<float>(widths[static_cast<std::size_t>(2 * h + 1)]), w.metersAt(1.0f));
+  }
 }
 
 TEST(ExportUsd, UnwritableDirectoryAndUnfinishedLayersLeaveNothing) {

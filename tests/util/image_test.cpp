@@ -4,11 +4,13 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <string>
 #include <vector>
 
 #include "pelage/util/error.h"
 #include "png_writer.h"
+#include "test_support.h"
 
 namespace pelage {
 namespace {
@@ -100,6 +102,32 @@ TEST(Image, RefusesAJpegHuffmanTableOfMoreThan256Codes) {
 
 TEST(Image, MissingFileIsAMissingFileError) {
   EXPECT_THROW(readImageFile("/nonexistent-dir/none.png"), MissingFileError);
+}
+
+// The one image writer: PNG of 3 or 4 channels reads back pixel for pixel; JPEG decodes to the
+// size; another extension or an unwritable place is an InputError naming the file, and no file.
+TEST(Image, WritesPngAndJpegThatReadBack) {
+  test::TempDir dir;
+  const std::vector<std::uint8_t> rgb = {255, 0,  0,  0,  255, 0,  0,  0,  255,
+                                         10,  20, 30, 40, 50,  60, 70, 80, 90};
+  const std::string a = dir.file("A.PNG");
+  writeImageFile(a, rgb.data(), 3, 2, 3);
+  const Rgba8Image back = readImageFile(a);
+  ASSERT_EQ(back.width, 3);
+  ASSERT_EQ(back.height, 2);
+  for (std::size_t i = 0; i < 6; ++i) {
+    for (std::size_t c = 0; c < 3; ++c) EXPECT_EQ(back.rgba[4 * i + c], rgb[3 * i + c]) << i;
+    EXPECT_EQ(back.rgba[4 * i + 3], 255);
+  }
+  EXPECT_EQ(back.pixel(2, 1)[0], 70);
+  const std::vector<std::uint8_t> rgba = {1, 2, 3, 0, 4, 5, 6, 128};
+  writeImageFile(dir.file("b.png"), rgba.data(), 2, 1, 4);
+  EXPECT_EQ(readImageFile(dir.file("b.png")).rgba, rgba);
+  writeImageFile(dir.file("c.jpg"), rgba.data(), 2, 1, 4);
+  EXPECT_EQ(readImageFile(dir.file("c.jpg")).width, 2);
+  EXPECT_THROW(writeImageFile(dir.file("d.bmp"), rgb.data(), 3, 2, 3), InputError);
+  EXPECT_THROW(writeImageFile(dir.file("no/such/e.png"), rgb.data(), 3, 2, 3), InputError);
+  EXPECT_FALSE(std::filesystem::exists(dir.file("d.bmp")));
 }
 
 }  // namespace

@@ -2,7 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
+#include <mutex>
+#include <utility>
 #include <vector>
 
 namespace pelage {
@@ -15,6 +18,28 @@ TEST(Parallel, VisitsEveryIndexOnceWhateverTheThreadCount) {
     std::vector<std::atomic<int>> hits(10007);
     parallelFor(10007, 100, [&](std::int64_t i) { hits[static_cast<std::size_t>(i)]++; });
     for (const auto& h : hits) ASSERT_EQ(h.load(), 1);
+  }
+  setThreadCount(0);
+}
+
+// The chunk boundaries are what determinism rests on (reductions sum per-chunk partials in chunk
+// order): the same fixed chunks [c grain, min((c + 1) grain, n)) for every thread count, one
+// included.
+TEST(Parallel, ChunksAreTheSameFixedBoundariesForEveryThreadCount) {
+  for (const int threads : {1, 2, 3, 8}) {
+    setThreadCount(threads);
+    for (const std::int64_t n : {std::int64_t{1}, std::int64_t{64}, std::int64_t{1000}}) {
+      std::vector<std::pair<std::int64_t, std::int64_t>> seen;
+      std::mutex m;
+      parallelForChunks(n, 64, [&](std::int64_t b, std::int64_t e) {
+        std::lock_guard<std::mutex> lock(m);
+        seen.emplace_back(b, e);
+      });
+      std::sort(seen.begin(), seen.end());
+      std::vector<std::pair<std::int64_t, std::int64_t>> expected;
+      for (std::int64_t b = 0; b < n; b += 64) expected.emplace_back(b, std::min(b + 64, n));
+      EXPECT_EQ(seen, expected) << threads << " threads, n = " << n;
+    }
   }
   setThreadCount(0);
 }

@@ -5,8 +5,12 @@
 #include <fstream>
 #include <limits>
 
+#include "pelage/util/atomic_file.h"
 #include "pelage/util/error.h"
+#include "pelage/util/path.h"
 #include "stb_image_impl.h"
+
+#include <stb_image_write.h>
 
 namespace pelage {
 
@@ -62,6 +66,49 @@ Rgba8Image readImageFile(const std::string& path, const ImageLimits& limits) {
   in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
   if (static_cast<std::size_t>(in.gcount()) != bytes.size()) inputError(path, ": read error");
   return decodeImage(bytes.data(), bytes.size(), path, limits);
+}
+
+namespace {
+void appendBytes(void* ctx, void* data, int size) {
+  auto* v = static_cast<std::vector<std::uint8_t>*>(ctx);
+  const auto* p = static_cast<const std::uint8_t*>(data);
+  v->insert(v->end(), p, p + size);
+}
+}  // namespace
+
+std::vector<std::uint8_t> encodePng(const std::uint8_t* pixels, int width, int height,
+                                    int channels) {
+  PELAGE_CHECK(width > 0 && height > 0 && (channels == 3 || channels == 4) && pixels, "image ",
+               width, "x", height, "x", channels);
+  std::vector<std::uint8_t> out;
+  stbi_write_png_to_func(appendBytes, &out, width, height, channels, pixels, width * channels);
+  PELAGE_CHECK(!out.empty(), "PNG encoding failed");
+  return out;
+}
+
+void writeImageFile(const std::string& path, const std::uint8_t* pixels, int width, int height,
+                    int channels) {
+  const std::string ext = lowerExtension(path);
+  std::vector<std::uint8_t> bytes;
+  if (ext == ".png") {
+    bytes = encodePng(pixels, width, height, channels);
+  } else if (ext == ".jpg" || ext == ".jpeg") {
+    PELAGE_CHECK(width > 0 && height > 0 && (channels == 3 || channels == 4) && pixels, "image ",
+                 width, "x", height, "x", channels);
+    std::vector<std::uint8_t> rgb(static_cast<std::size_t>(width) *
+                                  static_cast<std::size_t>(height) * 3);
+    for (std::size_t i = 0, n = rgb.size() / 3; i < n; ++i)
+      for (std::size_t c = 0; c < 3; ++c)
+        rgb[3 * i + c] = pixels[static_cast<std::size_t>(channels) * i + c];
+    stbi_write_jpg_to_func(appendBytes, &bytes, width, height, 3, rgb.data(), 95);
+    PELAGE_CHECK(!bytes.empty(), "JPEG encoding failed");
+  } else {
+    inputError(path, ": unsupported image format '", excerpt(ext),
+               "' (accepted: .png, .jpg, .jpeg)");
+  }
+  AtomicFileWriter w(path);
+  w.write(bytes.data(), bytes.size());
+  w.commit();
 }
 
 }  // namespace pelage

@@ -1,7 +1,5 @@
 #include "pelage/viewer/image.h"
 
-#include <stb_image_write.h>
-
 #include <algorithm>
 #include <cstring>
 #include <fstream>
@@ -37,63 +35,26 @@ void unblendBackground(Image& image, const Eigen::Vector3f& background) {
 }
 
 std::vector<std::uint8_t> encodePng(const Image& image) {
-  PELAGE_CHECK(image.width > 0 && image.height > 0 &&
-                   image.rgba.size() == static_cast<std::size_t>(image.width) *
-                                            static_cast<std::size_t>(image.height) * 4,
+  PELAGE_CHECK(image.rgba.size() == static_cast<std::size_t>(image.width) *
+                                        static_cast<std::size_t>(image.height) * 4,
                "image ", image.width, "x", image.height, " with ", image.rgba.size(), " bytes");
-  std::vector<std::uint8_t> out;
-  stbi_write_png_to_func(
-      [](void* ctx, void* data, int size) {
-        auto* v = static_cast<std::vector<std::uint8_t>*>(ctx);
-        const auto* p = static_cast<const std::uint8_t*>(data);
-        v->insert(v->end(), p, p + size);
-      },
-      &out, image.width, image.height, 4, image.rgba.data(), image.width * 4);
-  PELAGE_CHECK(!out.empty(), "PNG encoding failed");
-  return out;
+  return pelage::encodePng(image.rgba.data(), image.width, image.height, 4);
 }
 
 void writePng(const std::string& path, const Image& image) {
-  const std::vector<std::uint8_t> png = encodePng(image);
-  AtomicFileWriter w(path);
-  w.write(png.data(), png.size());
-  w.commit();
+  if (lowerExtension(path) != ".png") inputError(path, ": a PNG file must end in .png");
+  writeImage(path, image);
 }
 
 void writeImage(const std::string& path, const Image& image) {
-  const std::string ext = lowerExtension(path);
-  if (ext == ".png") {
-    writePng(path, image);
-    return;
-  }
-  if (ext != ".jpg" && ext != ".jpeg")
-    inputError(path, ": unsupported image format '", ext, "' (accepted: .png, .jpg, .jpeg)");
-  std::vector<std::uint8_t> rgb(static_cast<std::size_t>(image.width) *
-                                static_cast<std::size_t>(image.height) * 3);
-  for (std::size_t i = 0, n = rgb.size() / 3; i < n; ++i)
-    for (int c = 0; c < 3; ++c)
-      rgb[3 * i + static_cast<std::size_t>(c)] = image.rgba[4 * i + static_cast<std::size_t>(c)];
-  std::vector<std::uint8_t> out;
-  stbi_write_jpg_to_func(
-      [](void* ctx, void* data, int size) {
-        auto* v = static_cast<std::vector<std::uint8_t>*>(ctx);
-        const auto* p = static_cast<const std::uint8_t*>(data);
-        v->insert(v->end(), p, p + size);
-      },
-      &out, image.width, image.height, 3, rgb.data(), 95);
-  PELAGE_CHECK(!out.empty(), "JPEG encoding failed");
-  AtomicFileWriter w(path);
-  w.write(out.data(), out.size());
-  w.commit();
+  PELAGE_CHECK(image.rgba.size() == static_cast<std::size_t>(image.width) *
+                                        static_cast<std::size_t>(image.height) * 4,
+               "image ", image.width, "x", image.height, " with ", image.rgba.size(), " bytes");
+  writeImageFile(path, image.rgba.data(), image.width, image.height, 4);
 }
 
 Image readPng(const std::string& path) {
-  Rgba8Image decoded = readImageFile(path);
-  Image img;
-  img.width = decoded.width;
-  img.height = decoded.height;
-  img.rgba = std::move(decoded.rgba);
-  return img;
+  return readImageFile(path);
 }
 
 bool isCompletePng(const std::string& path) {

@@ -5,19 +5,29 @@
 #include <array>
 #include <cmath>
 
+#include "deep_opacity_map.h"
 #include "gl_program.h"
 #include "pelage/skin/texture.h"
 #include "pelage/util/error.h"
 #include "pelage/viewer/gl_context.h"
 #include "pelage/viewer/gpu_fur.h"
 #include "pelage/viewer/hair_vertex_buffers.h"
+#include "render_helpers.h"
 
 namespace pelage::viewer {
 
 using detail::Buffer;
 using detail::Framebuffer;
+using detail::LightFrame;
+using detail::makeTexture;
+using detail::primitive;
 using detail::Program;
 using detail::Renderbuffer;
+using detail::setFloat;
+using detail::setInt;
+using detail::setMaterial;
+using detail::setMatrix;
+using detail::setVec3;
 using detail::Texture;
 using detail::uniform;
 
@@ -34,62 +44,6 @@ Eigen::Matrix4f ortho(float l, float r, float b, float t, float n, float f) {
   return m;
 }
 
-void setMatrix(GLuint program, const char* name, const Eigen::Matrix4f& m) {
-  glProgramUniformMatrix4fv(program, uniform(program, name), 1, GL_FALSE, m.data());
-}
-void setVec3(GLuint program, const char* name, const Eigen::Vector3f& v) {
-  glProgramUniform3f(program, uniform(program, name), v.x(), v.y(), v.z());
-}
-void setFloat(GLuint program, const char* name, float v) {
-  glProgramUniform1f(program, uniform(program, name), v);
-}
-void setInt(GLuint program, const char* name, int v) {
-  glProgramUniform1i(program, uniform(program, name), v);
-}
-
-void setMaterial(GLuint program, const Material& m) {
-  setVec3(program, "uKa", m.ambient);
-  setVec3(program, "uKd", m.diffuse);
-  setVec3(program, "uKs", m.specular);
-  setFloat(program, "uShininess", std::max(m.shininess, 1.0f));
-}
-
-// How a layout's index pattern is drawn (fur::hairIndexPattern).
-GLenum primitive(const fur::HairLayout& layout) {
-  switch (layout.topology) {
-    case fur::HairTopology::Strand:
-      return GL_LINE_STRIP;
-    case fur::HairTopology::Rings:
-      return GL_TRIANGLES;
-  }
-  return GL_LINE_STRIP;
-}
-
-// An immutable 2D texture (`levels` levels of width x height) in `format`; with a nonzero
-// `minFilter`, sampled with (minFilter, magFilter) and clamped at its edges.
-Texture makeTexture(GLenum format, int levels, int width, int height, GLenum minFilter = 0,
-                    GLenum magFilter = 0) {
-  GLuint t = 0;
-  glCreateTextures(GL_TEXTURE_2D, 1, &t);
-  glTextureStorage2D(t, levels, format, width, height);
-  if (minFilter != 0) {
-    glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, static_cast<GLint>(minFilter));
-    glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, static_cast<GLint>(magFilter));
-    glTextureParameteri(t, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTextureParameteri(t, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-  }
-  return Texture(t);
-}
-
-// The light's view for one frame (Renderer::Impl::lightFrame).
-struct LightFrame {
-  Eigen::Matrix4f viewProj = Eigen::Matrix4f::Identity();
-  float extent = 1.0f;      // the view's width and height, metres
-  float depthScale = 1.0f;  // metres per unit of window depth
-  bool selfShadow = false;  // the deep opacity map is drawn and read
-  std::array<float, 4> layerEnds{};
-};
-
 }  // namespace
 
 struct Renderer::Impl {
@@ -99,14 +53,13 @@ struct Renderer::Impl {
   Eigen::Vector3f background = scene::kDefaultBackground;  // the last frame's (linear)
 
   Program skinProgram, skinTexturedProgram, hairProgram, strandProgram, strandOitProgram,
-      compositeProgram, depthProgram, opacityProgram, opacityBlurProgram;
+      compositeProgram, depthProgram;
 
-  Framebuffer msaaFbo, resolveFbo, shadowFbo, oitFbo, hairDepthFbo, opacityFbo, opacityBlurFbo;
+  Framebuffer msaaFbo, resolveFbo, shadowFbo, oitFbo;
   Renderbuffer msaaColor, msaaDepth, resolveDepth;
-  Texture resolveColor, shadowMap, oitAccum, oitReveal, hairDepth, opacityMap, opacityBlurred,
-      hairDepthBlurred;
+  Texture resolveColor, shadowMap, oitAccum, oitReveal;
   int shadowSize = 0;
-  int opacitySize = 0;
+  std::unique_ptr<detail::DeepOpacityMap> opacityMap;  // the fur's self-shadow (made on first use)
 
   detail::VertexArray skinVao;
   Buffer skinPositions, skinNormals, skinIndices;
@@ -172,12 +125,6 @@ struct Renderer::Impl {
     depthProgram.reset(
         detail::buildProgram("depth", {ShaderStage{GL_VERTEX_SHADER, {"depth.vert"}},
                                        ShaderStage{GL_FRAGMENT_SHADER, {"depth.frag"}}}));
-    opacityProgram.reset(detail::buildProgram(
-        "deep opacity", {ShaderStage{GL_VERTEX_SHADER, {"deep_opacity.vert"}},
-                         ShaderStage{GL_FRAGMENT_SHADER, {"deep_opacity.frag"}}}));
-    opacityBlurProgram.reset(detail::buildProgram(
-        "deep opacity low-pass", {ShaderStage{GL_VERTEX_SHADER, {"oit_composite.vert"}},
-                                  ShaderStage{GL_FRAGMENT_SHADER, {"opacity_blur.frag"}}}));
 
     GLuint vao = 0;
     glCreateVertexArrays(1, &vao);
@@ -374,99 +321,6 @@ struct Renderer::Impl {
     glNamedFramebufferDrawBuffer(id, GL_NONE);
     PELAGE_CHECK(glCheckNamedFramebufferStatus(id, GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE,
                  "shadow framebuffer incomplete");
-  }
-
-  // The deep opacity map's targets (size x size): the hairs' nearest depth from the light (z0) and
-  // the four opacity layers (RGBA16F, additive).
-  void ensureOpacityMap(int size) {
-    if (opacitySize == size && opacityMap) return;
-    opacitySize = size;
-    // z0 unfiltered (a texel with no hair is 1: mixing it in would move the layers); the layers
-    // with one mipmap level, low-passed into a half-size map read bilinear.
-    const int half = size / 2;
-    hairDepth = makeTexture(GL_DEPTH_COMPONENT32F, 1, size, size, GL_NEAREST, GL_NEAREST);
-    opacityMap = makeTexture(GL_RGBA16F, 2, size, size, GL_LINEAR_MIPMAP_LINEAR, GL_LINEAR);
-    opacityBlurred = makeTexture(GL_RGBA16F, 1, half, half, GL_LINEAR, GL_LINEAR);
-    hairDepthBlurred = makeTexture(GL_R32F, 1, half, half, GL_LINEAR, GL_LINEAR);
-    GLuint id = 0;
-    glCreateFramebuffers(1, &id);
-    hairDepthFbo.reset(id);
-    glNamedFramebufferTexture(id, GL_DEPTH_ATTACHMENT, hairDepth.get(), 0);
-    glNamedFramebufferDrawBuffer(id, GL_NONE);
-    glCreateFramebuffers(1, &id);
-    opacityFbo.reset(id);
-    glNamedFramebufferTexture(id, GL_COLOR_ATTACHMENT0, opacityMap.get(), 0);
-    glCreateFramebuffers(1, &id);
-    opacityBlurFbo.reset(id);
-    glNamedFramebufferTexture(id, GL_COLOR_ATTACHMENT0, opacityBlurred.get(), 0);
-    glNamedFramebufferTexture(id, GL_COLOR_ATTACHMENT1, hairDepthBlurred.get(), 0);
-    const GLenum both[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
-    glNamedFramebufferDrawBuffers(id, 2, both);
-    for (GLuint fb : {hairDepthFbo.get(), opacityFbo.get(), opacityBlurFbo.get()})
-      PELAGE_CHECK(glCheckNamedFramebufferStatus(fb, GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE,
-                   "deep opacity framebuffer incomplete");
-  }
-
-  // The opacity map draws at most about kOpacityMapHairs hairs of a coat: every stride-th drawn
-  // hair, each adding the opacity of the stride hairs it stands for (the map estimates the coat's
-  // density over texels of millimetres, read low-passed; a uniform subsample weighted so gives the
-  // same expected opacity, as culling's widened hairs do on screen). Drawing hairs is what the map
-  // costs on a software rasteriser (about 100 ms for 32,768 polylines on llvmpipe, 2 cores).
-  static constexpr std::int64_t kOpacityMapHairs = 32768;
-  static int opacityStride(const scene::FurDrawItem& f) {
-    return static_cast<int>(
-        std::max<std::int64_t>(1, (f.drawnHairs + kOpacityMapHairs - 1) / kOpacityMapHairs));
-  }
-  void drawOpacityHairs(const scene::FurDrawItem& f, GLuint program) {
-    HairVertexBuffers& b = coats[static_cast<std::size_t>(f.coat)];
-    if (b.capacity() == 0) return;
-    glUseProgram(program);
-    setInt(program, "uPointsPerStrand", b.layout().strandPoints);
-    setInt(program, "uStrandStride", b.layout().ringSides);
-    b.drawEvery(opacityStride(f), f.drawnHairs, primitive(b.layout()));
-  }
-
-  // Deep opacity maps (Yuksel and Keyser 2008; deep_opacity.frag): the drawn hairs' depth from the
-  // light, then their opacity added into four layers beyond it, bound for the lighting
-  // (lighting.glsl furTransmittance).
-  void drawOpacityMap(const scene::DrawList& list, const LightFrame& light) {
-    ensureOpacityMap(std::clamp(list.light.opacityMapSize, 64, 4096));
-    glViewport(0, 0, opacitySize, opacitySize);
-    glBindFramebuffer(GL_FRAMEBUFFER, hairDepthFbo.get());
-    glClear(GL_DEPTH_BUFFER_BIT);
-    setMatrix(depthProgram.get(), "uViewProj", light.viewProj);
-    for (const scene::FurDrawItem& f : list.fur) drawOpacityHairs(f, depthProgram.get());
-
-    glBindFramebuffer(GL_FRAMEBUFFER, opacityFbo.get());
-    const float zero[4] = {0, 0, 0, 0};
-    glClearNamedFramebufferfv(opacityFbo.get(), GL_COLOR, 0, zero);
-    glDisable(GL_DEPTH_TEST);
-    glEnable(GL_BLEND);
-    glBlendFunc(GL_ONE, GL_ONE);
-    glBindTextureUnit(5, hairDepth.get());
-    const GLuint p = opacityProgram.get();
-    setMatrix(p, "uViewProj", light.viewProj);
-    glProgramUniform4fv(p, uniform(p, "uLayers"), 1, light.layerEnds.data());
-    setFloat(p, "uDepthScale", light.depthScale);
-    setFloat(p, "uTexelMeters", light.extent / static_cast<float>(opacitySize));
-    for (const scene::FurDrawItem& f : list.fur) {
-      setFloat(p, "uRootWidth", f.width.metersAt(0.0f));
-      setFloat(p, "uTipWidth", f.width.metersAt(1.0f));
-      setFloat(p, "uWiden", std::max(f.cullFactor, 1.0f));
-      setFloat(p, "uStandsFor", static_cast<float>(opacityStride(f)));
-      drawOpacityHairs(f, p);
-    }
-    glDisable(GL_BLEND);
-    glGenerateTextureMipmap(opacityMap.get());
-    glBindFramebuffer(GL_FRAMEBUFFER, opacityBlurFbo.get());
-    glViewport(0, 0, opacitySize / 2, opacitySize / 2);
-    glBindTextureUnit(7, opacityMap.get());
-    glUseProgram(opacityBlurProgram.get());
-    glBindVertexArray(skinVao.get());  // any VAO: the triangle comes from gl_VertexID
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-    glEnable(GL_DEPTH_TEST);
-    glBindTextureUnit(5, hairDepthBlurred.get());
-    glBindTextureUnit(6, opacityBlurred.get());
   }
 
   // The deformed skin's positions and normals (nV x 3 floats each), drawn as the skin and read by
@@ -685,7 +539,8 @@ struct Renderer::Impl {
       glBindTextureUnit(0, shadowMap.get());
     }
     if (light.selfShadow) {
-      drawOpacityMap(list, light);
+      if (!opacityMap) opacityMap = std::make_unique<detail::DeepOpacityMap>();
+      opacityMap->draw(list, light, depthProgram.get(), coats, skinVao.get());
     } else {
       glBindTextureUnit(5, whiteTexture.get());  // bound, unread: uSelfShadow = 0
       glBindTextureUnit(6, whiteTexture.get());

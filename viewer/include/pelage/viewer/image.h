@@ -1,4 +1,5 @@
-// An RGBA8 image as read back from the renderer (top row first), and PNG files.
+// Frames as the renderer reads them back (util's RGBA8 image), their alpha, and PNG files (through
+// util/image.h, the one image writer).
 #pragma once
 
 #include <Eigen/Core>
@@ -7,19 +8,12 @@
 #include <string>
 #include <vector>
 
+#include "pelage/util/image.h"
+
 namespace pelage::viewer {
 
-struct Image {
-  int width = 0;
-  int height = 0;
-  std::vector<std::uint8_t> rgba;  // height x width x 4, top row first
-
-  const std::uint8_t* pixel(int x, int y) const {
-    return rgba.data() + (static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
-                          static_cast<std::size_t>(x)) *
-                             4;
-  }
-};
+// A read-back frame: util's RGBA8 image (top row first).
+using Image = Rgba8Image;
 
 // Sets every alpha to 255.
 void makeOpaque(Image& image);

@@ -277,12 +277,10 @@ TEST_F(ViewerSessionTest, TheViewerDrawsTheFrameRenderDraws) {
   const std::string file = std::string(PELAGE_SHARED_MODELS_DIR) + "/Fox/Fox.glb";
   if (!std::filesystem::exists(file)) GTEST_SKIP() << "shared models absent: " << file;
   const scene::Model fox = scene::loadModel(file);
-  ViewerOptions vo;
-  vo.fur = fur::loadFurPreset("default");
+  ViewerOptions vo = smallOptions();
   vo.fur.hairs = 30000;
   vo.width = 320;
   vo.height = 200;
-  vo.samples = 0;
   vo.camera = scene::CameraPreset::Side;
   ViewerSession session(vo, fox);
   session.frame(0.0, vo.width, vo.height);

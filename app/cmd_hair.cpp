@@ -89,9 +89,18 @@ void addHairCommand(CLI::App& app) {
   furArgs->add(*cmd);
   dynamics->add(*cmd, true);
   frames->addFps(*cmd);
-  cmd->add_option("--out", *out, "Output .ply file")->required();
+  cmd->add_option("--out", *out, "Output .ply file");
+  auto printPreset = std::make_shared<bool>(false);
+  cmd->add_flag("--print-preset", *printPreset,
+                "Print the fur's preset with every field resolved (its base, the default preset "
+                "and the options applied) as JSON, and write nothing");
   common->add(*cmd, true);
   cmd->callback([=] {
+    if (*printPreset) {
+      std::fputs(fur::furPresetJson(furArgs->resolve()).c_str(), stdout);
+      return;
+    }
+    if (out->empty()) inputError("--out is required (or --print-preset)");
     if (distanceOpt->count() > 0 && !(*distance >= 0.0 && *distance <= 1e4))
       inputError("--distance ", *distance, " is out of range [0, 10000] (metres)");
     frames->validateFps();
@@ -163,6 +172,7 @@ void addHairCommand(CLI::App& app) {
           static_cast<double>(frame.cullingFactor), static_cast<long long>(frame.drawn()),
           static_cast<long long>(roots.total()));
     summarise(frame, params);
+    printCoverage(fur::estimateCoverage(m.skin, fur.params));
     std::printf("wrote %lld vertices, %lld edges, %lld faces\n", static_cast<long long>(n.vertices),
                 static_cast<long long>(n.edges), static_cast<long long>(n.faces));
   });

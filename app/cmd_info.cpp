@@ -6,20 +6,39 @@
 
 #include "commands.h"
 #include "options.h"
+#include "pelage/fur/coverage.h"
 #include "pelage/skin/skin_mesh.h"
 
 namespace pelage::app {
 
+void printCoverage(const fur::FurCoverage& f) {
+  for (int c = 0; c < fur::kCoatCount; ++c) {
+    const fur::CoatCoverage& k = f.coats[static_cast<std::size_t>(c)];
+    std::printf(
+        "  %-9s  %.0f hairs, %.2f hairs/cm^2, mean length %.2f mm, mean width %.3f mm: optical "
+        "depth %.3f\n",
+        c == fur::kOvercoat ? "overcoat" : "undercoat", k.hairs, k.densityPerCm2, k.meanLengthMm,
+        k.meanWidthMm, k.opticalDepth);
+  }
+  std::printf("  coverage   optical depth %.3f: %.1f %% of the skin hidden (expected)\n",
+              f.opticalDepth, 100.0 * f.hiddenShare);
+}
+
 void addInfoCommand(CLI::App& app) {
   auto* cmd = app.add_subcommand("info", "Print a creature's segments, skin size, area and bounds");
   auto args = std::make_shared<ModelOptions>();
+  auto furArgs = std::make_shared<FurOptions>();
   auto common = std::make_shared<CommonOptions>();
   auto json = std::make_shared<bool>(false);
   args->add(*cmd);
+  furArgs->add(*cmd);
   common->add(*cmd, false);
   cmd->add_flag("--json", *json, "Print machine-readable JSON");
-  cmd->callback([args, json] {
+  cmd->callback([args, furArgs, json] {
+    const fur::FurParams asked = furArgs->resolve();  // bad options fail before the model loads
     const scene::Model m = args->load();
+    const fur::FurParams params = fur::fitCoverageToBudget(m.skin, asked);
+    const fur::FurCoverage coverage = fur::estimateCoverage(m.skin, params);
     // Which regions grow fur: those with a vertex whose fur length is above 0.
     std::vector<bool> furred(m.skin.regionNames.size(), false);
     const float* lengths = m.skin.furLengths();
@@ -65,6 +84,18 @@ void addInfoCommand(CLI::App& app) {
                          {"loop", c.loop},
                          {"channels", c.channels.size()}});
       j["clips"] = clips;
+      nlohmann::json coats = nlohmann::json::array();
+      for (const fur::CoatCoverage& k : coverage.coats)
+        coats.push_back({{"hairs", k.hairs},
+                         {"densityPerCm2", k.densityPerCm2},
+                         {"meanLengthMm", k.meanLengthMm},
+                         {"meanWidthMm", k.meanWidthMm},
+                         {"opticalDepth", k.opticalDepth}});
+      j["fur"] = {{"preset", params.name},
+                  {"furredAreaSquareMeters", coverage.furredAreaM2},
+                  {"coats", coats},
+                  {"opticalDepth", coverage.opticalDepth},
+                  {"hiddenShare", coverage.hiddenShare}};
       std::cout << j.dump(2) << "\n";
       return;
     }
@@ -92,6 +123,9 @@ void addInfoCommand(CLI::App& app) {
     for (const auto& c : m.clips)
       std::printf("  %-20s %.4f s%s\n", c.name.c_str(), static_cast<double>(c.duration),
                   c.loop ? "" : " (clamped)");
+    std::printf("fur        %s over %.4f m^2 of furred skin\n", params.name.c_str(),
+                coverage.furredAreaM2);
+    printCoverage(coverage);
   });
 }
 

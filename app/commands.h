@@ -4,6 +4,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "pelage/fur/coverage.h"
+
 namespace pelage::app {
 
 void addInfoCommand(CLI::App& app);
@@ -15,5 +17,9 @@ void addAnalyzeCommand(CLI::App& app);
 // `pelage view` and `pelage render` exist only with the viewer (PELAGE_BUILD_VIEWER).
 void addViewCommand(CLI::App& app);
 void addRenderCommand(CLI::App& app);
+
+// Prints the fur's density and optical depth per coat and the expected share of skin hidden
+// (`pelage info` and `pelage hair`).
+void printCoverage(const fur::FurCoverage& coverage);
 
 }  // namespace pelage::app

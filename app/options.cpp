@@ -218,7 +218,7 @@ fur::FurParams FurOptions::resolve() const {
     std::vector<std::string> fields;
   };
   const std::vector<Named> named = {
-      {"--hairs", hairsOption && hairsOption->count() > 0, {"hairs", "density"}},
+      {"--hairs", hairsOption && hairsOption->count() > 0, {"hairs", "density", "coverage"}},
       {"--style", !style.empty(), {"overcoat.style", "undercoat.style"}},
       {"--seed", seedOption && seedOption->count() > 0, {"seed"}},
       {"--undercoat-share", shareOption && shareOption->count() > 0, {"undercoatShare"}},
@@ -232,49 +232,46 @@ fur::FurParams FurOptions::resolve() const {
         "overcoat.width.tip", "undercoat.width.tip"}},
   };
   if (!settings.empty()) {
-    nlohmann::json doc = nlohmann::json::parse(fur::furPresetJson(p));
+    // The settings as a preset's fields (FIELD a dotted path into its groups), applied over it.
+    nlohmann::json fields = nlohmann::json::object();
     for (const std::string& s : settings) {
       const std::size_t eq = s.find('=');
       if (eq == std::string::npos || eq == 0 || eq + 1 == s.size())
-        inputError("--fur-set '", s, "' is not FIELD=VALUE (e.g. overcoat.stiffness=0.6)");
+        inputError("--fur-set '", excerpt(s), "' is not FIELD=VALUE (e.g. overcoat.stiffness=0.6)");
       const std::string field = s.substr(0, eq), text = s.substr(eq + 1);
       for (const Named& n : named)
         for (const std::string& f : n.fields)
           if (n.given && f == field)
-            inputError(n.option, " and --fur-set ", s, " both set ", field,
+            inputError(n.option, " and --fur-set ", excerpt(s), " both set ", field,
                        ": give one (a named option and --fur-set never silently override each "
                        "other)");
       nlohmann::json value = nlohmann::json::parse(text, nullptr, false);
       if (value.is_discarded()) value = text;  // a bare word: a string (e.g. a style name)
-      std::string pointer;
+      nlohmann::json* node = &fields;
       std::size_t start = 0;
       for (;;) {
         const std::size_t dot = field.find('.', start);
         const std::string part =
             field.substr(start, dot == std::string::npos ? std::string::npos : dot - start);
-        if (part.empty()) inputError("--fur-set '", s, "': empty field name in '", field, "'");
-        pointer += "/" + part;
-        if (dot == std::string::npos) break;
+        if (part.empty())
+          inputError("--fur-set '", excerpt(s), "': empty field name in '", excerpt(field), "'");
+        if (dot == std::string::npos) {
+          // "hairs", "density" and "coverage" exclude each other: setting one drops the others.
+          if (node == &fields && (part == "hairs" || part == "density" || part == "coverage"))
+            for (const char* other : {"hairs", "density", "coverage"})
+              if (part != other) fields.erase(other);
+          (*node)[part] = value;
+          break;
+        }
+        nlohmann::json& next = (*node)[part];
+        if (!next.is_object()) next = nlohmann::json::object();
+        node = &next;
         start = dot + 1;
       }
-      const nlohmann::json::json_pointer ptr(pointer);
-      // The parent must be an object that the preset format has (unknown fields fail on parse).
-      if (!ptr.parent_pointer().empty() &&
-          (!doc.contains(ptr.parent_pointer()) || !doc[ptr.parent_pointer()].is_object()))
-        inputError("--fur-set '", s, "': no field group '", field.substr(0, field.rfind('.')),
-                   "' (accepted: overcoat, undercoat, culling, lengthRegion, or top-level "
-                   "fields)");
-      // "hairs" and "density" exclude each other: setting one drops the other.
-      if (pointer == "/hairs") doc.erase("density");
-      if (pointer == "/density") doc.erase("hairs");
-      doc[ptr] = value;
     }
-    p = fur::parseFurPreset(doc.dump(), "--fur-set options");
+    p = fur::applyFurPresetFields(p, fields.dump(), "--fur-set options");
   }
-  if (hairsOption && hairsOption->count() > 0) {
-    p.hairs = hairs;
-    p.densityPerM2 = 0.0;
-  }
+  if (hairsOption && hairsOption->count() > 0) p.setHairCount(hairs);
   if (!style.empty()) {
     const fur::HairStyle s = fur::parseStyle(style, "--style");
     for (auto& c : p.coats) c.style = s;

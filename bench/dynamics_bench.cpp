@@ -52,7 +52,7 @@ void BM_DynamicsFrame(benchmark::State& st) {
   setThreadCount(threads);
   const Monkey& m = monkey();
   fur::FurParams params = fur::loadFurPreset("fig9");
-  params.hairs = static_cast<double>(st.range(2));
+  params.setHairCount(static_cast<double>(st.range(2)));
   for (auto& c : params.coats) c.style = fur::HairStyle::Polyline;
   const fur::FurRoots roots = fur::growRoots(m.skin, params);
   const fur::DynamicsParams dynamics;

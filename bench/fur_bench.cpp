@@ -68,7 +68,7 @@ void BM_FurFrame(benchmark::State& st) {
   }
   const Monkey& m = monkey();
   fur::FurParams params = fur::loadFurPreset("fig9");
-  params.hairs = hairs;
+  params.setHairCount(hairs);
   for (auto& c : params.coats) c.style = style;
   const fur::FurRoots roots = fur::growRoots(m.skin, params);
   const skin::DeformedSkin& deformed = restSkin();
@@ -118,7 +118,7 @@ void BM_FurVsLimit(benchmark::State& st) {
   setThreadCount(threads);
   const Monkey& m = monkey();
   fur::FurParams params = fur::loadFurPreset(st.range(3) == 0 ? "fig9" : "default");
-  params.hairs = static_cast<double>(st.range(2));
+  params.setHairCount(static_cast<double>(st.range(2)));
   for (auto& c : params.coats) c.style = style;
   const fur::FurRoots roots = fur::growRoots(m.skin, params);
   if (!bench::furLimitCovers(params, roots)) {

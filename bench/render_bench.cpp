@@ -32,7 +32,7 @@ const scene::Model& monkey() {
 
 scene::Fur polylineFur(double hairs) {
   fur::FurParams p = fur::loadFurPreset("default");
-  p.hairs = hairs;
+  p.setHairCount(hairs);
   p.densityPerM2 = 0.0;
   p.culling.enabled = false;
   for (fur::CoatParams& c : p.coats) c.style = fur::HairStyle::Polyline;

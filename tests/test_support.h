@@ -14,6 +14,10 @@
 #include <string>
 #include <vector>
 
+#include <gtest/gtest.h>
+
+#include "pelage/util/error.h"
+
 extern char** environ;
 
 namespace pelage::test {
@@ -44,6 +48,18 @@ class TempDir {
 inline void writeText(const std::string& path, const std::string& text) {
   std::ofstream out(path, std::ios::binary);
   out << text;
+}
+
+// Expects `run()` to throw InputError whose message holds every one of `parts`.
+template <class Run>
+void expectInputError(Run&& run, std::initializer_list<std::string> parts) {
+  try {
+    run();
+    ADD_FAILURE() << "no InputError";
+  } catch (const InputError& e) {
+    const std::string m = e.what();
+    for (const std::string& p : parts) EXPECT_NE(m.find(p), std::string::npos) << p << " in: " << m;
+  }
 }
 
 inline std::string readText(const std::string& path) {

@@ -76,6 +76,7 @@ namespace {}  // namespace
 void validateFurParams(FurParams& p, const std::string& source) {
   checkRange(source, "hairs", p.hairs, 0.0, std::numeric_limits<double>::max());
   checkRange(source, "density", p.densityPerM2, 0.0, 1e10);
+  checkRange(source, "coverage", p.coverage, 0.0, kMaxCoverage);
   checkRange(source, "undercoatShare", p.undercoatShare, 0.0, 1.0);
   checkRange(source, "lengthScale", p.lengthScale, 0.0, 10.0);
   checkCoat(source, "overcoat", p.coats[kOvercoat]);
@@ -106,7 +107,7 @@ void validateFurParams(FurParams& p, const std::string& source) {
   checkRange(source, "culling.referenceHeight", p.culling.referenceHeight, 16, 16384);
   // A total above kMaxHairs is refused with the memory it would need (a density is checked when
   // the roots are grown, against the skin's area).
-  if (p.densityPerM2 == 0.0) checkHairBudget(p, 0.0);
+  if (p.densityPerM2 == 0.0 && p.coverage == 0.0) checkHairBudget(p, 0.0);
   for (int c = 0; c < kCoatCount; ++c) {
     const float s = p.coats[static_cast<std::size_t>(c)].stiffness;
     if (1.0f - s < 0.02f)

@@ -173,23 +173,77 @@ std::vector<std::string> builtinPresetNames() {
 }
 
 namespace {
-// `baseDir`: the folder relative map paths resolve against ("" = the working directory).
-FurParams parsePreset(const nlohmann::json& doc, const std::string& source,
-                      const std::string& baseDir) {
-  const JsonReader j(doc, source);
+
+// The maximum depth of a chain of "base" presets (a file based on a file based on ...).
+constexpr int kMaxBaseDepth = 16;
+
+bool looksLikePresetPath(const std::string& nameOrPath) {
+  return nameOrPath.find('/') != std::string::npos ||
+         std::filesystem::path(nameOrPath).extension() == ".json";
+}
+
+// Where a preset's text comes from and what it stands on.
+//  source: names it in messages; baseDir: the folder its relative paths (maps, "base") resolve
+//    against ("" = the working directory); defaultName: its name when it gives none;
+//  over: the parameters it starts from when it names no "base" (nullptr: a self-contained built-in
+//    preset, starting from FurParams' own values, its undercoat from its overcoat);
+//  chain: the presets being read, outermost first (a base chain that loops is an error).
+struct PresetSource {
+  std::string source, baseDir, defaultName;
+  const FurParams* over = nullptr;
+};
+
+FurParams parsePreset(const nlohmann::json& doc, const PresetSource& src,
+                      std::vector<std::string>& chain);
+FurParams loadPresetIn(const std::string& nameOrPath, const std::string& baseDir,
+                       std::vector<std::string>& chain, const std::string& where);
+
+// The built-in default preset, parsed once.
+const FurParams& builtinDefault() {
+  static const FurParams params = [] {
+    std::vector<std::string> chain;
+    return loadPresetIn(kDefaultPreset, "", chain, "");
+  }();
+  return params;
+}
+
+// A preset's fields over the parameters it starts from: each field given replaces the one below
+// it, coat and group fields one by one (Van Gelder & Wilhelms 1997, sec. 3.1's two coats and the
+// Figure 2 parameters, each validated).
+FurParams parsePreset(const nlohmann::json& doc, const PresetSource& src,
+                      std::vector<std::string>& chain) {
+  const JsonReader j(doc, src.source);
   if (!j.isObject()) j.fail("expected a JSON object with the fur parameters");
-  j.rejectUnknown({"name", "description", "hairs", "density", "undercoatShare", "seed",
-                   "lengthScale", "lengthRegion", "up", "culling", "overcoat", "undercoat",
+  j.rejectUnknown({"name", "description", "base", "hairs", "density", "coverage", "undercoatShare",
+                   "seed", "lengthScale", "lengthRegion", "up", "culling", "overcoat", "undercoat",
                    "maps"});
   FurParams p;
-  p.name = j.string("name", std::filesystem::path(source).stem().string());
+  bool selfContained = true;
+  if (j.has("base")) {
+    const std::string base = j.string("base");
+    if (base.empty()) j.at("base").fail("a built-in preset name or a preset file");
+    p = loadPresetIn(base, src.baseDir, chain, j.at("base").where());
+    selfContained = false;
+  } else if (src.over) {
+    p = *src.over;
+    selfContained = false;
+  }
+  p.name = j.string("name", src.defaultName);
   if (j.has("description")) (void)j.string("description");
-  if (j.has("hairs") && j.has("density"))
-    j.fail("give either 'hairs' (a total) or 'density' (hairs per square metre), not both");
+  // One way to count the hairs: a total, a density or a coverage; each replaces the base's.
+  if (int(j.has("hairs")) + int(j.has("density")) + int(j.has("coverage")) > 1)
+    j.fail(
+        "give one of 'hairs' (a total), 'density' (hairs per square metre) or 'coverage' (the "
+        "share of skin hidden), not several");
   p.hairs = j.number("hairs", p.hairs, 0.0, kMaxHairs);
-  p.densityPerM2 = j.number("density", 0.0, 0.0, 1e10);
+  if (j.has("hairs")) p.densityPerM2 = p.coverage = 0.0;
+  p.densityPerM2 = j.number("density", p.densityPerM2, 0.0, 1e10);
+  if (j.has("density")) p.coverage = 0.0;
+  p.coverage = j.number("coverage", p.coverage, 0.0, kMaxCoverage);
+  if (j.has("coverage")) p.densityPerM2 = 0.0;
   p.undercoatShare = num(j, "undercoatShare", p.undercoatShare, 0.0, 1.0);
-  p.seed = static_cast<std::uint64_t>(j.integer("seed", 1, 0, std::int64_t(1) << 53));
+  p.seed = static_cast<std::uint64_t>(
+      j.integer("seed", static_cast<std::int64_t>(p.seed), 0, std::int64_t(1) << 53));
   p.lengthScale = num(j, "lengthScale", p.lengthScale, 0.0, 10.0);
   if (auto r = j.find("lengthRegion")) p.lengthRegion = parseRegion(*r);
   p.up = j.vec3("up", p.up);
@@ -204,46 +258,85 @@ FurParams parsePreset(const nlohmann::json& doc, const std::string& source,
   }
   if (auto m = j.find("maps")) {
     m->rejectUnknown({"density", "length", "color"});
-    if (m->has("density")) p.maps.density = mapPath(*m, "density", baseDir);
-    if (m->has("length")) p.maps.length = mapPath(*m, "length", baseDir);
-    if (m->has("color")) p.maps.color = mapPath(*m, "color", baseDir);
+    if (m->has("density")) p.maps.density = mapPath(*m, "density", src.baseDir);
+    if (m->has("length")) p.maps.length = mapPath(*m, "length", src.baseDir);
+    if (m->has("color")) p.maps.color = mapPath(*m, "color", src.baseDir);
   }
   if (auto c = j.find("overcoat")) p.coats[kOvercoat] = parseCoat(*c, p.coats[kOvercoat]);
-  // The undercoat starts from the overcoat's values: a preset states only what differs.
-  CoatParams under = p.coats[kOvercoat];
-  under.lengthFactor = 0.3f;  // the paper's favourite relative length (sec. 4)
+  CoatParams under = p.coats[kUndercoat];
+  if (selfContained) {
+    // A self-contained preset states only what its undercoat changes from its overcoat.
+    under = p.coats[kOvercoat];
+    under.lengthFactor = 0.3f;  // the paper's favourite relative length (sec. 4)
+  }
   p.coats[kUndercoat] = j.has("undercoat") ? parseCoat(j.at("undercoat"), under) : under;
-  validateFurParams(p, source);
+  validateFurParams(p, src.source);
   return p;
 }
-}  // namespace
 
-FurParams parseFurPreset(const std::string& jsonText, const std::string& source) {
-  return parsePreset(JsonReader::parseText(jsonText, source), source, "");
-}
-
-FurParams loadFurPreset(const std::string& nameOrPath) {
-  const bool looksLikePath = nameOrPath.find('/') != std::string::npos ||
-                             std::filesystem::path(nameOrPath).extension() == ".json";
-  if (!looksLikePath) {
-    if (auto text = builtinPresetText(nameOrPath))
-      return parsePreset(JsonReader::parseText(*text, "built-in preset " + nameOrPath),
-                         "built-in preset " + nameOrPath, "");
+// Loads a preset by built-in name or path (relative paths against `baseDir`), as the base of
+// another (`where` names the referring field; "" for the outermost).
+FurParams loadPresetIn(const std::string& nameOrPath, const std::string& baseDir,
+                       std::vector<std::string>& chain, const std::string& where) {
+  const std::string in = where.empty() ? "" : where + ": ";
+  if (static_cast<int>(chain.size()) >= kMaxBaseDepth)
+    inputError(in, "more than ", kMaxBaseDepth, " presets deep in 'base' (", excerpt(chain[0]),
+               " ...)");
+  if (!looksLikePresetPath(nameOrPath)) {
+    if (auto text = builtinPresetText(nameOrPath)) {
+      PresetSource src{"built-in preset " + nameOrPath, "", nameOrPath, nullptr};
+      // Built-in presets are self-contained, except where one names a base.
+      return parsePreset(JsonReader::parseText(*text, src.source), src, chain);
+    }
     if (std::error_code ec; !std::filesystem::exists(nameOrPath, ec)) {
       std::string list;
       for (const std::string& n : builtinPresetNames()) list += (list.empty() ? "" : ", ") + n;
-      inputError("unknown fur preset '", excerpt(nameOrPath), "' (built-in: ", list,
+      inputError(in, "unknown fur preset '", excerpt(nameOrPath), "' (built-in: ", list,
                  "; or give a .json file)");
     }
   }
-  return parsePreset(JsonReader::parseFile(nameOrPath), nameOrPath,
-                     std::filesystem::path(nameOrPath).parent_path().string());
+  std::filesystem::path path(nameOrPath);
+  if (path.is_relative() && !baseDir.empty()) path = std::filesystem::path(baseDir) / path;
+  std::error_code ec;
+  const std::filesystem::path canonical = std::filesystem::weakly_canonical(path, ec);
+  const std::string key = ec ? path.lexically_normal().string() : canonical.string();
+  for (const std::string& c : chain)
+    if (c == key) inputError(in, "preset '", excerpt(path.string()), "' is its own base");
+  chain.push_back(key);
+  const std::string file = path.string();
+  PresetSource src{file, path.parent_path().string(), path.stem().string(), &builtinDefault()};
+  FurParams p = parsePreset(JsonReader::parseFile(file), src, chain);
+  chain.pop_back();
+  return p;
+}
+
+}  // namespace
+
+FurParams parseFurPreset(const std::string& jsonText, const std::string& source) {
+  std::vector<std::string> chain;
+  const PresetSource src{source, "", std::filesystem::path(source).stem().string(),
+                         &builtinDefault()};
+  return parsePreset(JsonReader::parseText(jsonText, source), src, chain);
+}
+
+FurParams applyFurPresetFields(const FurParams& base, const std::string& jsonText,
+                               const std::string& source) {
+  std::vector<std::string> chain;
+  const PresetSource src{source, "", base.name, &base};
+  return parsePreset(JsonReader::parseText(jsonText, source), src, chain);
+}
+
+FurParams loadFurPreset(const std::string& nameOrPath) {
+  std::vector<std::string> chain;
+  return loadPresetIn(nameOrPath, "", chain, "");
 }
 
 std::string furPresetJson(const FurParams& p) {
   nlohmann::json j;
   j["name"] = p.name;
-  if (p.densityPerM2 > 0.0)
+  if (p.coverage > 0.0)
+    j["coverage"] = p.coverage;
+  else if (p.densityPerM2 > 0.0)
     j["density"] = p.densityPerM2;
   else
     j["hairs"] = p.hairs;

@@ -1,5 +1,7 @@
 #include "pelage/fur/roots.h"
 
+#include "pelage/fur/coverage.h"
+
 #include <Eigen/Geometry>
 
 #include <algorithm>
@@ -179,8 +181,11 @@ FurRoots growRoots(const skin::SkinMesh& skin, const FurParams& params, const Gr
     furred[static_cast<std::size_t>(t)] = triangleHasFur(skin, t) ? 1 : 0;
     if (furred[static_cast<std::size_t>(t)]) furredArea += area[static_cast<std::size_t>(t)];
   }
-  checkHairBudget(params, furredArea);
-  const double total = requestedHairs(params, furredArea);
+  // A coverage asks for the count that hides that share of the skin (fur/coverage.h).
+  FurParams counted = params;
+  if (params.coverage > 0.0) counted.setHairCount(hairsForCoverage(skin, params, params.coverage));
+  checkHairBudget(counted, furredArea);
+  const double total = requestedHairs(counted, furredArea);
   // The density map's mean and maximum over each furred triangle; weightedArea = sum area x mean.
   const bool densityMap = !maps.density.empty();
   std::vector<float> densityMean, densityMax;

@@ -32,10 +32,12 @@ Returns:
 inline constexpr const char* kGrowFurDoc = R"doc(Grows fur on the creature.
 
 Args:
-    preset: a built-in preset name ("default", "fig9", ...) or a preset .json file.
-    **fields: any preset field by its file name, e.g. hairs=50000, seed=3,
-        overcoat={"stiffness": 0.6} (nested objects merge into the preset's). An unknown field
-        is a ValueError naming it.
+    preset: a built-in preset name ("default", "fig9", ...) or a preset .json file (which states
+        what differs from its "base", else from "default").
+    **fields: any preset field by its file name, e.g. hairs=50000, coverage=0.9, seed=3,
+        overcoat={"stiffness": 0.6} (nested objects set field by field). hairs, density and
+        coverage replace each other. An unknown field is a ValueError naming it. Fur.params
+        holds every field resolved.
 
 Returns:
     Fur: the parameters and the roots, grown once; hairs are recomputed per frame.)doc";

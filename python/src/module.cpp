@@ -311,23 +311,13 @@ struct PyFur {
   std::shared_ptr<const scene::Fur> fur;
 };
 
-// `preset` with every keyword set by its preset-file name (nested objects merge into the preset's).
+// `preset` with every keyword set as its preset-file field (nested objects field by field).
 fur::FurParams furParams(const std::string& preset, const py::kwargs& fields) {
   const fur::FurParams base = fur::loadFurPreset(preset);
   if (fields.empty()) return base;
-  nlohmann::json doc = nlohmann::json::parse(fur::furPresetJson(base));
-  for (const auto& [k, v] : fields) {
-    const std::string key = py::str(k);
-    nlohmann::json value = toJson(v);
-    if (value.is_object() && doc.contains(key) && doc[key].is_object()) {
-      doc[key].merge_patch(value);
-    } else {
-      if (key == "hairs") doc.erase("density");
-      if (key == "density") doc.erase("hairs");
-      doc[key] = value;
-    }
-  }
-  return fur::parseFurPreset(doc.dump(), "fur()");
+  nlohmann::json doc = nlohmann::json::object();
+  for (const auto& [k, v] : fields) doc[py::str(k).cast<std::string>()] = toJson(v);
+  return fur::applyFurPresetFields(base, doc.dump(), "fur()");
 }
 
 // The fur of `furArg` (None: the default preset's), which must have grown on `model`.

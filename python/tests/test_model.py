@@ -54,6 +54,27 @@ def test_fur_params_round_trip(monkey):
     np.testing.assert_array_equal(fur.hairs().points, again.hairs().points)
 
 
+def test_a_partial_preset_is_the_default_with_its_changes(monkey, tmp_path):
+    default = monkey.fur("default").params
+    same = tmp_path / "same.json"
+    same.write_text('{"lengthScale": 1.0}')
+    params = monkey.fur(str(same)).params
+    assert params.pop("name") == "same"
+    assert params == {k: v for k, v in default.items() if k != "name"}
+    based = tmp_path / "based.json"
+    based.write_text('{"base": "fig9", "seed": 3}')
+    assert monkey.fur(str(based)).params["overcoat"] == monkey.fur("fig9").params["overcoat"]
+
+
+def test_coverage_sets_the_count_and_hairs_replace_it(monkey):
+    assert monkey.fur().params["coverage"] == 0.95
+    half = monkey.fur(coverage=0.5)
+    dense = monkey.fur(coverage=0.9)
+    assert 0 < len(half.hairs()) < len(dense.hairs())
+    counted = monkey.fur(hairs=2000).params
+    assert counted["hairs"] == 2000 and "coverage" not in counted
+
+
 @pytest.mark.skipif(not os.path.exists(os.path.join(SHARED, "Fox", "Fox.glb")),
                     reason="the shared glTF models are not here")
 def test_gltf_creature(cli):

@@ -4,6 +4,7 @@
 #include <atomic>
 
 #include "pelage/animation/clip.h"
+#include "pelage/fur/coverage.h"
 #include "pelage/util/error.h"
 
 namespace pelage::scene {
@@ -17,6 +18,7 @@ std::uint64_t nextGeneration() {
 
 Fur growFur(const Model& model, fur::FurParams params, const std::string& source) {
   fur::validateFurParams(params, source);
+  params = fur::fitCoverageToBudget(model.skin, std::move(params));
   Fur f;
   f.maps = fur::loadGroomMaps(params.maps, model.skin, model.name);
   f.roots = fur::growRoots(model.skin, params, f.maps);
@@ -41,7 +43,7 @@ void recolorFur(const Model& model, Fur& fur, fur::FurParams params, const std::
 }
 
 bool rootsDiffer(const fur::FurParams& a, const fur::FurParams& b) {
-  return a.hairs != b.hairs || a.densityPerM2 != b.densityPerM2 ||
+  return a.hairs != b.hairs || a.densityPerM2 != b.densityPerM2 || a.coverage != b.coverage ||
          a.undercoatShare != b.undercoatShare || a.seed != b.seed ||
          a.maps.density != b.maps.density || a.maps.length != b.maps.length;
 }

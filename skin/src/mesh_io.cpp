@@ -360,12 +360,25 @@ void writeSkin(const std::string& path, const SkinMesh& skin,
       }
       flush();
     }
+    // Texture coordinates per corner (a seam's vertex has one per side), v up as OBJ has it
+    // (glTF's v runs down the image): a template to paint groom and colour maps on.
+    const bool uv = skin.hasUv();
+    if (uv) {
+      for (std::size_t c = 0; c < 3 * nT; ++c) {
+        buf += "vt ";
+        appendFloat(buf, skin.cornerUv[c].x());
+        buf += ' ';
+        appendFloat(buf, 1.0f - skin.cornerUv[c].y());
+        buf += '\n';
+        flush();
+      }
+    }
     for (std::size_t f = 0; f < nT; ++f) {
       buf += 'f';
       for (int k = 0; k < 3; ++k) {
-        const std::string idx =
-            std::to_string(skin.triangles[3 * f + static_cast<std::size_t>(k)] + 1);
-        buf += ' ' + idx + "//" + idx;
+        const std::size_t corner = 3 * f + static_cast<std::size_t>(k);
+        const std::string idx = std::to_string(skin.triangles[corner] + 1);
+        buf += ' ' + idx + '/' + (uv ? std::to_string(corner + 1) : std::string()) + '/' + idx;
       }
       buf += '\n';
       flush();

@@ -150,7 +150,7 @@ INSTANTIATE_TEST_SUITE_P(
                   "stifness"},
         BadExport{"fur group",
                   "<base> --fur-set coat.stiffness=0.5 --format usda --out <dir>/o.usda",
-                  "no field group 'coat'"},
+                  "unknown field 'coat'"},
         BadExport{"fur syntax", "<base> --fur-set stiffness --format usda --out <dir>/o.usda",
                   "is not FIELD=VALUE"},
         BadExport{"damping", "<base> --dynamics on --damping 20 --format ply --out <dir>/o",

@@ -82,7 +82,7 @@ TEST(DegenerateSkin, LoadsWithWarningsAndGrowsFiniteFurInEveryStyle) {
   for (HairStyle style :
        {HairStyle::Line, HairStyle::Polyline, HairStyle::Curve, HairStyle::Tube}) {
     FurParams p = loadFurPreset("default");
-    p.hairs = 20000;
+    p.setHairCount(20000);
     p.densityPerM2 = 0.0;
     p.culling.enabled = false;
     for (CoatParams& c : p.coats) c.style = style;

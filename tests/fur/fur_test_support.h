@@ -85,7 +85,7 @@ inline const MonkeySkin& monkeySkin() {
 // FurParams with one coat (no undercoat) of `style`, `hairs` hairs, no randomness, culling off.
 inline fur::FurParams simpleParams(fur::HairStyle style, double hairs) {
   fur::FurParams p;
-  p.hairs = hairs;
+  p.setHairCount(hairs);
   p.undercoatShare = 0.0f;
   p.culling.enabled = false;
   for (auto& c : p.coats) {
@@ -188,7 +188,7 @@ inline void checkStylesAgainstReference(const skin::SkinMesh& s, const skin::Def
        {HairStyle::Line, HairStyle::Polyline, HairStyle::Curve, HairStyle::Tube}) {
     SCOPED_TRACE(styleName(style));
     FurParams p = loadFurPreset("fig9");
-    p.hairs = hairs;
+    p.setHairCount(hairs);
     for (auto& c : p.coats) c.style = style;
     p.coats[kUndercoat].curlRadius = 0.2f;  // the helix too (curve and tube)
     p.coats[kUndercoat].curlTurns = 2.5f;

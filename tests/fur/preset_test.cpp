@@ -64,6 +64,7 @@ TEST(Preset, Fig9HasTheFigure2ValuesAndAnUndercoat) {
 
 TEST(Preset, RoundTripsThroughJson) {
   FurParams p = loadFurPreset("default");
+  p.coverage = 0.0;  // the default counts by coverage; this one by density
   p.densityPerM2 = 250000;
   p.lengthRegion.shape = RegionShape::Box;
   p.lengthRegion.boxMin = Eigen::Vector3f(-1, -2, -3);
@@ -81,6 +82,75 @@ TEST(Preset, RoundTripsThroughJson) {
   test::TempDir dir;
   saveFurPreset(dir.file("mine.json"), p);
   EXPECT_EQ(furPresetJson(loadFurPreset(dir.file("mine.json"))), furPresetJson(p));
+}
+
+// Every field of `p` but its name, as the preset file text writes them.
+std::string fieldsOf(FurParams p) {
+  p.name = "";
+  return furPresetJson(p);
+}
+
+TEST(PresetInheritance, APartialPresetStartsFromTheDefault) {
+  // {"lengthScale": 1.0} is the default preset: every field, so every hair, the same.
+  const FurParams d = loadFurPreset("default");
+  const FurParams p = parseFurPreset(R"({"lengthScale": 1.0})", "partial.json");
+  EXPECT_EQ(p.name, "partial");
+  EXPECT_EQ(fieldsOf(p), fieldsOf(d));
+  const FurParams longer = parseFurPreset(R"({"lengthScale": 1.5})", "longer.json");
+  EXPECT_FLOAT_EQ(longer.lengthScale, 1.5f);
+  EXPECT_FLOAT_EQ(longer.undercoatShare, d.undercoatShare);
+  EXPECT_EQ(longer.coats[kOvercoat].color.source, ColorSource::Creature);
+  // A coat states what differs from the base's coat: the undercoat keeps the default's.
+  const FurParams stiff = parseFurPreset(R"({"overcoat": {"stiffness": 0.9}})", "stiff.json");
+  EXPECT_FLOAT_EQ(stiff.coats[kOvercoat].stiffness, 0.9f);
+  EXPECT_FLOAT_EQ(stiff.coats[kUndercoat].stiffness, d.coats[kUndercoat].stiffness);
+  EXPECT_FLOAT_EQ(stiff.coats[kUndercoat].lengthFactor, d.coats[kUndercoat].lengthFactor);
+}
+
+TEST(PresetInheritance, BaseNamesABuiltinOrAFileAndChains) {
+  test::TempDir dir;
+  test::writeText(dir.file("b.json"), R"({"base": "fig9", "hairs": 1234, "seed": 5})");
+  test::writeText(dir.file("a.json"), R"({"base": "b.json", "seed": 7})");
+  const FurParams fig9 = loadFurPreset("fig9");
+  const FurParams a = loadFurPreset(dir.file("a.json"));
+  EXPECT_EQ(a.name, "a");
+  EXPECT_DOUBLE_EQ(a.hairs, 1234);
+  EXPECT_EQ(a.seed, 7u);
+  FurParams expected = fig9;
+  expected.hairs = 1234;
+  expected.seed = 7;
+  EXPECT_EQ(fieldsOf(a), fieldsOf(expected));
+  // "hairs" over a base with a density replaces it, and the other way round.
+  test::writeText(dir.file("dense.json"), R"({"density": 50000})");
+  test::writeText(dir.file("counted.json"), R"({"base": "dense.json", "hairs": 10})");
+  EXPECT_DOUBLE_EQ(loadFurPreset(dir.file("dense.json")).densityPerM2, 50000);
+  EXPECT_DOUBLE_EQ(loadFurPreset(dir.file("counted.json")).densityPerM2, 0.0);
+  EXPECT_DOUBLE_EQ(loadFurPreset(dir.file("counted.json")).hairs, 10);
+}
+
+TEST(PresetInheritance, LoopsAndUnknownBasesAreErrors) {
+  test::TempDir dir;
+  test::writeText(dir.file("a.json"), R"({"base": "b.json"})");
+  test::writeText(dir.file("b.json"), R"({"base": "a.json"})");
+  test::expectInputError([&] { loadFurPreset(dir.file("a.json")); }, {"its own base", "a.json"});
+  test::writeText(dir.file("c.json"), R"({"base": "fig99"})");
+  test::expectInputError([&] { loadFurPreset(dir.file("c.json")); },
+                         {"c.json", "'base'", "unknown fur preset 'fig99'", "fig8"});
+  test::writeText(dir.file("d.json"), R"({"base": "missing.json"})");
+  test::expectInputError([&] { loadFurPreset(dir.file("d.json")); }, {"missing.json"});
+}
+
+TEST(PresetInheritance, FieldsApplyOverAnyParameters) {
+  const FurParams fig8 = loadFurPreset("fig8");
+  const FurParams p =
+      applyFurPresetFields(fig8, R"({"overcoat": {"stiffness": 0.6}})", "--fur-set options");
+  EXPECT_EQ(p.name, "fig8");
+  FurParams expected = fig8;
+  expected.coats[kOvercoat].stiffness = 0.6f;
+  EXPECT_EQ(furPresetJson(p), furPresetJson(expected));
+  test::expectInputError(
+      [&] { applyFurPresetFields(fig8, R"({"overcoat": {"stiffness": 2}})", "--fur-set options"); },
+      {"--fur-set options", "overcoat.stiffness", "[0, 1]"});
 }
 
 struct BadPreset {
@@ -117,7 +187,7 @@ INSTANTIATE_TEST_SUITE_P(
                   "overcoat.stiffness': value 1.5 is out of range [0, 1]"},
         BadPreset{"NegativeHairs", R"({"hairs": -5})", "out of range [0, 2e+07]"},
         BadPreset{"TooManyHairs", R"({"hairs": 3e9})", "'hairs'"},
-        BadPreset{"HairsAndDensity", R"({"hairs": 10, "density": 5})", "not both"},
+        BadPreset{"HairsAndDensity", R"({"hairs": 10, "density": 5})", "not several"},
         BadPreset{"WrongType", R"({"undercoatShare": "half"})", "expected a number"},
         BadPreset{"BadStyle", R"({"overcoat": {"style": "dreadlocks"}})",
                   "accepted: line, polyline, curve, tube"},

@@ -168,7 +168,7 @@ TEST(Roots, AbsurdCountsAreRefusedWithTheMemoryNeeded) {
     EXPECT_NE(m.find("TB"), std::string::npos) << m;
     EXPECT_NE(m.find("accepted: 0 to 2e+07"), std::string::npos) << m;
   }
-  p.hairs = 1e6;
+  p.setHairCount(1e6);
   p.densityPerM2 = 1e10;  // over 4 m^2
   EXPECT_THROW(growRoots(s, p), InputError);
   // Within the count but over the memory: 2e7 tubes of 64 x 32 points.

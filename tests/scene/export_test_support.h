@@ -19,7 +19,7 @@ namespace pelage::test {
 // hair).
 inline scene::Fur exportFur(fur::HairStyle style, double hairs = 2000.0, float curlRadius = 0.0f) {
   fur::FurParams p = fur::loadFurPreset("default");
-  p.hairs = hairs;
+  p.setHairCount(hairs);
   p.undercoatShare = 0.25f;
   p.culling.enabled = false;
   for (fur::CoatParams& c : p.coats) {

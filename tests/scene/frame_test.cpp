@@ -89,7 +89,7 @@ TEST(EvaluateClipFrame, SamplesTheClipThenDeforms) {
 TEST(GrowFur, GenerationsAreUniqueAndRootParametersAreDetected) {
   const Model& m = sceneCritter();
   fur::FurParams p = sceneFur().params;
-  p.hairs = 1000;
+  p.setHairCount(1000);
   const Fur a = growFur(m, p);
   const Fur b = growFur(m, p);
   EXPECT_NE(a.generation, b.generation);

@@ -1,8 +1,13 @@
 // The test critter (tests/scene/critter.json: body, head facing +X with a "face" region, tail;
 // 40,000 triangles, built in a fraction of the monkey's time, also under the sanitizers) and its
 // fur; the critter with a clip (tail wag, head nod, body moving forward 0.2 m/s) and its fur. Each
-// built once per test binary; the one set of test creatures of every suite (GL or not).
+// built once per test binary; the one set of test creatures of every suite (GL or not). And the
+// creatures by name: the monkey and the shared glTF models.
 #pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
 
 #include "pelage/animation/clip_file.h"
 #include "pelage/fur/preset.h"
@@ -10,6 +15,17 @@
 #include "pelage/scene/model.h"
 
 namespace pelage::test {
+
+// "monkey" (built in), or a shared model by its folder name (NAME/NAME.glb or .gltf under
+// ../shared/models); nullopt when the shared file is absent.
+inline std::optional<scene::Model> loadCreature(const std::string& name) {
+  if (name == "monkey") return scene::loadModel("monkey");
+  const std::string dir = std::string(PELAGE_SHARED_MODELS_DIR) + "/" + name + "/";
+  std::string file = dir + name + ".glb";
+  if (!std::filesystem::exists(file)) file = dir + name + ".gltf";
+  if (!std::filesystem::exists(file)) return std::nullopt;
+  return scene::loadModel(file);
+}
 
 inline const scene::Model& sceneCritter() {
   static const scene::Model m = scene::loadModel(PELAGE_SOURCE_DIR "/tests/scene/critter.json");
@@ -19,7 +35,7 @@ inline const scene::Model& sceneCritter() {
 inline const scene::Fur& sceneFur() {
   static const scene::Fur f = [] {
     fur::FurParams p = fur::loadFurPreset("default");
-    p.hairs = 40000;
+    p.setHairCount(40000);
     return scene::growFur(sceneCritter(), p, "test");
   }();
   return f;
@@ -49,7 +65,7 @@ inline const scene::Model& wagCritter() {
 inline const scene::Fur& wagFur() {
   static const scene::Fur f = [] {
     fur::FurParams p = fur::loadFurPreset("default");
-    p.hairs = 4000;
+    p.setHairCount(4000);
     return scene::growFur(wagCritter(), p, "test");
   }();
   return f;

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <sstream>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -45,6 +46,49 @@ TEST(MeshIO, WrittenSkinReadsBackThroughOpenMesh) {
     EXPECT_NEAR(back.restArea, s.restArea, 1e-6 * s.restArea);
     EXPECT_FLOAT_EQ(back.furLengths()[0], 0.01f);
   }
+}
+
+TEST(MeshIO, AnObjHoldsTheSkinsTextureCoordinatesPerCorner) {
+  SkinMesh s = test::defaultMonkey().skin;
+  const std::size_t nT = static_cast<std::size_t>(s.numTriangles());
+  s.cornerUv.resize(3 * nT);
+  for (std::size_t c = 0; c < 3 * nT; ++c)  // distinct, exactly representable in 7 digits
+    s.cornerUv[c] =
+        Eigen::Vector2f(static_cast<float>(c % 1000) / 1000.0f, static_cast<float>(c % 7) / 8.0f);
+  DeformedSkin rest;
+  restSkin(s, rest);
+  test::TempDir dir;
+  const std::string path = dir.file("template.obj");
+  writeSkin(path, s, rest.positions, rest.normals);
+  std::istringstream in(test::readText(path));
+  std::string line;
+  std::size_t vt = 0, faces = 0;
+  while (std::getline(in, line)) {
+    std::istringstream words(line);
+    std::string tag;
+    words >> tag;
+    if (tag == "vt") {
+      float u = 0, v = 0;
+      words >> u >> v;
+      ASSERT_LT(vt, 3 * nT);
+      EXPECT_FLOAT_EQ(u, s.cornerUv[vt].x()) << vt;
+      EXPECT_FLOAT_EQ(v, 1.0f - s.cornerUv[vt].y()) << vt;  // OBJ's v runs up
+      ++vt;
+    } else if (tag == "f") {
+      for (std::size_t k = 0; k < 3; ++k) {
+        std::string corner;
+        words >> corner;
+        const std::size_t c = 3 * faces + k;
+        const std::string v = std::to_string(s.triangles[c] + 1);
+        EXPECT_EQ(corner, v + "/" + std::to_string(c + 1) + "/" + v);
+      }
+      ++faces;
+    }
+  }
+  EXPECT_EQ(vt, 3 * nT);
+  EXPECT_EQ(faces, nT);
+  // pelage reads its own template back: the same triangles.
+  EXPECT_EQ(readStaticMesh(path, 0.01f).triangles, s.triangles);
 }
 
 TEST(MeshIO, BadFilesAreRejectedWithTheirName) {

@@ -34,7 +34,7 @@ TEST_F(CreatureColourRenderTest, FoxChestAndTailTipFurIsLighterThanItsBack) {
   if (!std::filesystem::exists(file)) GTEST_SKIP() << "shared models absent: " << file;
   const scene::Model fox = scene::loadModel(file);
   fur::FurParams params = fur::loadFurPreset("default");
-  params.hairs = 30000;
+  params.setHairCount(30000);
   params.culling.enabled = false;
   const scene::Fur fur = scene::growFur(fox, params, "test");
   ASSERT_EQ(fur.params.coats[0].color.source, fur::ColorSource::Creature);  // -> its texture

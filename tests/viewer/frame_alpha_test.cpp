@@ -140,5 +140,28 @@ TEST(UnblendBackground, OpaqueAndEmptyPixelsAndACoveredOne) {
   EXPECT_EQ(img.rgba[11], 255);
 }
 
+// A highlight brighter than its coverage of white (a hair's specular above 1 in linear light), and
+// one whose coverage rounded to 0, keep their brightness with more coverage.
+TEST(UnblendBackground, HighlightsBrighterThanTheirCoverageGetTheCoverageTheyNeed) {
+  const Eigen::Vector3f bg = srgbToLinear(Eigen::Vector3f(0.1f, 0.1f, 0.1f));
+  const float* lin = srgb8ToLinearTable();
+  for (const int alpha : {0, 6, 60}) {
+    Image img;
+    img.width = img.height = 1;
+    // What a highlight of 3 (linear) over `alpha` coverage draws, clamped by the framebuffer.
+    const float a = static_cast<float>(alpha) / 255.0f + 0.002f;
+    const std::uint8_t drawn = linearToSrgb8(std::min(a * 3.0f + (1.0f - a) * bg.x(), 1.0f));
+    img.rgba = {drawn, drawn, drawn, static_cast<std::uint8_t>(alpha)};
+    unblendBackground(img, bg);
+    const float back = static_cast<float>(img.rgba[3]) / 255.0f;
+    EXPECT_GT(img.rgba[3], alpha) << alpha;
+    for (int c = 0; c < 3; ++c)
+      EXPECT_NEAR(
+          linearToSrgb8(back * lin[img.rgba[static_cast<std::size_t>(c)]] + (1 - back) * bg[c]),
+          drawn, 1)
+          << alpha;
+  }
+}
+
 }  // namespace
 }  // namespace pelage::viewer

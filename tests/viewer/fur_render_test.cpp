@@ -27,17 +27,19 @@ const scene::Model& critter() {
 // green/red ratio is exactly the diffuse colour's (0.14 / 0.3) and it has no blue.
 fur::FurParams testFur(double hairs) {
   fur::FurParams p = fur::loadFurPreset("fig9");
-  p.hairs = hairs;
+  p.setHairCount(hairs);
   for (fur::CoatParams& c : p.coats) c.material.specular = Eigen::Vector3f::Zero();
   p.culling.enabled = false;
   return p;
 }
 
 // The key light alone: no shadow map, no self-shadowing (the tests of those turn them on).
-scene::Light plainLight(bool shadows = false, bool selfShadowing = false) {
+scene::Light plainLight(bool shadows = false, bool selfShadowing = false,
+                        float fibreOpacity = 1.0f) {
   scene::Light l;
   l.shadows = shadows;
   l.selfShadowing = selfShadowing;
+  l.fibreOpacity = fibreOpacity;  // opaque fibres unless asked: the shadow's geometry alone
   return l;
 }
 
@@ -341,6 +343,21 @@ TEST_F(FurRenderTest, SelfShadowingDarkensTheCoatInsideAndTheSkinUnderIt) {
     c.width = {0.5f * c.width.rootMm, 0.5f * c.width.tipMm};
   const Shot thinOn = render(&thin, cam, lines, plainLight(false, true));
   EXPECT_GT(furMean(thinOn.image, bare.image).first, furMean(on.image, bare.image).first * 1.02);
+  // Fibres that pass most of the light on (the default, Light::fibreOpacity 0.1) shadow less,
+  // and not at all at 0.
+  const Shot translucent = render(&fur, cam, lines, plainLight(false, true, 0.1f));
+  const Shot clear = render(&fur, cam, lines, plainLight(false, true, 0.0f));
+  auto light = [](const Image& img) {  // the decoded red of every pixel
+    double sum = 0;
+    for (std::size_t i = 0; i < img.rgba.size(); i += 4) sum += test::decoded(img.rgba[i]);
+    return sum;
+  };
+  const double shadowed = light(off.image) - light(on.image);
+  const double lighter = light(off.image) - light(translucent.image);
+  std::printf("fibre opacity 0.1: %.3f of the opaque fibres' shadow\n", lighter / shadowed);
+  EXPECT_GT(lighter, 0.0);
+  EXPECT_LT(lighter, 0.5 * shadowed);
+  EXPECT_EQ(clear.image.rgba, off.image.rgba);
 }
 
 TEST_F(FurRenderTest, MarschnerLobesWearTheHairColourAndScatterForward) {

@@ -56,7 +56,7 @@ void PrintTo(const StyleCase& c, std::ostream* os) {
 
 fur::FurParams paramsFor(const StyleCase& sc, double hairs) {
   fur::FurParams p = fur::loadFurPreset("fig9");
-  p.hairs = hairs;
+  p.setHairCount(hairs);
   p.undercoatShare = 0.35f;
   p.seed = 77;
   for (int c = 0; c < fur::kCoatCount; ++c) {
@@ -225,7 +225,7 @@ TEST_F(GpuFurRandom, EveryStyleWithRandomParametersMatchesTheCpuModel) {
   std::array<int, fur::kHairStyleCount> styleDraws{};
   for (int draw = 0; draw < 24; ++draw) {
     fur::FurParams p = fur::loadFurPreset("default");
-    p.hairs = 2500;
+    p.setHairCount(2500);
     p.undercoatShare = uniform(0.2f, 0.8f);
     p.seed = static_cast<std::uint64_t>(integer(1, 1 << 30));
     p.lengthScale = uniform(0.5f, 2.0f);

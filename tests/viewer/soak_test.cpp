@@ -70,7 +70,7 @@ TEST_F(Soak, ViewerUpdatePathWithAChangeEveryFrame) {
   const int frames = soakFrames();
   ViewerOptions o;
   o.fur = fur::loadFurPreset("default");
-  o.fur.hairs = 8000;
+  o.fur.setHairCount(8000);
   o.width = 128;
   o.height = 96;
   o.samples = 0;
@@ -85,7 +85,7 @@ TEST_F(Soak, ViewerUpdatePathWithAChangeEveryFrame) {
     s.edit.coats[0].stiffness = static_cast<float>(i % 7) / 7.0f;
     s.edit.coats[1].normalRandomize = static_cast<float>(i % 5) / 5.0f;
     if (i % 50 == 0) s.edit.coats[0].style = styles[(i / 50) % 4];
-    if (i % 250 == 0) s.edit.hairs = 6000.0 + 2000.0 * ((i / 250) % 3);
+    if (i % 250 == 0) s.edit.setHairCount(6000.0 + 2000.0 * ((i / 250) % 3));
     if (i % 400 == 0) s.selectClip((s.clip() + 1) % static_cast<int>(s.model().clips.size()));
     if (i % 300 == 150) s.dynamics = !s.dynamics;
     if (i % 100 == 0) {
@@ -111,7 +111,7 @@ TEST_F(Soak, ExportFrameLoopWithAChangeEveryFrame) {
   test::TempDir dir;
   const scene::Model& model = monkey();
   fur::FurParams params = fur::loadFurPreset("default");
-  params.hairs = 10000;
+  params.setHairCount(10000);
   params.culling.enabled = false;
   scene::Fur fur = scene::growFur(model, params);
   scene::FrameState state;
@@ -119,7 +119,7 @@ TEST_F(Soak, ExportFrameLoopWithAChangeEveryFrame) {
   report("export", 0, memory());
   for (int i = 0; i < frames; ++i) {
     if (i % 500 == 499) {  // new roots: another count and seed
-      params.hairs = 8000.0 + 1000.0 * ((i / 500) % 5);
+      params.setHairCount(8000.0 + 1000.0 * ((i / 500) % 5));
       params.seed = static_cast<std::uint64_t>(i);
       fur = scene::growFur(model, params);
     }

@@ -38,18 +38,12 @@ struct Creature {
 // The monkey walking (frame 5) with 100,000 hairs of the default fur, or a shared model playing
 // its first clip (frame 10) with `hairs` hairs; null when the shared file is absent.
 std::unique_ptr<Creature> creature(const std::string& name, double hairs) {
+  std::optional<scene::Model> model = test::loadCreature(name);
+  if (!model) return nullptr;
   auto c = std::make_unique<Creature>();
-  if (name == "monkey") {
-    c->model = scene::loadModel("monkey");
-  } else {
-    const std::string dir = std::string(PELAGE_SHARED_MODELS_DIR) + "/" + name + "/";
-    std::string file = dir + name + ".glb";
-    if (!std::filesystem::exists(file)) file = dir + name + ".gltf";
-    if (!std::filesystem::exists(file)) return nullptr;
-    c->model = scene::loadModel(file);
-  }
+  c->model = std::move(*model);
   fur::FurParams p = fur::loadFurPreset("default");
-  p.hairs = hairs;
+  p.setHairCount(hairs);
   c->fur = scene::growFur(c->model, p, "test");
   for (std::size_t i = 0; i < c->model.clips.size(); ++i)
     if (c->model.clips[i].name == "walk" || c->clip < 0) c->clip = static_cast<int>(i);

@@ -96,6 +96,7 @@ void DeepOpacityMap::draw(const scene::DrawList& list, const LightFrame& light, 
   glProgramUniform4fv(p, uniform(p, "uLayers"), 1, light.layerEnds.data());
   setFloat(p, "uDepthScale", light.depthScale);
   setFloat(p, "uTexelMeters", light.extent / static_cast<float>(size_));
+  setFloat(p, "uFibreOpacity", light.fibreOpacity);
   for (const scene::FurDrawItem& f : list.fur) {
     setFloat(p, "uRootWidth", f.width.metersAt(0.0f));
     setFloat(p, "uTipWidth", f.width.metersAt(1.0f));

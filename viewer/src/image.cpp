@@ -1,6 +1,8 @@
 #include "pelage/viewer/image.h"
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 
@@ -18,10 +20,25 @@ void makeOpaque(Image& image) {
 
 void unblendBackground(Image& image, const Eigen::Vector3f& background) {
   const float* toLinear = srgb8ToLinearTable();
+  std::array<int, 3> backgroundCode{};
+  for (int c = 0; c < 3; ++c)
+    backgroundCode[static_cast<std::size_t>(c)] = linearToSrgb8(background[c]);
   for (std::size_t i = 0; i + 3 < image.rgba.size(); i += 4) {
     std::uint8_t* p = image.rgba.data() + i;
     if (p[3] == 255) continue;
-    if (p[3] == 0) {
+    // A pixel brighter than its coverage of the brightest colour (a hair's highlight above 1 in
+    // linear light, or a coverage that rounded to 0) keeps its brightness with the coverage it
+    // needs: a = (p - b) / (1 - b) (beyond the background's own 8-bit rounding).
+    int alpha = p[3];
+    for (int c = 0; c < 3; ++c) {
+      const float drawn = toLinear[p[c]];
+      if (background[c] >= 1.0f || p[c] <= backgroundCode[static_cast<std::size_t>(c)] + 1)
+        continue;
+      const float needed = (drawn - background[c]) / (1.0f - background[c]);
+      alpha = std::max(alpha, static_cast<int>(std::ceil(std::min(needed, 1.0f) * 255.0f)));
+    }
+    p[3] = static_cast<std::uint8_t>(alpha);
+    if (alpha == 0) {
       p[0] = p[1] = p[2] = 0;
       continue;
     }
@@ -29,7 +46,20 @@ void unblendBackground(Image& image, const Eigen::Vector3f& background) {
     for (int c = 0; c < 3; ++c) {
       const float drawn = toLinear[p[c]];
       const float straight = (drawn - (1.0f - a) * background[c]) / a;
-      p[c] = linearToSrgb8(std::clamp(straight, 0.0f, 1.0f));
+      const int nearest = linearToSrgb8(std::clamp(straight, 0.0f, 1.0f));
+      // Of the 8-bit codes next to it, the one that composites back nearest to the drawn code
+      // (8-bit rounding of a small a otherwise moves the composite by more than one code).
+      int best = nearest, bestMiss = 256;
+      for (int s = std::max(nearest - 2, 0); s <= std::min(nearest + 2, 255); ++s) {
+        const float over = a * toLinear[s] + (1.0f - a) * background[c];
+        const int miss = std::abs(static_cast<int>(linearToSrgb8(over)) - static_cast<int>(p[c]));
+        if (miss < bestMiss ||
+            (miss == bestMiss && std::abs(s - nearest) < std::abs(best - nearest))) {
+          best = s;
+          bestMiss = miss;
+        }
+      }
+      p[c] = static_cast<std::uint8_t>(best);
     }
   }
 }

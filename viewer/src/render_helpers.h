@@ -68,6 +68,7 @@ struct LightFrame {
   float depthScale = 1.0f;  // metres per unit of window depth
   bool selfShadow = false;  // the deep opacity map is drawn and read
   std::array<float, 4> layerEnds{};
+  float fibreOpacity = 1.0f;  // scene::Light::fibreOpacity
 };
 
 }  // namespace pelage::viewer::detail

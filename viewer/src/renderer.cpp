@@ -466,6 +466,7 @@ struct Renderer::Impl {
     // itself (light crossing it at a slant), then what lies under it.
     const float L = list.hairLength;
     l.layerEnds = {0.25f * L, 0.5f * L, L, 2.0f * L};
+    l.fibreOpacity = list.light.fibreOpacity;
     return l;
   }
 

@@ -47,8 +47,7 @@ int runBenchmark(const ViewerOptions& options, const scene::Model& model) {
               "min ms");
   for (const double hairs : options.benchmarkHairs) {
     ViewerOptions o = options;
-    o.fur.hairs = hairs;
-    o.fur.densityPerM2 = 0.0;
+    o.fur.setHairCount(hairs);
     o.noCulling = true;  // every hair drawn: the count is what is measured
     o.hairSource = options.hairSource;
     for (const int samples : sampleCounts) {

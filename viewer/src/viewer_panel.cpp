@@ -94,13 +94,19 @@ void furPanel(ViewerSession& s) {
   float hairs = static_cast<float>(p.hairs);
   if (ImGui::SliderFloat("hairs", &hairs, 0.0f, static_cast<float>(fur::kMaxHairs), "%.0f",
                          ImGuiSliderFlags_Logarithmic))
-    p.hairs = std::round(static_cast<double>(hairs));
+    p.setHairCount(std::round(static_cast<double>(hairs)));
   float density = static_cast<float>(p.densityPerM2);
   if (ImGui::SliderFloat("density (/m^2)", &density, 0.0f, 1e8f, "%.0f",
                          ImGuiSliderFlags_Logarithmic))
     p.densityPerM2 = static_cast<double>(density);
   ImGui::SameLine();
   ImGui::TextDisabled("(0: use hairs)");
+  float coverage = static_cast<float>(p.coverage);
+  if (ImGui::SliderFloat("coverage", &coverage, 0.0f, static_cast<float>(fur::kMaxCoverage),
+                         "%.3f"))
+    p.coverage = static_cast<double>(coverage);
+  ImGui::SameLine();
+  ImGui::TextDisabled("(share of skin hidden; 0: use density or hairs)");
   ImGui::SliderFloat("undercoat share", &p.undercoatShare, 0.0f, 1.0f);
   // Any seed the presets accept ([0, 2^53]); validation reports one out of range.
   const std::uint64_t step = 1;

@@ -139,6 +139,7 @@ void ViewerSession::applyEdits() {
       editError = e.what();  // e.g. a hair count over the memory budget
       edit.hairs = fur_.params.hairs;
       edit.densityPerM2 = fur_.params.densityPerM2;
+      edit.coverage = fur_.params.coverage;
     }
   }
   if (scene::rootsDiffer(fur_.params, candidate)) {
@@ -151,6 +152,7 @@ void ViewerSession::applyEdits() {
     const fur::FurParams& grown = fur_.params;
     candidate.hairs = grown.hairs;
     candidate.densityPerM2 = grown.densityPerM2;
+    candidate.coverage = grown.coverage;
     candidate.undercoatShare = grown.undercoatShare;
     candidate.seed = grown.seed;
     candidate.maps.density = grown.maps.density;

@@ -115,8 +115,11 @@ inline constexpr int kCoatCount = 2;
 struct FurParams {
   std::string name = "default";  // preset name, for messages
   // Total hairs N over the skin (both coats), or, if densityPerM2 > 0, N = density * furred area.
-  double hairs = 100000.0;      // [0, kMaxHairs]
-  double densityPerM2 = 0.0;    // hairs per square metre of furred skin; 0 = use `hairs`
+  double hairs = 100000.0;    // [0, kMaxHairs]
+  double densityPerM2 = 0.0;  // hairs per square metre of furred skin; 0 = use `hairs`
+  // Or, if > 0, N such that the coats are expected to hide this share of the skin (fur/coverage.h:
+  // from the furred area, the lengths and widths), (0, kMaxCoverage]; 0 = use hairs or density.
+  double coverage = 0.0;
   float undercoatShare = 0.0f;  // [0, 1]: N_under = N * share, N_over = N * (1 - share)
   std::uint64_t seed = 1;
   std::array<CoatParams, kCoatCount> coats{};
@@ -125,10 +128,18 @@ struct FurParams {
   Eigen::Vector3f up{0.0f, 0.0f, 1.0f};  // U = -gravity direction (unit); paper: Z up
   CullingParams culling;
   GroomMapPaths maps;
+  // Counts the hairs by a total: `hairs` = n, no density, no coverage.
+  void setHairCount(double n) {
+    hairs = n;
+    densityPerM2 = 0.0;
+    coverage = 0.0;
+  }
 };
 
 // The largest hair count accepted: 20 million (40 times the paper's 500,000).
 inline constexpr double kMaxHairs = 2e7;
+// The largest coverage a preset may ask for (2.8 times the optical depth of 0.9).
+inline constexpr double kMaxCoverage = 0.999;
 // Memory the roots and hair buffers may take: 16 GiB.
 inline constexpr double kMaxFurBytes = 16.0 * 1024.0 * 1024.0 * 1024.0;
 

@@ -17,13 +17,25 @@ inline constexpr const char* kDefaultPreset = "default";
 // Names of the built-in presets ("default", "fig8", "fig9").
 std::vector<std::string> builtinPresetNames();
 
+// Inheritance: a preset file or text states only what differs from the preset it stands on: its
+// "base" (a built-in name or a file, relative to its own folder), else the built-in "default". The
+// built-in presets stand on nothing (every field of FurParams' own values unless they name one).
+// Each field given replaces the one below it, group and coat fields one by one; a coat states
+// what differs from the base's coat ("hairs" and "density" replace each other). A base chain
+// that loops, or deeper than 16, is an error.
+
 // Parses preset JSON text; `source` names it in messages. Validates (validateFurParams).
 FurParams parseFurPreset(const std::string& jsonText, const std::string& source);
+
+// `base` with the preset fields of `jsonText` set on it (a "base" field there replaces `base`):
+// what --fur-set and Python's keyword fields apply. Validates; `source` names it in messages.
+FurParams applyFurPresetFields(const FurParams& base, const std::string& jsonText,
+                               const std::string& source);
 
 // Loads a preset by built-in name ("fig9") or by path ("my_fur.json").
 FurParams loadFurPreset(const std::string& nameOrPath);
 
-// The preset file text for `params` (round-trips through parseFurPreset).
+// The preset file text for `params`, every field resolved (round-trips through parseFurPreset).
 std::string furPresetJson(const FurParams& params);
 
 // Writes furPresetJson(params) to `path` atomically.

@@ -31,6 +31,12 @@ struct Light {
   // each point and the light, and the skin under it is shadowed by the fur.
   bool selfShadowing = true;
   int opacityMapSize = 512;  // its side in texels (the renderer clamps it to [64, 4096])
+  // The share of the light a hair stops where it crosses the light's path, [0, 1]: hair fibres
+  // scatter most of the light they meet on through the coat (mostly forward), so a dense coat is
+  // lit deep inside, not black under its top layer. 1 = opaque fibres. 0.1 keeps a default coat
+  // (95 % coverage) at 73 % of its unshadowed brightness on the Fox (opaque fibres: 38 %); its
+  // calibration against a path tracer is open.
+  float fibreOpacity = 0.1f;
 };
 
 // The skin's lighting material (linear) for a typed, sRGB-encoded diffuse colour (the same ambient,

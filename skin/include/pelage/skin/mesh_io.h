@@ -18,8 +18,9 @@ SkinMesh readStaticMesh(const std::string& path, float furLengthMeters = -1.0f,
                         float unitScale = 1.0f);
 
 // Writes the skin with the given vertex positions and normals (nV each) to an OBJ or PLY file
-// (chosen by extension), atomically. Throws InputError on an unsupported extension or a write
-// failure.
+// (chosen by extension), atomically; an OBJ also holds the skin's texture coordinates, one per
+// triangle corner, v up (1 - glTF's v), when it has them. Throws InputError on an unsupported
+// extension or a write failure.
 void writeSkin(const std::string& path, const SkinMesh& skin,
                const std::vector<Eigen::Vector3f>& positions,
                const std::vector<Eigen::Vector3f>& normals);

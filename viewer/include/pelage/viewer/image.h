@@ -19,7 +19,10 @@ using Image = Rgba8Image;
 void makeOpaque(Image& image);
 // Turns a frame drawn over `background` (linear RGB) whose alpha holds each pixel's coverage a into
 // straight alpha: each colour becomes c = (p - (1 - a) b) / a in linear light (clamped to [0, 1]),
-// a quantised first, so that a c + (1 - a) b gives back p; pixels of alpha 0 become (0, 0, 0, 0).
+// a quantised first, so that a c + (1 - a) b gives back p (of the 8-bit codes within 2 of c, the
+// one whose composite is nearest p); pixels of alpha 0 become (0, 0, 0, 0). A pixel brighter than
+// a of white over b (a hair's highlight, above 1 in linear light) gets the coverage that white
+// needs to give p.
 void unblendBackground(Image& image, const Eigen::Vector3f& background);
 
 // Encodes `image` as PNG into memory (stb_image_write; thread-safe).

@@ -34,7 +34,7 @@ struct Light {
   // The share of the light a hair stops where it crosses the light's path, [0, 1]: hair fibres
   // scatter most of the light they meet on through the coat (mostly forward), so a dense coat is
   // lit deep inside, not black under its top layer. 1 = opaque fibres. 0.1 keeps a default coat
-  // (95 % coverage) at 73 % of its unshadowed brightness on the Fox (opaque fibres: 38 %); its
+  // (95 % coverage) at 74 % of its unshadowed brightness on the Fox (opaque fibres: 38 %); its
   // calibration against a path tracer is open.
   float fibreOpacity = 0.1f;
 };

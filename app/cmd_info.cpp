@@ -7,6 +7,7 @@
 #include "commands.h"
 #include "options.h"
 #include "pelage/fur/coverage.h"
+#include "pelage/fur/groom.h"
 #include "pelage/skin/skin_mesh.h"
 
 namespace pelage::app {
@@ -33,12 +34,30 @@ void addInfoCommand(CLI::App& app) {
   args->add(*cmd);
   furArgs->add(*cmd);
   common->add(*cmd, false);
+  auto groomOut = std::make_shared<std::string>();
   cmd->add_flag("--json", *json, "Print machine-readable JSON");
-  cmd->callback([args, furArgs, json] {
+  cmd->add_option("--groom-out", *groomOut,
+                  "Write the per-vertex groom the fur would grow from (the --groom file's values "
+                  "with the preset's regions applied, else the model's lengths) as a groom file: a "
+                  "template to edit or to brush");
+  cmd->callback([args, furArgs, json, groomOut] {
     const fur::FurParams asked = furArgs->resolve();  // bad options fail before the model loads
     const scene::Model m = args->load();
-    const fur::FurParams params = fur::fitCoverageToBudget(m.skin, asked);
-    const fur::FurCoverage coverage = fur::estimateCoverage(m.skin, params);
+    // The preset's regions on this creature (a pattern that matches nothing is an error here).
+    std::vector<fur::RegionMatch> matches;
+    fur::VertexGroom fromFile;
+    if (!asked.groom.empty()) fromFile = fur::readGroomFile(asked.groom, m.skin, m.name);
+    const fur::VertexGroom groom = fur::groomFromRegions(
+        m.skin, m.body, asked, "fur '" + asked.name + "'", &matches, std::move(fromFile));
+    if (!groomOut->empty()) {
+      fur::VertexGroom out = groom;
+      if (out.length.empty())
+        out.length.assign(m.skin.furLengths(), m.skin.furLengths() + m.skin.numVertices());
+      fur::writeGroomFile(*groomOut, m.skin, out);
+    }
+    const float* groomed = fur::groomedLengths(m.skin, groom);
+    const fur::FurParams params = fur::fitCoverageToBudget(m.skin, asked, groomed);
+    const fur::FurCoverage coverage = fur::estimateCoverage(m.skin, params, groomed);
     // Which regions grow fur: those with a vertex whose fur length is above 0.
     std::vector<bool> furred(m.skin.regionNames.size(), false);
     const float* lengths = m.skin.furLengths();
@@ -96,6 +115,13 @@ void addInfoCommand(CLI::App& app) {
                   {"coats", coats},
                   {"opticalDepth", coverage.opticalDepth},
                   {"hiddenShare", coverage.hiddenShare}};
+      nlohmann::json regionsJson = nlohmann::json::array();
+      for (const fur::RegionMatch& r : matches)
+        regionsJson.push_back({{"match", r.pattern},
+                               {"regions", r.regions},
+                               {"joints", r.joints},
+                               {"vertices", r.vertices}});
+      j["fur"]["regions"] = regionsJson;
       std::cout << j.dump(2) << "\n";
       return;
     }
@@ -126,6 +152,13 @@ void addInfoCommand(CLI::App& app) {
     std::printf("fur        %s over %.4f m^2 of furred skin\n", params.name.c_str(),
                 coverage.furredAreaM2);
     printCoverage(coverage);
+    for (const fur::RegionMatch& r : matches) {
+      std::string names;
+      for (const std::string& n : r.regions) names += (names.empty() ? "" : ", ") + n;
+      for (const std::string& n : r.joints) names += (names.empty() ? "" : ", ") + n;
+      std::printf("  region %-14s %d vertices: %s\n", ("'" + r.pattern + "'").c_str(), r.vertices,
+                  names.c_str());
+    }
   });
 }
 

@@ -44,7 +44,7 @@ int& sharedThreads() {
 }  // namespace
 
 std::string_view optionForField(std::string_view field) {
-  static constexpr std::array<std::pair<std::string_view, std::string_view>, 26> kOptions{{
+  static constexpr std::array<std::pair<std::string_view, std::string_view>, 27> kOptions{{
       {"benchmark frames", "--benchmark-frames"},
       {"benchmark hairs", "--benchmark-hairs"},
       {"camera", "--camera"},
@@ -66,6 +66,7 @@ std::string_view optionForField(std::string_view field) {
       {"shading", "--shading"},
       {"size", "--size"},
       {"skin color", "--skin-color"},
+      {"subdivide", "--subdivide"},
       {"sweep", "--sweep"},
       {"time", "--time"},
       {"triangles", "--triangles"},
@@ -117,6 +118,10 @@ void ModelOptions::add(CLI::App& cmd) {
   cmd.add_option("--directions", directions,
                  "glTF: JSON side file of per-joint segment directions (default: "
                  "<model>.directions.json if it exists)");
+  cmd.add_option("--subdivide", subdivide,
+                 "glTF and static meshes: subdivision levels of the skin under the roots, "
+                 "'auto' or [0, 3] (default auto: a skin under 4000 triangles is subdivided until "
+                 "it has 4000; 0 keeps the file's)");
 }
 
 scene::Model ModelOptions::load() const {
@@ -127,6 +132,11 @@ scene::Model ModelOptions::load() const {
   opt.unitScale = static_cast<float>(unitScale);
   if (!noFur.empty()) opt.noFurRegions = noFur;
   opt.segmentDirections = directions;
+  if (subdivide != "auto") {
+    if (subdivide.size() != 1 || subdivide[0] < '0' || subdivide[0] > '3')
+      inputError("--subdivide '", excerpt(subdivide), "' is not auto or a level in [0, 3]");
+    opt.subdivide = subdivide[0] - '0';
+  }
   scene::Model m = scene::loadModel(model, opt);
   const float size = scene::modelSizeMeters(m);
   if (size > scene::kPlausibleSizeMeters[1] || size < scene::kPlausibleSizeMeters[0])
@@ -202,6 +212,10 @@ void FurOptions::add(CLI::App& cmd) {
   widthOption = cmd.add_option("--hair-width", hairWidth,
                                "Hair width at the root of both coats, mm [0.001, 20]; the tips "
                                "keep their share of it (default: the preset's, 0.4 to 0.02)");
+  cmd.add_option("--groom", groom,
+                 "Groom file of per-vertex values (length, density, tint) for this model's mesh, "
+                 "from Python's Model.write_groom or `pelage info --groom-out` (default: the "
+                 "preset's 'groom', else none)");
   cmd.add_option("--fur-set", settings,
                  "Any preset field, FIELD=VALUE (repeatable), e.g. overcoat.stiffness=0.6, "
                  "undercoat.diffuse=[0.3,0.2,0.1], overcoat.curl.turns=3, culling.enabled=false "
@@ -226,6 +240,7 @@ fur::FurParams FurOptions::resolve() const {
       {"--stiffness",
        stiffnessOption && stiffnessOption->count() > 0,
        {"overcoat.stiffness", "undercoat.stiffness"}},
+      {"--groom", !groom.empty(), {"groom"}},
       {"--hair-width",
        widthOption && widthOption->count() > 0,
        {"overcoat.width", "undercoat.width", "overcoat.width.root", "undercoat.width.root",
@@ -272,6 +287,7 @@ fur::FurParams FurOptions::resolve() const {
     p = fur::applyFurPresetFields(p, fields.dump(), "--fur-set options");
   }
   if (hairsOption && hairsOption->count() > 0) p.setHairCount(hairs);
+  if (!groom.empty()) p.groom = groom;
   if (!style.empty()) {
     const fur::HairStyle s = fur::parseStyle(style, "--style");
     for (auto& c : p.coats) c.style = s;

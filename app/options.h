@@ -66,6 +66,7 @@ struct ModelOptions {
   double unitScale = 0.0;
   std::vector<std::string> noFur;
   std::string directions;
+  std::string subdivide = "auto";  // "auto" or levels 0 to 3
   void add(CLI::App& cmd);
   // Loads the model; warns (a warning: --quiet keeps it) when its size is implausible for an
   // animal.
@@ -97,6 +98,7 @@ struct FurOptions {
   double stiffness = 0.0;
   double hairWidth = 0.0;
   std::vector<std::string> settings;  // "path.to.field=JSON value"
+  std::string groom;                  // a groom file; empty = the preset's
   CLI::Option* hairsOption = nullptr;
   CLI::Option* seedOption = nullptr;
   CLI::Option* shareOption = nullptr;

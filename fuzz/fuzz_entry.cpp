@@ -12,6 +12,7 @@
 #include "pelage/anatomy/pose_file.h"
 #include "pelage/animation/clip_file.h"
 #include "pelage/animation/gltf_import.h"
+#include "pelage/fur/groom.h"
 #include "pelage/fur/preset.h"
 #include "pelage/models/builtin.h"
 #include "pelage/skin/mesh_io.h"
@@ -87,6 +88,41 @@ void runMesh(const std::uint8_t* data, std::size_t size) {
 // An image as a glTF texture or groom map is read: decoded (limits smaller than the default so
 // that a fuzz run stays in memory, the checks are the same), made a texture with the wrap, filter
 // and encoding taken from the last byte, then sampled; every sample must be finite and in [0, 1].
+// The groom target's mesh: a 3 x 3 grid of 1 cm squares (16 vertices, 18 triangles), fur 1 cm.
+const skin::SkinMesh& groomMesh() {
+  static const skin::SkinMesh mesh = [] {
+    skin::SkinMesh s;
+    std::vector<skin::TriMesh::VertexHandle> v;
+    for (int j = 0; j <= 3; ++j)
+      for (int i = 0; i <= 3; ++i)
+        v.push_back(s.mesh.add_vertex(skin::TriMesh::Point(0.01f * static_cast<float>(i),
+                                                           0.01f * static_cast<float>(j), 0.0f)));
+    for (int j = 0; j < 3; ++j)
+      for (int i = 0; i < 3; ++i) {
+        const int a = j * 4 + i, b = a + 1, c = a + 4, d = c + 1;
+        s.mesh.add_face(v[static_cast<std::size_t>(a)], v[static_cast<std::size_t>(b)],
+                        v[static_cast<std::size_t>(d)]);
+        s.mesh.add_face(v[static_cast<std::size_t>(a)], v[static_cast<std::size_t>(d)],
+                        v[static_cast<std::size_t>(c)]);
+      }
+    skin::addSkinProperties(s);
+    for (auto vh : s.mesh.vertices()) s.mesh.property(s.furLength, vh) = 0.01f;
+    skin::finalizeSkin(s);
+    return s;
+  }();
+  return mesh;
+}
+
+// A groom file read for the grid above; one that loads must write back to the same text.
+void runGroom(const std::uint8_t* data, std::size_t size) {
+  const fur::VertexGroom g = fur::parseGroomFile(
+      std::string(reinterpret_cast<const char*>(data), size), "fuzz.json", groomMesh(), "grid");
+  const std::string text = fur::groomFileJson(groomMesh(), g);
+  if (fur::groomFileJson(groomMesh(),
+                         fur::parseGroomFile(text, "round trip", groomMesh(), "grid")) != text)
+    throw std::logic_error("groom file round trip differs");
+}
+
 void runImage(const std::uint8_t* data, std::size_t size) {
   const std::uint8_t mode = size > 0 ? data[size - 1] : 0;
   ImageLimits limits;
@@ -111,8 +147,8 @@ void runImage(const std::uint8_t* data, std::size_t size) {
 }  // namespace
 
 const std::vector<std::string>& targetNames() {
-  static const std::vector<std::string> names = {"creature", "preset", "clip", "pose",
-                                                 "gltf",     "mesh",   "image"};
+  static const std::vector<std::string> names = {"creature", "preset", "clip",  "pose",
+                                                 "gltf",     "mesh",   "image", "groom"};
   return names;
 }
 
@@ -132,12 +168,25 @@ bool runTarget(std::string_view name, const std::uint8_t* data, std::size_t size
       runMesh(data, size);
     else if (name == "image")
       runImage(data, size);
+    else if (name == "groom")
+      runGroom(data, size);
     else
       throw std::invalid_argument("unknown fuzz target " + std::string(name));
     return true;
   } catch (const InputError&) {
     return false;
   }
+}
+
+std::string groomExample() {
+  fur::VertexGroom g;
+  const auto n = static_cast<std::size_t>(groomMesh().numVertices());
+  for (std::size_t v = 0; v < n; ++v) {
+    g.length.push_back(0.001f * static_cast<float>(v) + 0.0123f);
+    g.density.push_back(v % 3 == 0 ? 0.0f : 1.0f / 3.0f * static_cast<float>(v));
+    g.tint.emplace_back(0.1f * static_cast<float>(v % 7), 1.0f, 0.7f);
+  }
+  return fur::groomFileJson(groomMesh(), g);
 }
 
 std::string meshInput(std::string_view extension, std::string_view fileBytes) {

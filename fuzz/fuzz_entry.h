@@ -14,7 +14,7 @@
 
 namespace pelage::fuzz {
 
-// The fuzzed input readers, by name: creature, preset, clip, pose, gltf, mesh, image.
+// The fuzzed input readers, by name: creature, preset, clip, pose, gltf, mesh, image, groom.
 const std::vector<std::string>& targetNames();
 
 // Runs target `name` on `data`; true when the input was accepted, false when it was rejected with
@@ -26,5 +26,9 @@ bool runTarget(std::string_view name, const std::uint8_t* data, std::size_t size
 // wrap modes, filter and encoding; glTF inputs starting with the GLB magic are read as .glb, others
 // as .gltf (JSON).
 std::string meshInput(std::string_view extension, std::string_view fileBytes);
+
+// Groom inputs are groom files (fur/groom.h) for the target's own mesh, a 4 x 4-vertex grid; this
+// is a valid one (its corpus seed, fuzz/corpus/groom/example.json, is this text).
+std::string groomExample();
 
 }  // namespace pelage::fuzz

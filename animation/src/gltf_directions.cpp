@@ -24,28 +24,6 @@ const std::vector<std::string>& defaultNoFurRegions() {
   return patterns;
 }
 
-bool regionMatches(const std::string& pattern, const std::string& name) {
-  const std::string p = lowerCase(pattern), s = lowerCase(name);
-  // Greedy wildcard match with backtracking to the last '*'.
-  std::size_t i = 0, j = 0, star = std::string::npos, mark = 0;
-  while (j < s.size()) {
-    if (i < p.size() && p[i] == '*') {
-      star = i++;
-      mark = j;
-    } else if (i < p.size() && p[i] == s[j]) {
-      ++i;
-      ++j;
-    } else if (star != std::string::npos) {
-      i = star + 1;
-      j = ++mark;
-    } else {
-      return false;
-    }
-  }
-  while (i < p.size() && p[i] == '*') ++i;
-  return i == p.size();
-}
-
 float detectUnitScale(float longest, std::string* reason) {
   auto say = [&](const std::string& r) {
     if (reason) *reason = r;

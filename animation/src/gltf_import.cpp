@@ -7,6 +7,7 @@
 #include "gltf_stages.h"
 #include "pelage/util/color.h"
 #include "pelage/util/error.h"
+#include "pelage/util/path.h"
 
 namespace pelage::animation {
 
@@ -42,14 +43,13 @@ GltfCreature importGltf(const std::string& path, const GltfImportOptions& option
   std::vector<bool> bareRegion(prims.regionNames.size(), false);
   for (std::size_t r = 0; r < prims.regionNames.size(); ++r)
     for (const std::string& pat : noFur)
-      bareRegion[r] = bareRegion[r] || regionMatches(pat, prims.regionNames[r]);
+      bareRegion[r] = bareRegion[r] || globMatches(pat, prims.regionNames[r]);
   // Patterns the user gave must each match a region: a typo would otherwise replace the default
   // list and grow fur on eyes and antlers without a word.
   if (options.noFurRegions)
     for (const std::string& pat : *options.noFurRegions) {
       bool matched = false;
-      for (const std::string& name : prims.regionNames)
-        matched = matched || regionMatches(pat, name);
+      for (const std::string& name : prims.regionNames) matched = matched || globMatches(pat, name);
       if (!matched) {
         std::string names;
         for (const std::string& name : prims.regionNames)

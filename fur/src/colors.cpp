@@ -20,23 +20,9 @@ Eigen::Vector3f clamp01(const Eigen::Vector3f& c) {
   return c.cwiseMax(0.0f).cwiseMin(1.0f);
 }
 
-skin::Texture loadMap(const std::string& path, const char* field, bool srgb, skin::Filter filter) {
-  if (path.empty()) return {};
-  try {
-    skin::Texture t = skin::makeTexture(readImageFile(path), path, srgb);
-    t.filter = filter;
-    return t;
-  } catch (const MissingFileError& e) {
-    throw MissingFileError(field, std::string(": ") + e.what());
-  } catch (const InputError& e) {
-    fieldError(field, ": ", e.what());
-  }
-}
-
 // The source colour of root k (triangle t, barycentric b) for a resolved source.
-Eigen::Vector3f sourceColor(const skin::SkinMesh& skin, const GroomMaps& maps,
-                            const Material& linear, ColorSource source, std::int32_t t,
-                            const float* b) {
+Eigen::Vector3f sourceColor(const skin::SkinMesh& skin, const Groom& maps, const Material& linear,
+                            ColorSource source, std::int32_t t, const float* b) {
   switch (source) {
     case ColorSource::Material:
     case ColorSource::Creature:  // (resolved before: never reaches here)
@@ -60,26 +46,7 @@ Eigen::Vector3f sourceColor(const skin::SkinMesh& skin, const GroomMaps& maps,
 
 }  // namespace
 
-GroomMaps loadGroomMaps(const GroomMapPaths& paths, const skin::SkinMesh& skin,
-                        const std::string& modelName) {
-  GroomMaps m;
-  if (!paths.any()) return m;
-  if (!skin.hasUv()) {
-    const char* field = !paths.density.empty()  ? "maps.density"
-                        : !paths.length.empty() ? "maps.length"
-                                                : "maps.color";
-    fieldError(field, ": model '", modelName,
-               "' has no texture coordinates, so groom maps cannot be placed on it (they need a "
-               "glTF model with TEXCOORD_0); remove the maps and set the coat in the preset "
-               "instead (hairs or density, lengthScale, lengthRegion, color)");
-  }
-  m.density = loadMap(paths.density, "maps.density", false, skin::Filter::Nearest);
-  m.length = loadMap(paths.length, "maps.length", false, skin::Filter::Linear);
-  m.color = loadMap(paths.color, "maps.color", true, skin::Filter::Linear);
-  return m;
-}
-
-ColorSource resolveColorSource(const skin::SkinMesh& skin, ColorSource asked, const GroomMaps& maps,
+ColorSource resolveColorSource(const skin::SkinMesh& skin, ColorSource asked, const Groom& maps,
                                const std::string& field) {
   switch (asked) {
     case ColorSource::Material:
@@ -161,7 +128,7 @@ Eigen::Vector3f shiftHue(const Eigen::Vector3f& rgb, float degrees) {
 }
 
 FurColors colorRoots(const skin::SkinMesh& skin, const FurRoots& roots, const FurParams& params,
-                     const GroomMaps& maps) {
+                     const Groom& maps) {
   FurColors out;
   for (int c = 0; c < kCoatCount; ++c) {
     const auto ci = static_cast<std::size_t>(c);
@@ -175,7 +142,8 @@ FurColors colorRoots(const skin::SkinMesh& skin, const FurRoots& roots, const Fu
     const float lumD = luminance(linear.diffuse);
     cc.ambientRatio =
         lumD > 1e-6f ? std::clamp(luminance(linear.ambient) / lumD, 0.0f, 4.0f) : 0.0f;
-    if (model.uniformOver(cc.source)) {
+    const std::vector<Eigen::Vector3f>& vertexTint = maps.vertex.tint;
+    if (model.uniformOver(cc.source) && vertexTint.empty()) {
       cc.perHair = false;
       cc.diffuse = clamp01(linear.diffuse.cwiseProduct(model.tint));
       cc.ambient = clamp01(linear.ambient.cwiseProduct(model.tint));
@@ -190,9 +158,20 @@ FurColors colorRoots(const skin::SkinMesh& skin, const FurRoots& roots, const Fu
     parallelFor(n, 4096, [&](std::int64_t k) {
       const auto ks = static_cast<std::size_t>(k);
       const float* b = roots.barycentric.data() + 4 * cr.tableIndex[ks];
-      Eigen::Vector3f root = clamp01(
-          sourceColor(skin, maps, linear, cc.source, cr.triangle[ks], b).cwiseProduct(model.tint));
-      Eigen::Vector3f tip = model.hasTipColor ? tipLinear : clamp01(root * model.tipLightness);
+      // The groom's vertex tint at the root (fur/groom.h), interpolated as sec. 3.2 interpolates.
+      Eigen::Vector3f groomTint = Eigen::Vector3f::Ones();
+      if (!vertexTint.empty()) {
+        const std::int32_t* v =
+            skin.triangles.data() + 3 * static_cast<std::size_t>(cr.triangle[ks]);
+        groomTint = (vertexTint[static_cast<std::size_t>(v[0])] * b[0] +
+                     vertexTint[static_cast<std::size_t>(v[1])] * b[1]) +
+                    vertexTint[static_cast<std::size_t>(v[2])] * b[2];
+      }
+      Eigen::Vector3f root = clamp01(sourceColor(skin, maps, linear, cc.source, cr.triangle[ks], b)
+                                         .cwiseProduct(model.tint)
+                                         .cwiseProduct(groomTint));
+      Eigen::Vector3f tip = model.hasTipColor ? clamp01(tipLinear.cwiseProduct(groomTint))
+                                              : clamp01(root * model.tipLightness);
       // Per-hair variation (one hue shift and one brightness factor for the whole hair).
       if (model.hueVariation > 0.0f) {
         const float u = uniform01(seed, kStreamColor, 2 * static_cast<std::uint64_t>(k));

@@ -14,14 +14,14 @@ struct SkinFur {
   double area = 0.0, meanLength = 0.0;
 };
 
-SkinFur skinFur(const skin::SkinMesh& skin) {
+SkinFur skinFur(const skin::SkinMesh& skin, const float* lengths) {
   const std::vector<double> area = triangleAreas(skin);
-  const float* len = skin.furLengths();
+  const float* len = lengths ? lengths : skin.furLengths();
   const std::int32_t* tri = skin.triangles.data();
   SkinFur s;
   double lengthArea = 0.0;
   for (std::int32_t t = 0; t < skin.numTriangles(); ++t) {
-    if (!triangleHasFur(skin, t)) continue;
+    if (!triangleHasFur(skin, len, t)) continue;
     const double a = area[static_cast<std::size_t>(t)];
     const std::int32_t* v = tri + 3 * static_cast<std::int64_t>(t);
     s.area += a;
@@ -54,13 +54,14 @@ double hairsFor(const FurParams& p, const SkinFur& s, double hiddenShare) {
 
 }  // namespace
 
-double hairsForCoverage(const skin::SkinMesh& skin, const FurParams& params, double hiddenShare) {
-  return hairsFor(params, skinFur(skin), hiddenShare);
+double hairsForCoverage(const skin::SkinMesh& skin, const FurParams& params, double hiddenShare,
+                        const float* lengths) {
+  return hairsFor(params, skinFur(skin, lengths), hiddenShare);
 }
 
-FurParams fitCoverageToBudget(const skin::SkinMesh& skin, FurParams params) {
+FurParams fitCoverageToBudget(const skin::SkinMesh& skin, FurParams params, const float* lengths) {
   if (params.coverage <= 0.0) return params;
-  const double n = hairsForCoverage(skin, params, params.coverage);
+  const double n = hairsForCoverage(skin, params, params.coverage, lengths);
   if (n <= kCoverageHairBudget) return params;
   double widen = n / kCoverageHairBudget;
   for (const CoatParams& c : params.coats)
@@ -72,8 +73,9 @@ FurParams fitCoverageToBudget(const skin::SkinMesh& skin, FurParams params) {
   return params;
 }
 
-FurCoverage estimateCoverage(const skin::SkinMesh& skin, const FurParams& params) {
-  const SkinFur s = skinFur(skin);
+FurCoverage estimateCoverage(const skin::SkinMesh& skin, const FurParams& params,
+                             const float* lengths) {
+  const SkinFur s = skinFur(skin, lengths);
   FurCoverage f;
   f.furredAreaM2 = s.area;
   const double total =

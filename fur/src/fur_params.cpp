@@ -96,6 +96,21 @@ void validateFurParams(FurParams& p, const std::string& source) {
         inputError(source, ": lengthRegion.min[", k, "] = ", r.boxMin[k],
                    " exceeds lengthRegion.max[", k, "] = ", r.boxMax[k],
                    " (a box needs min <= max)");
+  if (p.regions.size() > kMaxFurRegions)
+    inputError(source, ": regions has ", p.regions.size(), " entries; accepted: at most ",
+               kMaxFurRegions);
+  for (std::size_t i = 0; i < p.regions.size(); ++i) {
+    const FurRegion& g = p.regions[i];
+    const std::string at = str("regions[", i, "].");
+    if (g.match.empty())
+      inputError(source, ": ", at,
+                 "match is empty (a region, material or joint name; '*' "
+                 "wildcards)");
+    checkRange(source, at + "lengthScale", g.lengthScale, 0.0, 10.0);
+    checkRange(source, at + "lengthMm", g.lengthMm, 0.0, 10000.0);
+    checkRange(source, at + "densityScale", g.densityScale, 0.0, 100.0);
+    for (int k = 0; k < 3; ++k) checkRange(source, str(at, "tint[", k, "]"), g.tint[k], 0.0, 10.0);
+  }
   for (int k = 0; k < 3; ++k) checkRange(source, str("up[", k, "]"), p.up[k], -1e6, 1e6);
   const float upLength = p.up.norm();
   if (!(upLength > 1e-6f))

@@ -153,12 +153,11 @@ namespace {
 
 // Packs position, fur length, normal and segment direction of every vertex into 48-byte records,
 // so a hair's three vertices are three contiguous reads.
-void packVertices(const skin::SkinMesh& skin, const skin::DeformedSkin& d,
+void packVertices(const skin::SkinMesh& skin, const float* len, const skin::DeformedSkin& d,
                   std::vector<float>& out) {
   const std::int64_t nV = skin.numVertices();
   if (out.size() != static_cast<std::size_t>(nV * kVertexRecordFloats))
     out.resize(static_cast<std::size_t>(nV * kVertexRecordFloats));
-  const float* len = skin.furLengths();
   float* o = out.data();
   parallelForChunks(nV, 8192, [&](std::int64_t b, std::int64_t e) {
     for (std::int64_t v = b; v < e; ++v) {
@@ -217,7 +216,7 @@ void detail::generateFurWithDynamics(
                 static_cast<std::size_t>(roots.coats[static_cast<std::size_t>(c)].size());
   }
   if (!sized && emit) prepareFurFrame(roots, params, frame);
-  packVertices(skin, deformed, ws.vertexRecords);
+  packVertices(skin, roots.lengths(skin), deformed, ws.vertexRecords);
   const float factor = emit ? cullingFactor(view) : 1.0f;
   if (emit) frame.cullingFactor = factor;
   for (int c = 0; c < kCoatCount; ++c) {
@@ -291,7 +290,7 @@ HairInput<float> rootInput(const skin::SkinMesh& skin, const FurRoots& roots,
   PELAGE_CHECK(rootIndex >= 0 && rootIndex < cr.size(), "root ", rootIndex, " of ", cr.size());
   const auto r = static_cast<std::size_t>(rootIndex);
   const std::int32_t* tv = skin.triangles.data() + 3 * static_cast<std::int64_t>(cr.triangle[r]);
-  const float* len = skin.furLengths();
+  const float* len = roots.lengths(skin);
   float records[3][kVertexRecordFloats];
   for (int k = 0; k < 3; ++k) {
     const auto v = static_cast<std::size_t>(tv[k]);

@@ -124,6 +124,39 @@ LengthRegion parseRegion(const JsonReader& j) {
   return r;
 }
 
+// "regions": [{"match": PATTERN, "lengthScale": s, "lengthMm": mm, "densityScale": d,
+// "tint": [r, g, b]}, ...]; the list replaces the base preset's.
+std::vector<FurRegion> parseFurRegions(const JsonReader& list) {
+  if (!list.isArray())
+    list.fail("expected an array of regions, e.g. [{\"match\": \"b_Tail*\", \"lengthScale\": 2}]");
+  if (list.size() > kMaxFurRegions)
+    list.fail(str("has ", list.size(), " regions; accepted: at most ", kMaxFurRegions));
+  std::vector<FurRegion> out;
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const JsonReader j = list.at(i);
+    if (!j.isObject()) j.fail("expected an object {\"match\": PATTERN, ...}");
+    // Per-region coat fields (stiffness, width, curl, ...) are not supported yet: the kernel holds
+    // them per coat.
+    j.rejectUnknown({"match", "lengthScale", "lengthMm", "densityScale", "tint"});
+    FurRegion r;
+    if (!j.has("match"))
+      j.fail("missing 'match' (a region, material or joint name; '*' wildcards)");
+    r.match = j.string("match");
+    if (r.match.empty()) j.at("match").fail("a region, material or joint name; '*' wildcards");
+    r.lengthScale = num(j, "lengthScale", r.lengthScale, 0.0, 10.0);
+    r.lengthMm = num(j, "lengthMm", r.lengthMm, 0.0, 10000.0);
+    r.densityScale = num(j, "densityScale", r.densityScale, 0.0, 100.0);
+    if (j.has("tint")) {
+      const JsonReader t = j.at("tint");
+      if (!t.isArray() || t.size() != 3) t.fail("expected an array of 3 numbers in [0, 10]");
+      for (std::size_t k = 0; k < 3; ++k)
+        r.tint[static_cast<int>(k)] = static_cast<float>(t.at(k).asNumber(0.0, 10.0));
+    }
+    out.push_back(std::move(r));
+  }
+  return out;
+}
+
 std::optional<std::string> builtinPresetText(const std::string& name) {
   const auto text = models::builtinFile(std::string(kPresetDir) + name + ".json");
   if (!text) return std::nullopt;
@@ -215,8 +248,8 @@ FurParams parsePreset(const nlohmann::json& doc, const PresetSource& src,
   const JsonReader j(doc, src.source);
   if (!j.isObject()) j.fail("expected a JSON object with the fur parameters");
   j.rejectUnknown({"name", "description", "base", "hairs", "density", "coverage", "undercoatShare",
-                   "seed", "lengthScale", "lengthRegion", "up", "culling", "overcoat", "undercoat",
-                   "maps"});
+                   "seed", "lengthScale", "lengthRegion", "regions", "up", "culling", "overcoat",
+                   "undercoat", "maps", "groom"});
   FurParams p;
   bool selfContained = true;
   if (j.has("base")) {
@@ -246,6 +279,7 @@ FurParams parsePreset(const nlohmann::json& doc, const PresetSource& src,
       j.integer("seed", static_cast<std::int64_t>(p.seed), 0, std::int64_t(1) << 53));
   p.lengthScale = num(j, "lengthScale", p.lengthScale, 0.0, 10.0);
   if (auto r = j.find("lengthRegion")) p.lengthRegion = parseRegion(*r);
+  if (auto r = j.find("regions")) p.regions = parseFurRegions(*r);
   p.up = j.vec3("up", p.up);
   if (auto c = j.find("culling")) {
     c->rejectUnknown({"enabled", "referenceDistance", "fovDegrees", "referenceHeight"});
@@ -262,6 +296,8 @@ FurParams parsePreset(const nlohmann::json& doc, const PresetSource& src,
     if (m->has("length")) p.maps.length = mapPath(*m, "length", src.baseDir);
     if (m->has("color")) p.maps.color = mapPath(*m, "color", src.baseDir);
   }
+  if (j.has("groom"))
+    p.groom = j.at("groom").json().is_null() ? "" : mapPath(j, "groom", src.baseDir);
   if (auto c = j.find("overcoat")) p.coats[kOvercoat] = parseCoat(*c, p.coats[kOvercoat]);
   CoatParams under = p.coats[kUndercoat];
   if (selfContained) {
@@ -306,6 +342,7 @@ FurParams loadPresetIn(const std::string& nameOrPath, const std::string& baseDir
   const std::string file = path.string();
   PresetSource src{file, path.parent_path().string(), path.stem().string(), &builtinDefault()};
   FurParams p = parsePreset(JsonReader::parseFile(file), src, chain);
+  p.file = file;
   chain.pop_back();
   return p;
 }
@@ -350,6 +387,16 @@ std::string furPresetJson(const FurParams& p) {
   if (r.shape == RegionShape::Box)
     j["lengthRegion"] = {{"box", {{"min", colorJson(r.boxMin)}, {"max", colorJson(r.boxMax)}}},
                          {"scale", r.scale}};
+  if (!p.regions.empty()) {
+    nlohmann::json list = nlohmann::json::array();
+    for (const FurRegion& g : p.regions)
+      list.push_back({{"match", g.match},
+                      {"lengthScale", g.lengthScale},
+                      {"lengthMm", g.lengthMm},
+                      {"densityScale", g.densityScale},
+                      {"tint", colorJson(g.tint)}});
+    j["regions"] = list;
+  }
   j["up"] = colorJson(p.up);
   j["culling"] = {{"enabled", p.culling.enabled},
                   {"referenceDistance", p.culling.referenceDistance},
@@ -362,6 +409,7 @@ std::string furPresetJson(const FurParams& p) {
     if (!p.maps.color.empty()) m["color"] = p.maps.color;
     j["maps"] = m;
   }
+  if (!p.groom.empty()) j["groom"] = p.groom;
   j["overcoat"] = coatJson(p.coats[kOvercoat]);
   j["undercoat"] = coatJson(p.coats[kUndercoat]);
   return j.dump(2) + "\n";

@@ -166,40 +166,66 @@ std::vector<double> triangleAreas(const skin::SkinMesh& skin) {
   return area;
 }
 
-bool triangleHasFur(const skin::SkinMesh& skin, std::int32_t t) {
-  const float* len = skin.furLengths();
+bool triangleHasFur(const skin::SkinMesh& skin, const float* len, std::int32_t t) {
   const std::int32_t* v = skin.triangles.data() + 3 * static_cast<std::int64_t>(t);
   return len[v[0]] > 0.0f || len[v[1]] > 0.0f || len[v[2]] > 0.0f;
 }
 
-FurRoots growRoots(const skin::SkinMesh& skin, const FurParams& params, const GroomMaps& maps) {
+FurRoots growRoots(const skin::SkinMesh& skin, const FurParams& params, const Groom& groom) {
   const std::int32_t nT = skin.numTriangles();
   const std::vector<double> area = triangleAreas(skin);
+  PELAGE_CHECK(groom.vertex.length.empty() ||
+                   groom.vertex.length.size() == static_cast<std::size_t>(skin.numVertices()),
+               "groom length has ", groom.vertex.length.size(), " values for ", skin.numVertices(),
+               " vertices");
+  const float* lengths = groomedLengths(skin, groom.vertex);
   std::vector<char> furred(static_cast<std::size_t>(nT));
   double furredArea = 0.0;
   for (std::int32_t t = 0; t < nT; ++t) {
-    furred[static_cast<std::size_t>(t)] = triangleHasFur(skin, t) ? 1 : 0;
+    furred[static_cast<std::size_t>(t)] = triangleHasFur(skin, lengths, t) ? 1 : 0;
     if (furred[static_cast<std::size_t>(t)]) furredArea += area[static_cast<std::size_t>(t)];
   }
   // A coverage asks for the count that hides that share of the skin (fur/coverage.h).
   FurParams counted = params;
-  if (params.coverage > 0.0) counted.setHairCount(hairsForCoverage(skin, params, params.coverage));
+  if (params.coverage > 0.0)
+    counted.setHairCount(hairsForCoverage(skin, params, params.coverage, lengths));
   checkHairBudget(counted, furredArea);
   const double total = requestedHairs(counted, furredArea);
-  // The density map's mean and maximum over each furred triangle; weightedArea = sum area x mean.
-  const bool densityMap = !maps.density.empty();
+  // The density map's mean and maximum over each furred triangle, times the mean of the groom's
+  // vertex densities; weightedArea = sum area x mean.
+  const bool densityMap = !groom.density.empty();
+  const std::vector<float>& vertexDensity = groom.vertex.density;
+  const bool weighted = densityMap || !vertexDensity.empty();
   std::vector<float> densityMean, densityMax;
   double weightedArea = furredArea;
+  if (weighted) {
+    densityMean.assign(static_cast<std::size_t>(nT), 1.0f);
+    densityMax.assign(static_cast<std::size_t>(nT), 1.0f);
+  }
   if (densityMap) {
     PELAGE_CHECK(skin.hasUv(), "a density map on a skin without texture coordinates");
-    densityMean.assign(static_cast<std::size_t>(nT), 0.0f);
-    densityMax.assign(static_cast<std::size_t>(nT), 0.0f);
     parallelFor(nT, 1024, [&](std::int64_t t) {
       const auto ts = static_cast<std::size_t>(t);
+      densityMean[ts] = densityMax[ts] = 0.0f;
       if (!furred[ts]) return;
-      triangleDensity(skin, maps.density, static_cast<std::int32_t>(t), densityMean[ts],
+      triangleDensity(skin, groom.density, static_cast<std::int32_t>(t), densityMean[ts],
                       densityMax[ts]);
     });
+  }
+  if (!vertexDensity.empty()) {
+    PELAGE_CHECK(vertexDensity.size() == static_cast<std::size_t>(skin.numVertices()),
+                 "groom density has ", vertexDensity.size(), " values for ", skin.numVertices(),
+                 " vertices");
+    const std::int32_t* tri = skin.triangles.data();
+    for (std::int32_t t = 0; t < nT; ++t) {
+      const std::int32_t* v = tri + 3 * static_cast<std::int64_t>(t);
+      densityMean[static_cast<std::size_t>(t)] *= (vertexDensity[static_cast<std::size_t>(v[0])] +
+                                                   vertexDensity[static_cast<std::size_t>(v[1])] +
+                                                   vertexDensity[static_cast<std::size_t>(v[2])]) /
+                                                  3.0f;
+    }
+  }
+  if (weighted) {
     weightedArea = 0.0;
     for (std::int32_t t = 0; t < nT; ++t)
       if (furred[static_cast<std::size_t>(t)])
@@ -211,6 +237,7 @@ FurRoots growRoots(const skin::SkinMesh& skin, const FurParams& params, const Gr
   roots.triangleCount = nT;
   roots.furredArea = furredArea;
   roots.seed = params.seed;
+  roots.vertexLength = groom.vertex.length;
   roots.barycentric = makeBarycentricTable(params.seed);
   for (int c = 0; c < kCoatCount; ++c) {
     CoatRoots& cr = roots.coats[static_cast<std::size_t>(c)];
@@ -223,7 +250,7 @@ FurRoots growRoots(const skin::SkinMesh& skin, const FurParams& params, const Gr
     // Van Gelder & Wilhelms 1997, sec. 3.2: floor(alpha N + u) hairs per triangle ("random
     // rounding"), alpha = area / furred area; no-fur triangles get none.
     std::vector<std::int32_t> count(static_cast<std::size_t>(nT), 0);
-    if (!densityMap && furredArea > 0.0 && nc > 0.0) {
+    if (!weighted && furredArea > 0.0 && nc > 0.0) {
       parallelFor(nT, 8192, [&](std::int64_t t) {
         const auto ts = static_cast<std::size_t>(t);
         if (!furred[ts]) return;
@@ -231,7 +258,7 @@ FurRoots growRoots(const skin::SkinMesh& skin, const FurParams& params, const Gr
         count[ts] = static_cast<std::int32_t>(std::floor(area[ts] / furredArea * nc + u));
       });
     }
-    if (densityMap && weightedArea > 0.0 && nc > 0.0) {
+    if (weighted && weightedArea > 0.0 && nc > 0.0) {
       parallelFor(nT, 8192, [&](std::int64_t t) {
         const auto ts = static_cast<std::size_t>(t);
         if (!furred[ts] || !(densityMean[ts] > 0.0f)) return;
@@ -251,7 +278,7 @@ FurRoots growRoots(const skin::SkinMesh& skin, const FurParams& params, const Gr
     cr.triangle.resize(n);
     cr.tableIndex.resize(n);
     cr.jitter.resize(4 * n);
-    if (!maps.length.empty()) {
+    if (!groom.length.empty()) {
       PELAGE_CHECK(skin.hasUv(), "a length map on a skin without texture coordinates");
       cr.lengthScale.resize(n);
     }
@@ -267,12 +294,13 @@ FurRoots growRoots(const skin::SkinMesh& skin, const FurParams& params, const Gr
             cr.tableIndex[ks] = static_cast<std::uint16_t>(k % kBarycentricTableSize);
           } else {
             cr.tableIndex[ks] =
-                acceptedEntry(skin, maps.density, roots.barycentric, static_cast<std::int32_t>(t),
+                acceptedEntry(skin, groom.density, roots.barycentric, static_cast<std::int32_t>(t),
                               first, seed, densityMax[static_cast<std::size_t>(t)], attempt);
           }
           if (!cr.lengthScale.empty()) {
             const float* b = roots.barycentric.data() + 4 * cr.tableIndex[ks];
-            cr.lengthScale[ks] = maps.length.sample(skin.uvAt(static_cast<std::int32_t>(t), b)).x();
+            cr.lengthScale[ks] =
+                groom.length.sample(skin.uvAt(static_cast<std::int32_t>(t), b)).x();
           }
           // Sec. 3.5 hair end randomize: xi uniform in the unit ball (direction uniform on the
           // sphere, radius cbrt(u3)).

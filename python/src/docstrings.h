@@ -29,15 +29,32 @@ Returns:
     (positions, normals, triangles): (nV, 3) float32 metres (Z up), (nV, 3) float32 unit
     normals, (nT, 3) int32 vertex indices.)doc";
 
+inline constexpr const char* kWriteGroomDoc = R"doc(Writes a groom file for this model's mesh.
+
+A groom file holds per-vertex values (fur/groom.h) that any command loads with --groom FILE and
+fur() with groom=FILE; the preset's regions apply on top of it. It names the mesh (vertex and
+triangle counts, a hash), so loading it on another model is an error.
+
+Args:
+    path: the file to write (atomically: never half-written).
+    length: None, or an array of shape (vertices,): the fur length at each vertex in metres
+        [0, 10] (0 grows none), in place of the model's.
+    density: None, or shape (vertices,): multiplies the hairs per area [0, 100] (the total kept).
+    tint: None, or shape (vertices, 3): multiplies the hairs' linear colour [0, 10].
+
+Vertices are in Model.skin()'s order. A wrong shape or a value out of range is a ValueError
+naming the argument, and nothing is written.)doc";
+
 inline constexpr const char* kGrowFurDoc = R"doc(Grows fur on the creature.
 
 Args:
     preset: a built-in preset name ("default", "fig9", ...) or a preset .json file (which states
         what differs from its "base", else from "default").
     **fields: any preset field by its file name, e.g. hairs=50000, coverage=0.9, seed=3,
-        overcoat={"stiffness": 0.6} (nested objects set field by field). hairs, density and
-        coverage replace each other. An unknown field is a ValueError naming it. Fur.params
-        holds every field resolved.
+        overcoat={"stiffness": 0.6} (nested objects set field by field), regions=[{"match":
+        "b_Tail*", "lengthScale": 2}], groom="fox.groom.json". hairs, density and coverage
+        replace each other. An unknown field is a ValueError naming it. Fur.params holds every
+        field resolved; Fur.groom the per-vertex values the regions and groom file gave.
 
 Returns:
     Fur: the parameters and the roots, grown once; hairs are recomputed per frame.)doc";
@@ -75,8 +92,10 @@ inline constexpr const char* kLoadDoc = R"doc(Loads a creature.
 Args:
     model: "monkey" (built-in), a creature .json, a .gltf/.glb, or a mesh (.obj, .ply, .off, .stl).
     **options: triangles (skin size of shape creatures), unit_scale (metres per file unit),
-        no_fur (region patterns without fur), directions (per-joint directions file), as the
-        command line's options. An unknown keyword is a ValueError listing these.
+        no_fur (region patterns without fur), directions (per-joint directions file),
+        subdivide ("auto" or 0 to 3 levels of a glTF or mesh skin; auto: a skin under 4000
+        triangles until it has 4000), as the command line's options. An unknown keyword is a
+        ValueError listing these.
 
 Returns:
     Model.

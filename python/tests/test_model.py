@@ -84,3 +84,49 @@ def test_gltf_creature(cli):
     assert len(hairs) > 4000
     lo, hi = hairs.points.reshape(-1, 3).min(0), hairs.points.reshape(-1, 3).max(0)
     assert 0.5 < (hi - lo).max() < 2.5  # a fox of about a metre and a half, in metres
+
+
+@pytest.mark.skipif(not os.path.exists(os.path.join(SHARED, "Fox", "Fox.glb")),
+                    reason="the shared glTF models are not here")
+def test_regions_and_groom_files(tmp_path):
+    fox = pelage.load(os.path.join(SHARED, "Fox", "Fox.glb"))
+    n = len(fox.skin()[0])
+    regions = [{"match": "b_Tail*", "lengthScale": 2.0}, {"match": "b_Head*", "lengthScale": 0.4}]
+    groomed = fox.fur(hairs=3000, regions=regions)
+    assert groomed.params["regions"][0]["match"] == "b_Tail*"
+    length = groomed.groom["length"]
+    assert length.shape == (n,) and set(groomed.groom) == {"length"}
+    plain = fox.fur(hairs=3000)
+    assert plain.groom == {}
+    base = 0.0351  # the Fox's own fur length: 2 % of its bounding-box diagonal
+    assert np.isclose(length.max(), 2 * length.min() / 0.4, rtol=1e-5)
+    assert length.min() < base < length.max()
+    # The regions' values written from numpy and read back grow the same hairs, bit for bit.
+    path = str(tmp_path / "fox.groom.json")
+    tint = np.ones((n, 3), np.float32)
+    tint[:, 0] = 0.5
+    fox.write_groom(path, length=length, tint=tint)
+    from_file = fox.fur(hairs=3000, groom=path)
+    assert np.array_equal(bits(from_file.groom["length"]), bits(length))
+    assert np.array_equal(bits(from_file.groom["tint"]), bits(tint))
+    assert np.array_equal(bits(from_file.hairs().points), bits(groomed.hairs().points))
+    with pytest.raises(ValueError, match=r"length.*shape \(%d,\)" % n):
+        fox.write_groom(path, length=length[:-1])
+    with pytest.raises(ValueError, match=r"density\[0\].*\[0, 100\]"):
+        fox.write_groom(str(tmp_path / "bad.json"), density=np.full(n, -1.0))
+    assert not os.path.exists(tmp_path / "bad.json")
+    with pytest.raises(ValueError, match="another mesh"):
+        pelage.load("monkey", triangles=2000).fur(groom=path)
+    with pytest.raises(ValueError, match=r"regions\[0\].match 'b_Tial\*' matches no region"):
+        fox.fur(hairs=100, regions=[{"match": "b_Tial*"}])
+
+
+@pytest.mark.skipif(not os.path.exists(os.path.join(SHARED, "Fox", "Fox.glb")),
+                    reason="the shared glTF models are not here")
+def test_subdivision_levels():
+    path = os.path.join(SHARED, "Fox", "Fox.glb")
+    tris = {s: len(pelage.load(path, subdivide=s).skin()[2]) for s in (0, 1, "auto")}
+    assert tris == {0: 576, 1: 2304, "auto": 9216}
+    for bad in (4, -1, "twice"):
+        with pytest.raises((ValueError, TypeError)):
+            pelage.load(path, subdivide=bad)

@@ -167,7 +167,7 @@ struct Run {
 
   // The overcoat's mean rest hair length (m): interpolated vertex lengths times the length scales.
   double meanOvercoatLength() const {
-    const float* lengths = model.skin.furLengths();
+    const float* lengths = fur.roots.lengths(model.skin);
     const double mul =
         static_cast<double>(fur.params.lengthScale * fur.params.coats[fur::kOvercoat].lengthFactor);
     double sum = 0.0, n = 0.0;

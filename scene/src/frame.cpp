@@ -18,11 +18,18 @@ std::uint64_t nextGeneration() {
 
 Fur growFur(const Model& model, fur::FurParams params, const std::string& source) {
   fur::validateFurParams(params, source);
-  params = fur::fitCoverageToBudget(model.skin, std::move(params));
   Fur f;
-  f.maps = fur::loadGroomMaps(params.maps, model.skin, model.name);
-  f.roots = fur::growRoots(model.skin, params, f.maps);
-  f.colors = fur::colorRoots(model.skin, f.roots, params, f.maps);
+  f.groom = fur::loadGroomMaps(params.maps, model.skin, model.name);
+  fur::VertexGroom fromFile;
+  if (!params.groom.empty()) {
+    fromFile = fur::readGroomFile(params.groom, model.skin, model.name);
+  }
+  f.groom.vertex =
+      fur::groomFromRegions(model.skin, model.body, params, source, nullptr, std::move(fromFile));
+  params = fur::fitCoverageToBudget(model.skin, std::move(params),
+                                    fur::groomedLengths(model.skin, f.groom.vertex));
+  f.roots = fur::growRoots(model.skin, params, f.groom);
+  f.colors = fur::colorRoots(model.skin, f.roots, params, f.groom);
   f.params = std::move(params);
   f.generation = nextGeneration();
   f.colorGeneration = nextGeneration();
@@ -35,9 +42,9 @@ void recolorFur(const Model& model, Fur& fur, fur::FurParams params, const std::
   if (params.maps.color != fur.params.maps.color) {
     fur::GroomMapPaths colorOnly;
     colorOnly.color = params.maps.color;
-    fur.maps.color = fur::loadGroomMaps(colorOnly, model.skin, model.name).color;
+    fur.groom.color = fur::loadGroomMaps(colorOnly, model.skin, model.name).color;
   }
-  fur.colors = fur::colorRoots(model.skin, fur.roots, params, fur.maps);
+  fur.colors = fur::colorRoots(model.skin, fur.roots, params, fur.groom);
   fur.params = std::move(params);
   fur.colorGeneration = nextGeneration();
 }
@@ -45,7 +52,8 @@ void recolorFur(const Model& model, Fur& fur, fur::FurParams params, const std::
 bool rootsDiffer(const fur::FurParams& a, const fur::FurParams& b) {
   return a.hairs != b.hairs || a.densityPerM2 != b.densityPerM2 || a.coverage != b.coverage ||
          a.undercoatShare != b.undercoatShare || a.seed != b.seed ||
-         a.maps.density != b.maps.density || a.maps.length != b.maps.length;
+         a.maps.density != b.maps.density || a.maps.length != b.maps.length ||
+         a.regions != b.regions || a.groom != b.groom;
 }
 
 bool colorsDiffer(const fur::FurParams& a, const fur::FurParams& b) {
@@ -72,6 +80,9 @@ float maxHairLength(const Model& model, const fur::FurParams& params) {
   const float region = params.lengthRegion.shape == fur::LengthRegion::Shape::None
                            ? 1.0f
                            : std::max(params.lengthRegion.scale, 1.0f);
+  // The regions' lengths, bounded: each may set a length and scale it.
+  for (const fur::FurRegion& g : params.regions)
+    longest = std::max(longest, std::max(longest, 1e-3f * g.lengthMm) * g.lengthScale);
   return longest * params.lengthScale * factor * region;
 }
 

@@ -1,5 +1,7 @@
 #include "pelage/scene/model.h"
 
+#include "pelage/skin/subdivide.h"
+
 #include <algorithm>
 #include <filesystem>
 
@@ -29,6 +31,13 @@ Model fromCreature(const anatomy::Creature& c, const LoadOptions& options) {
   return m;
 }
 
+// The skin after the load options' subdivision (skin/subdivide.h).
+skin::SkinMesh subdivided(skin::SkinMesh skin, const LoadOptions& options) {
+  const int levels =
+      options.subdivide < 0 ? skin::autoSubdivisionLevels(skin.numTriangles()) : options.subdivide;
+  return levels == 0 ? std::move(skin) : skin::subdivideSkin(skin, levels);
+}
+
 Model fromGltf(const std::string& path, const LoadOptions& options) {
   animation::GltfImportOptions opt;
   opt.unitScale = options.unitScale;
@@ -39,7 +48,7 @@ Model fromGltf(const std::string& path, const LoadOptions& options) {
   m.name = g.name;
   m.source = path;
   m.body = std::move(g.body);
-  m.skin = std::move(g.skin);
+  m.skin = subdivided(std::move(g.skin), options);
   m.clips = std::move(g.clips);
   m.unitScale = g.unitScale;
   return m;
@@ -64,6 +73,9 @@ ModelFileKind modelFileKind(std::string_view path) {
 Model loadModel(const std::string& spec, const LoadOptions& options) {
   if (options.triangles != 0 && (options.triangles < 2000 || options.triangles > 2000000))
     fieldError("triangles", options.triangles, " is out of range [2000, 2000000]");
+  if (options.subdivide < -1 || options.subdivide > skin::kMaxSubdivisionLevels)
+    fieldError("subdivide", options.subdivide, " is out of range [0, ", skin::kMaxSubdivisionLevels,
+               "] levels (or auto)");
   const ModelFileKind kind = modelFileKind(spec);
   const bool gltf = kind == ModelFileKind::Gltf;
   const bool mesh = kind == ModelFileKind::Mesh;
@@ -71,6 +83,10 @@ Model loadModel(const std::string& spec, const LoadOptions& options) {
     inputError(spec.empty() ? std::string(kDefaultModel) : spec,
                ": no-fur regions and segment directions apply to glTF models (.gltf/.glb) "
                "only");
+  if (!gltf && !mesh && options.subdivide > 0)
+    inputError(spec.empty() ? std::string(kDefaultModel) : spec,
+               ": subdivision applies to glTF models and static meshes only (creatures built "
+               "from shapes take --triangles)");
   if (!gltf && !mesh && options.unitScale != 0.0f)
     inputError(spec, ": a unit scale applies to glTF models and static meshes only");
   if (gltf) return fromGltf(spec, options);
@@ -82,7 +98,7 @@ Model loadModel(const std::string& spec, const LoadOptions& options) {
     m.name = std::filesystem::path(spec).stem().string();
     m.source = spec;
     m.unitScale = options.unitScale > 0.0f ? options.unitScale : 1.0f;
-    m.skin = skin::readStaticMesh(spec, -1.0f, m.unitScale);
+    m.skin = subdivided(skin::readStaticMesh(spec, -1.0f, m.unitScale), options);
     anatomy::SegmentSpec root;
     root.name = "root";
     m.body = anatomy::makeBody({root}, spec);

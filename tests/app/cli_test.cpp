@@ -124,6 +124,17 @@ INSTANTIATE_TEST_SUITE_P(
                 "--background takes R G B (3 values) or transparent"},
         BadCase{"BackgroundRange", "", "render <tet> --background 0 2 0 --frames 0 --out <dir>/f",
                 "--background G = '2' is not a number in [0, 1]"},
+        // Grooming (issue 27): groom files, regions, subdivision.
+        BadCase{"GroomMissing", "",
+                "hair <tet> --hairs 10 --groom /nonexistent/g.json --out <dir>/x.ply",
+                "groom: /nonexistent/g.json: cannot open file"},
+        BadCase{"GroomNotAGroom", R"({"regions": []})",
+                "hair <tet> --hairs 10 --groom {} --out <dir>/x.ply", "not a groom file"},
+        BadCase{"RegionMatchesNothing", R"({"regions": [{"match": "tial*", "lengthScale": 2}]})",
+                "hair <tet> --hairs 10 --fur {} --out <dir>/x.ply",
+                "regions[0].match 'tial*' matches no region or joint"},
+        BadCase{"SubdivideRange", "", "info <tet> --subdivide 4",
+                "--subdivide '4' is not auto or a level in [0, 3]"},
         // Input quoted in a message is cut to a few dozen characters, with its length.
         BadCase{"LongFramesQuoted", "",
                 "render <tet> --out <dir>/f --frames 1:" + std::string(5000, '9') + "x",

@@ -1,4 +1,4 @@
-// Hair colours and groom maps (fur/colors.h, fur/groom_maps.h) on a unit square with texture
+// Hair colours and groom maps (fur/colors.h, fur/groom.h) on a unit square with texture
 // coordinates u = x, v = y: exact colours from a 2x2 texture, a density map zero on half the UV
 // square, a length map at mid-grey, thread-count invariance.
 #include "pelage/fur/colors.h"
@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "fur_test_support.h"
-#include "pelage/fur/groom_maps.h"
+#include "pelage/fur/groom.h"
 #include "pelage/skin/texture.h"
 #include "pelage/util/color.h"
 #include "pelage/util/error.h"
@@ -71,7 +71,7 @@ TEST(HairColors, TextureQuadrantsGiveExactColours) {
   FurParams p = params(4000);
   p.coats[kOvercoat].color.source = ColorSource::Texture;
   const FurRoots roots = growRoots(s, p);
-  const FurColors colors = colorRoots(s, roots, p, GroomMaps{});
+  const FurColors colors = colorRoots(s, roots, p, Groom{});
   const CoatColors& cc = colors.coats[kOvercoat];
   ASSERT_TRUE(cc.perHair);
   ASSERT_EQ(cc.packed.size(), static_cast<std::size_t>(2 * roots.coats[kOvercoat].size()));
@@ -92,7 +92,7 @@ TEST(HairColors, TextureQuadrantsGiveExactColours) {
   // not every hair the same.
   p.coats[kOvercoat].color.valueVariation = 0.2f;
   p.coats[kOvercoat].color.hueVariation = 10.0f;
-  const CoatColors varied = colorRoots(s, roots, p, GroomMaps{}).coats[kOvercoat];
+  const CoatColors varied = colorRoots(s, roots, p, Groom{}).coats[kOvercoat];
   int changed = 0;
   for (std::int64_t k = 0; k < roots.coats[kOvercoat].size(); ++k) {
     const Eigen::Vector3f a = unpackSrgb8(cc.packed[static_cast<std::size_t>(2 * k)]);
@@ -120,7 +120,7 @@ TEST(GroomMaps, DensityMapZeroOnHalfGrowsNoRootsThereAndKeepsTheTotal) {
   const skin::SkinMesh s = texturedSquare();
   FurParams p = params(20000);
   p.maps.density = writeRgbPng(dir, "density.png", 2, 1, {0, 0, 0, 255, 255, 255});
-  const GroomMaps maps = loadGroomMaps(p.maps, s, "square");
+  const Groom maps = loadGroomMaps(p.maps, s, "square");
   const FurRoots roots = growRoots(s, p, maps);
   const std::int64_t n = roots.coats[kOvercoat].size();
   for (std::int64_t k = 0; k < n; ++k)
@@ -141,7 +141,7 @@ TEST(GroomMaps, LengthMapScalesTheInterpolatedLength) {
   const test::RestFur plain = test::restFur(s, p);
   p.maps.length = writeRgbPng(dir, "length.png", 4, 1,
                               {128, 128, 128, 128, 128, 128, 255, 255, 255, 255, 255, 255});
-  const GroomMaps maps = loadGroomMaps(p.maps, s, "square");
+  const Groom maps = loadGroomMaps(p.maps, s, "square");
   const FurRoots mapped = growRoots(s, p, maps);
   ASSERT_EQ(mapped.coats[kOvercoat].triangle, plain.roots.coats[kOvercoat].triangle);  // same roots
   const FurFrame a = test::furFrame(s, plain.roots, p, plain.rest);
@@ -191,7 +191,7 @@ TEST(GroomMaps, ErrorsNameTheFieldAndTheFile) {
   // Nor a texture colour source.
   FurParams p = params(100);
   p.coats[kOvercoat].color.source = ColorSource::Texture;
-  EXPECT_THROW(colorRoots(bare, growRoots(bare, p), p, GroomMaps{}), InputError);
+  EXPECT_THROW(colorRoots(bare, growRoots(bare, p), p, Groom{}), InputError);
 }
 
 // Colours, density and length maps: bit-identical for any thread count.
@@ -207,7 +207,7 @@ TEST(GroomMaps, SameRootsAndColoursForAnyThreadCount) {
   p.coats[kOvercoat].color.hueVariation = 8.0f;
   p.coats[kOvercoat].color.valueVariation = 0.1f;
   p.coats[kOvercoat].color.tipLightness = 1.3f;
-  const GroomMaps maps = loadGroomMaps(p.maps, s, "square");
+  const Groom maps = loadGroomMaps(p.maps, s, "square");
   std::vector<std::uint32_t> first;
   std::vector<std::int32_t> triangles;
   std::vector<float> scales;

@@ -181,7 +181,8 @@ inline skin::SkinMesh makeSphere(float r, int rings, int segments) {
 // threads, with and without culling, and on every SIMD path the CPU has; every float is finite and
 // every normal unit.
 inline void checkStylesAgainstReference(const skin::SkinMesh& s, const skin::DeformedSkin& d,
-                                        double hairs, const Eigen::Vector3f& regionCenter) {
+                                        double hairs, const Eigen::Vector3f& regionCenter,
+                                        const fur::Groom& groom = {}) {
   using namespace fur;
 
   for (HairStyle style :
@@ -196,7 +197,7 @@ inline void checkStylesAgainstReference(const skin::SkinMesh& s, const skin::Def
     p.lengthRegion.center = regionCenter;
     p.lengthRegion.radius = 0.08f;
     p.lengthRegion.scale = 2.0f;
-    const FurRoots r = growRoots(s, p);
+    const FurRoots r = growRoots(s, p, groom);
     const FurFrame f = furFrame(s, r, p, d);
     std::vector<float> pos, nrm;
     for (int c = 0; c < kCoatCount; ++c) {

@@ -58,7 +58,7 @@ TEST(HairPly, ColoursPerVertexReadBackEqual) {
   p.coats[kUndercoat].style = HairStyle::Line;  // uniform
   const test::RestFur rf = test::restFur(s, p);
   FurFrame f = test::furFrame(s, rf.roots, p, rf.rest);
-  const FurColors colors = colorRoots(s, rf.roots, p, GroomMaps{});
+  const FurColors colors = colorRoots(s, rf.roots, p, Groom{});
   fillHairColors(colors, f);
   test::TempDir dir;
   const HairPlyCounts n = writeHairPly(dir.file("c.ply"), f, p, "", &colors);

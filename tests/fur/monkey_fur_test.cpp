@@ -79,7 +79,7 @@ TEST(RootsOnMonkey, DensityIsUniformAcrossTriangleSizes) {
   const std::vector<double> area = triangleAreas(s);
   std::vector<std::int32_t> order;
   for (std::int32_t t = 0; t < s.numTriangles(); ++t)
-    if (triangleHasFur(s, t)) order.push_back(t);
+    if (triangleHasFur(s, s.furLengths(), t)) order.push_back(t);
   std::sort(order.begin(), order.end(), [&](std::int32_t a, std::int32_t b) {
     return area[static_cast<std::size_t>(a)] < area[static_cast<std::size_t>(b)];
   });

@@ -65,6 +65,13 @@ TEST(FuzzEntry, ProjectFilesAreAccepted) {
   }
 }
 
+TEST(FuzzEntry, GroomSeedIsTheExampleAndLoads) {
+  const std::string example = pelage::fuzz::groomExample();
+  EXPECT_TRUE(run("groom", example));
+  EXPECT_EQ(readFile(kFuzzDir / "corpus" / "groom" / "example.json"), example)
+      << "the seed is groomExample()'s text";
+}
+
 TEST(FuzzEntry, BadInputsAreRejectedNotCrashed) {
   EXPECT_FALSE(run("creature", ""));
   EXPECT_FALSE(run("creature", "{\"segments\": 3}"));
@@ -75,6 +82,10 @@ TEST(FuzzEntry, BadInputsAreRejectedNotCrashed) {
   EXPECT_FALSE(run("gltf", std::string("glTF\x02\x00\x00\x00\xff\xff\xff\xff", 12)));
   EXPECT_FALSE(run("mesh", pelage::fuzz::meshInput("obj", "v 0 0 0\nf 1 2 3\n")));
   EXPECT_FALSE(run("mesh", pelage::fuzz::meshInput("stl", std::string(84, '\0'))));
+  EXPECT_FALSE(run("groom", "{\"format\": \"pelage groom\", \"version\": 1}"));
+  std::string otherMesh = pelage::fuzz::groomExample();
+  otherMesh.replace(otherMesh.find("\"vertices\":16"), 14, "\"vertices\":17");
+  EXPECT_FALSE(run("groom", otherMesh));
   EXPECT_THROW(run("no_such_reader", "x"), std::invalid_argument);
 }
 

@@ -79,6 +79,11 @@ fur::FurParams paramsFor(const StyleCase& sc, double hairs) {
   p.lengthRegion.center = Eigen::Vector3f(0.25f, 0.0f, 0.38f);
   p.lengthRegion.radius = 0.08f;
   p.lengthRegion.scale = 2.0f;
+  // Regions (fur/groom.h): a joint region with blended lengths, a skin region with an absolute
+  // length and a tint, a denser head: the GPU reads the groomed vertex lengths.
+  p.regions = {{.match = "tail", .lengthScale = 1.5f},
+               {.match = "face", .lengthMm = 6.0f, .tint = {0.6f, 0.8f, 1.0f}},
+               {.match = "head", .densityScale = 2.0f}};
   p.culling.referenceDistance = 0.25f;
   return p;
 }

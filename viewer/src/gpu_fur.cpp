@@ -173,6 +173,8 @@ struct GpuFur::Impl {
                  " triangles, skin has ", triangleCount);
     barycentric = makeBuffer(static_cast<GLsizeiptr>(r.barycentric.size() * sizeof(float)),
                              r.barycentric.data());
+    // A groom's vertex lengths replace the skin's (fur/groom.h).
+    lengths = makeBuffer(static_cast<GLsizeiptr>(vertexCount) * 4, r.lengths(*skin));
     for (int c = 0; c < fur::kCoatCount; ++c) {
       const fur::CoatRoots& cr = r.coats[static_cast<std::size_t>(c)];
       Coat& g = coats[static_cast<std::size_t>(c)];

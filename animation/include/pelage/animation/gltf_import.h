@@ -98,8 +98,6 @@ GltfCreature importGltf(const std::string& path, const GltfImportOptions& option
 
 // The default no-fur region patterns.
 const std::vector<std::string>& defaultNoFurRegions();
-// True when `name` matches `pattern` (case-insensitive; '*' matches any run of characters).
-bool regionMatches(const std::string& pattern, const std::string& name);
 
 // The unit scale heuristic above for a longest bind-pose extent `longest` (file units); `reason`
 // receives a one-line explanation.

@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "pelage/fur/fur_params.h"
-#include "pelage/fur/groom_maps.h"
+#include "pelage/fur/groom.h"
 #include "pelage/fur/roots.h"
 #include "pelage/skin/skin_mesh.h"
 #include "pelage/skin/texture.h"
@@ -26,7 +26,7 @@ namespace pelage::fur {
 // The source coat colour `asked` resolves to on `skin`: Creature becomes Vertex (a creature file's
 // fur colours), Texture (a surface with colours of its own) or Material; the others must be
 // available: InputError naming `field` otherwise ("overcoat.color.source texture: ...").
-ColorSource resolveColorSource(const skin::SkinMesh& skin, ColorSource asked, const GroomMaps& maps,
+ColorSource resolveColorSource(const skin::SkinMesh& skin, ColorSource asked, const Groom& maps,
                                const std::string& field);
 
 // One coat's hair colours.
@@ -45,10 +45,12 @@ struct FurColors {
   std::array<CoatColors, kCoatCount> coats;
 };
 
-// Colours every root of `roots` (grown on `skin` with `params`' count, share and seed).
+// Colours every root of `roots` (grown on `skin` with `params`' count, share and seed): a groom's
+// vertex tint multiplies the root colour and the tip colour (so a tinted region is darker to its
+// tips).
 // Deterministic and thread-count independent. InputError for an unavailable source.
 FurColors colorRoots(const skin::SkinMesh& skin, const FurRoots& roots, const FurParams& params,
-                     const GroomMaps& maps);
+                     const Groom& maps);
 
 // Linear RGB (clamped to [0, 1]) -> packed RGBA8 sRGB, and back (the 8-bit codes decoded).
 std::uint32_t packSrgb8(const Eigen::Vector3f& linear);

@@ -39,15 +39,19 @@ inline constexpr double kCoverageHairBudget = 2e6;
 // `params`, with a coverage that would need more than kCoverageHairBudget hairs met by wider
 // hairs instead: both coats' root and tip widths times N / kCoverageHairBudget (at most 20 mm),
 // so the coverage's count is the budget. Unchanged otherwise. scene::growFur applies it.
-FurParams fitCoverageToBudget(const skin::SkinMesh& skin, FurParams params);
+FurParams fitCoverageToBudget(const skin::SkinMesh& skin, FurParams params,
+                              const float* lengths = nullptr);
 
 // The coats' expected density and optical depth on `skin` (its rest pose and per-vertex fur
-// lengths; the preset's lengthScale and relative lengths; a length map or lengthRegion is not
-// counted). The hair count is params' (hairs, density or coverage).
-FurCoverage estimateCoverage(const skin::SkinMesh& skin, const FurParams& params);
+// lengths, or `lengths` (nV, a groom's: fur/groom.h) when given; the preset's lengthScale and
+// relative lengths; a length map, lengthRegion or density groom is not counted). The hair count is
+// params' (hairs, density or coverage). The other functions here take `lengths` the same way.
+FurCoverage estimateCoverage(const skin::SkinMesh& skin, const FurParams& params,
+                             const float* lengths = nullptr);
 
 // The total hair count N for which the expected share of skin hidden is `hiddenShare` (in
 // (0, kMaxCoverage]) with params' widths, lengths and undercoat share; 0 on a skin without fur.
-double hairsForCoverage(const skin::SkinMesh& skin, const FurParams& params, double hiddenShare);
+double hairsForCoverage(const skin::SkinMesh& skin, const FurParams& params, double hiddenShare,
+                        const float* lengths = nullptr);
 
 }  // namespace pelage::fur

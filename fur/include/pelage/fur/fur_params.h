@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "pelage/fur/hair_layout.h"
 #include "pelage/fur/hair_style.h"
@@ -95,6 +96,22 @@ struct LengthRegion {
   float scale = 1.0f;  // length multiplier inside [0, 10]
 };
 
+// A region of the creature groomed apart (fur/groom.h resolves it per skin vertex): `match` is a
+// glob (util/path.h: '*' wildcards, case ignored) over the skin's region names (a creature file's
+// regions; a glTF creature's material names and rigid mesh node names) and the body's segment
+// (joint) names. A joint region covers the skin by that joint's skin weights, so its border blends
+// as the paper blends per-vertex lengths (sec. 3.2). Regions apply in list order.
+struct FurRegion {
+  std::string match;
+  float lengthScale = 1.0f;   // multiplies the length [0, 10]
+  float lengthMm = 0.0f;      // > 0: the length (mm) before lengthScale, where the skin has fur;
+                              // 0 = keep the length [0, 10000]
+  float densityScale = 1.0f;  // multiplies the hairs per area [0, 100]
+  Eigen::Vector3f tint{1.0f, 1.0f, 1.0f};  // multiplies the hairs' colour, [0, 10] each
+  bool operator==(const FurRegion&) const = default;
+};
+inline constexpr std::size_t kMaxFurRegions = 256;
+
 // Culling by screen scale (sec. 3.3's zoom factor): every hair is drawn while the creature appears
 // at least as large as it does from the reference camera (referenceDistance, fovYDegrees,
 // referenceHeight); 1/c of them when it appears c times smaller, whatever makes it smaller
@@ -114,6 +131,7 @@ inline constexpr int kCoatCount = 2;
 // Everything that defines a creature's fur.
 struct FurParams {
   std::string name = "default";  // preset name, for messages
+  std::string file;              // the preset file it was read from ("" = built in), for messages
   // Total hairs N over the skin (both coats), or, if densityPerM2 > 0, N = density * furred area.
   double hairs = 100000.0;    // [0, kMaxHairs]
   double densityPerM2 = 0.0;  // hairs per square metre of furred skin; 0 = use `hairs`
@@ -125,9 +143,13 @@ struct FurParams {
   std::array<CoatParams, kCoatCount> coats{};
   float lengthScale = 1.0f;  // [0, 10]: all hair lengths
   LengthRegion lengthRegion;
+  std::vector<FurRegion> regions;        // at most kMaxFurRegions
   Eigen::Vector3f up{0.0f, 0.0f, 1.0f};  // U = -gravity direction (unit); paper: Z up
   CullingParams culling;
   GroomMapPaths maps;
+  // A groom file of per-vertex values for this creature's mesh (fur/groom.h; the preset's regions
+  // apply on top of it); "" = none. Relative paths as for maps.
+  std::string groom;
   // Counts the hairs by a total: `hairs` = n, no density, no coverage.
   void setHairCount(double n) {
     hairs = n;

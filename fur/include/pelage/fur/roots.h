@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "pelage/fur/fur_params.h"
-#include "pelage/fur/groom_maps.h"
+#include "pelage/fur/groom.h"
 #include "pelage/skin/skin_mesh.h"
 
 namespace pelage::fur {
@@ -47,6 +47,13 @@ struct FurRoots {
   std::int32_t triangleCount = 0;  // of the skin they were grown on
   double furredArea = 0.0;         // m^2: rest area of triangles with some fur
   std::uint64_t seed = 0;
+  // nV: the fur length at each skin vertex (metres) when a groom set them (fur/groom.h), which the
+  // hairs interpolate in place of the skin's (sec. 3.2); empty: the skin's.
+  std::vector<float> vertexLength;
+  // The fur lengths the hairs interpolate: vertexLength, or the skin's.
+  const float* lengths(const skin::SkinMesh& skin) const {
+    return vertexLength.empty() ? skin.furLengths() : vertexLength.data();
+  }
   std::int64_t total() const { return coats[0].size() + coats[1].size(); }
 };
 
@@ -79,13 +86,16 @@ void checkHairBudget(const FurParams& params, double furredArea);
 // table entries (k mod 2048 onwards) are accepted with probability density / the triangle's
 // sampled maximum (u = uniform01(coatSeed, kStreamDensity, t 2^20 + attempt)), so no root grows
 // where the map is zero. With a length map, each root keeps the map's value at its point.
-// Calls checkHairBudget first.
-FurRoots growRoots(const skin::SkinMesh& skin, const FurParams& params, const GroomMaps& maps = {});
+// The groom's vertex values (fur/groom.h): its lengths replace the skin's (which triangles carry
+// fur, and each hair's interpolated length), and alpha_t is further weighted by the mean of the
+// triangle's three vertex densities. Calls checkHairBudget first.
+FurRoots growRoots(const skin::SkinMesh& skin, const FurParams& params, const Groom& groom = {});
 
 // Rest-pose area of each triangle (m^2), nT.
 std::vector<double> triangleAreas(const skin::SkinMesh& skin);
 
-// Whether triangle t carries fur (some vertex fur length > 0).
-bool triangleHasFur(const skin::SkinMesh& skin, std::int32_t t);
+// Whether triangle t carries fur (some vertex fur length > 0), with the vertex lengths `lengths`
+// (nV; the skin's or a groom's).
+bool triangleHasFur(const skin::SkinMesh& skin, const float* lengths, std::int32_t t);
 
 }  // namespace pelage::fur

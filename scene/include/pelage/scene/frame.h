@@ -29,7 +29,7 @@ namespace pelage::scene {
 // seed change. Other parameters (styles, lengths, stiffness, materials...) apply per frame.
 struct Fur {
   fur::FurParams params;
-  fur::GroomMaps maps;  // the images params.maps names
+  fur::Groom groom;  // the images params.maps names, the vertex values of params.regions
   fur::FurRoots roots;
   fur::FurColors colors;              // each hair's colour (fur/colors.h)
   std::uint64_t generation = 0;       // unique per growFur call: renderers re-upload roots
@@ -37,7 +37,7 @@ struct Fur {
 };
 
 // Validates `params` (InputError naming `source`, the field and the range), reads the groom maps,
-// grows the roots and colours them.
+// resolves the regions on the creature (fur/groom.h), grows the roots and colours them.
 Fur growFur(const Model& model, fur::FurParams params,
             const std::string& source = "fur parameters");
 
@@ -46,8 +46,8 @@ Fur growFur(const Model& model, fur::FurParams params,
 void recolorFur(const Model& model, Fur& fur, fur::FurParams params,
                 const std::string& source = "fur parameters");
 
-// True when going from `a` to `b` needs new roots (count, density, undercoat share, seed, or the
-// density and length maps).
+// True when going from `a` to `b` needs new roots (count, density, undercoat share, seed, the
+// density and length maps, or the regions).
 bool rootsDiffer(const fur::FurParams& a, const fur::FurParams& b);
 // True when going from `a` to `b` needs new hair colours (colour models, materials, maps.color).
 bool colorsDiffer(const fur::FurParams& a, const fur::FurParams& b);

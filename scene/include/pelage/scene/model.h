@@ -38,6 +38,11 @@ struct LoadOptions {
       noFurRegions;  // region patterns without fur; nullopt = defaults
   std::string
       segmentDirections;  // per-joint direction side file; "" = <model>.directions.json if present
+  // glTF creatures and static meshes: subdivision levels of the skin (skin/subdivide.h), so
+  // roots grow on a smooth surface; -1 = auto (skin::autoSubdivisionLevels: a skin under
+  // skin::kSmoothSkinTriangles triangles is subdivided until it has that many, at most 3 levels);
+  // [0, 3] levels. The drawn skin is the subdivided one.
+  int subdivide = -1;
 };
 
 // The built-in creature's name.

@@ -1,4 +1,4 @@
-// File names as pelage reads them: extensions compared without case.
+// Names as pelage reads them: file extensions and name patterns compared without case.
 #pragma once
 
 #include <string>
@@ -12,5 +12,10 @@ std::string lowerExtension(std::string_view path);
 
 // `text` lower-cased (ASCII).
 std::string lowerCase(std::string_view text);
+
+// True when `name` matches the glob `pattern`, ASCII case ignored; '*' matches any run of
+// characters (none included), every other character itself ("Eye*" matches "eyes_black",
+// "b_Tail*" "b_Tail01_012"). Region, material and joint patterns (no-fur regions, fur regions).
+bool globMatches(std::string_view pattern, std::string_view name);
 
 }  // namespace pelage

@@ -1,0 +1,111 @@
+// The groom: what shapes the fur over the skin beyond the preset's per-coat values. Two kinds:
+//  - maps: images on the skin's UV layout (as Maya XGen's density and length maps, Blender's
+//  density
+//    masks), sampled at each root's texture coordinates (the root's barycentric point, sec. 3.2);
+//  - vertex values: per skin vertex, so they need no UVs (most glTF creatures have none), from the
+//    preset's regions (fur_params.h FurRegion) resolved on the creature.
+// Read once per fur; constant during playback.
+#pragma once
+
+#include <Eigen/Core>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "pelage/anatomy/body.h"
+#include "pelage/fur/fur_params.h"
+#include "pelage/skin/skin_mesh.h"
+#include "pelage/skin/texture.h"
+
+namespace pelage::fur {
+
+// Per-vertex groom values; each array has one entry per skin vertex, or is empty (neutral).
+//  length: the fur length at the vertex (metres), replacing the skin's (Van Gelder & Wilhelms 1997,
+//    sec. 3.2: a hair's length is interpolated from its triangle's vertex lengths); 0 grows none.
+//  density: multiplies the hairs a triangle gets by the mean of its three vertices' values (>= 0).
+//  tint: multiplies each hair's colour (linear RGB, interpolated at the root).
+struct VertexGroom {
+  std::vector<float> length;
+  std::vector<float> density;
+  std::vector<Eigen::Vector3f> tint;
+  bool empty() const { return length.empty() && density.empty() && tint.empty(); }
+};
+
+// The groom of one fur: its maps, loaded (empty textures where the preset names none), and its
+// per-vertex values.
+//  density: linear data, nearest texel (each texel a cell of constant density, so a zero texel
+//    grows no hair); a triangle's hairs are proportional to its area times the map's mean over it.
+//  length: linear data, bilinear; multiplies each hair's interpolated length (grey 0.5: half).
+//  color: sRGB colour, bilinear; the Map colour source.
+struct Groom {
+  skin::Texture density, length, color;
+  VertexGroom vertex;
+  bool anyMap() const { return !density.empty() || !length.empty() || !color.empty(); }
+};
+
+// Reads the maps `paths` names (util/image.h limits) into a Groom with no vertex values. InputError
+// naming the field ("maps.density") and the file for a missing or unreadable image, and for maps on
+// a skin without texture coordinates (naming `modelName`).
+Groom loadGroomMaps(const GroomMapPaths& paths, const skin::SkinMesh& skin,
+                    const std::string& modelName);
+
+// What one region pattern matched on a creature (for `pelage info` and messages).
+struct RegionMatch {
+  std::string pattern;
+  std::vector<std::string> regions;  // skin region names (glTF: material or rigid node names)
+  std::vector<std::string> joints;   // body segment (joint) names
+  int vertices = 0;                  // skin vertices with some weight in the region
+};
+
+// The skin's weight in region `pattern` per vertex, in [0, 1]: 1 where the vertex's skin region
+// matches; for matching joints, the sum of the vertex's skin weights on them (a joint region's
+// border blends as the skinning does); the larger of the two. `match` receives what matched.
+std::vector<float> regionWeights(const skin::SkinMesh& skin, const anatomy::Body& body,
+                                 const std::string& pattern, RegionMatch* match = nullptr);
+
+// The per-vertex values of params.regions on the creature, in list order: starting from `start`'s
+// values (a groom file's; where it has none, the skin's fur lengths, density 1 and tint 1), each
+// region moves a vertex's values toward its own by the
+// vertex's weight w in it (value + w (region value - value)): length -> lengthMm (if set, where the
+// skin has fur) times lengthScale; density -> density x densityScale; tint -> tint x region tint.
+// Where w is 1 a region's lengthScale s gives exactly s times the length; between, the blend is
+// monotone in w. Arrays a region list never touches stay empty. A pattern that matches nothing is
+// an InputError naming `source`, the region (regions[i].match) and the creature's names. `matches`
+// receives one entry per region.
+VertexGroom groomFromRegions(const skin::SkinMesh& skin, const anatomy::Body& body,
+                             const FurParams& params, const std::string& source,
+                             std::vector<RegionMatch>* matches = nullptr, VertexGroom start = {});
+
+// Groom files: a VertexGroom saved for one mesh, JSON:
+//   {"format": "pelage groom", "version": 1,
+//    "mesh": {"vertices": nV, "triangles": nT, "hash": "16 hex digits"},
+//    "length": [nV metres], "density": [nV], "tint": [nV x [r, g, b]]}
+// (each array optional; floats written with round-trip precision, so a file reads back
+// bit-identically). The hash (meshHash) keys the file to the skin's vertex and triangle order and
+// rest positions; loading it on another mesh is an error naming both meshes. Values: length
+// [0, 10] m, density [0, 100], tint [0, 10] each, all finite.
+inline constexpr int kGroomFileVersion = 1;
+
+// FNV-1a 64 over the vertex and triangle counts, the triangles' vertex indices and the rest
+// positions' bytes.
+std::uint64_t meshHash(const skin::SkinMesh& skin);
+
+// The groom file's text for `groom` on `skin` (PELAGE_CHECK: array sizes match the skin).
+std::string groomFileJson(const skin::SkinMesh& skin, const VertexGroom& groom);
+// Writes it atomically (util/atomic_file.h: no half-written file).
+void writeGroomFile(const std::string& path, const skin::SkinMesh& skin, const VertexGroom& groom);
+// Parses a groom file's text for `skin`; InputError naming `source`, the field (e.g. "length[12]")
+// and the accepted range, or both meshes when it belongs to another one (`modelName` names the
+// skin's).
+VertexGroom parseGroomFile(const std::string& text, const std::string& source,
+                           const skin::SkinMesh& skin, const std::string& modelName);
+VertexGroom readGroomFile(const std::string& path, const skin::SkinMesh& skin,
+                          const std::string& modelName);
+
+// The fur length at each vertex: the groom's when it has lengths, else the skin's.
+inline const float* groomedLengths(const skin::SkinMesh& skin, const VertexGroom& vertex) {
+  return vertex.length.empty() ? skin.furLengths() : vertex.length.data();
+}
+
+}  // namespace pelage::fur

@@ -1,0 +1,140 @@
+// Groom files (fur/groom.h): per-vertex groom values keyed to one mesh.
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+
+#include "pelage/fur/groom.h"
+#include "pelage/util/atomic_file.h"
+#include "pelage/util/error.h"
+#include "pelage/util/json_reader.h"
+
+namespace pelage::fur {
+namespace {
+
+constexpr const char* kFormat = "pelage groom";
+
+std::string hex64(std::uint64_t h) {
+  char buf[17];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+  return buf;
+}
+
+void mixBytes(std::uint64_t& h, const void* data, std::size_t n) {
+  const auto* p = static_cast<const unsigned char*>(data);
+  for (std::size_t i = 0; i < n; ++i) {
+    h ^= p[i];
+    h *= 0x100000001b3ull;
+  }
+}
+
+// One array of nV values (width 1 or 3), each finite in [lo, hi]; `field` names it.
+std::vector<float> readValues(const JsonReader& doc, const char* field, std::size_t nV, int width,
+                              double lo, double hi) {
+  const JsonReader a = doc.at(field);
+  if (!a.isArray() || a.size() != nV)
+    a.fail(str("expected an array of ", nV, width == 1 ? " numbers" : " [r, g, b] triples",
+               " (one per skin vertex)"));
+  std::vector<float> out(nV * static_cast<std::size_t>(width));
+  const nlohmann::json& j = a.json();
+  for (std::size_t v = 0; v < nV; ++v) {
+    const nlohmann::json& e = j[v];
+    for (int k = 0; k < width; ++k) {
+      const nlohmann::json& x = width == 1 ? e : (e.is_array() && e.size() == 3 ? e[k] : e);
+      const double d = x.is_number() ? x.get<double>() : std::nan("");
+      if (!(d >= lo && d <= hi) || (width == 3 && !(e.is_array() && e.size() == 3)))
+        inputError(a.file(), ": ", field, "[", v, "]: expected ",
+                   width == 1 ? "a number" : "3 numbers", " in [", lo, ", ", hi, "]");
+      out[v * static_cast<std::size_t>(width) + static_cast<std::size_t>(k)] =
+          static_cast<float>(d);
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+std::uint64_t meshHash(const skin::SkinMesh& skin) {
+  std::uint64_t h = 0xcbf29ce484222325ull;
+  const std::int64_t counts[2] = {skin.numVertices(), skin.numTriangles()};
+  mixBytes(h, counts, sizeof counts);
+  mixBytes(h, skin.triangles.data(), skin.triangles.size() * sizeof(std::int32_t));
+  mixBytes(h, skin.restPositions(),
+           static_cast<std::size_t>(skin.numVertices()) * 3 * sizeof(float));
+  return h;
+}
+
+std::string groomFileJson(const skin::SkinMesh& skin, const VertexGroom& g) {
+  const auto nV = static_cast<std::size_t>(skin.numVertices());
+  PELAGE_CHECK((g.length.empty() || g.length.size() == nV) &&
+                   (g.density.empty() || g.density.size() == nV) &&
+                   (g.tint.empty() || g.tint.size() == nV),
+               "groom arrays sized for another mesh");
+  nlohmann::json j;
+  j["format"] = kFormat;
+  j["version"] = kGroomFileVersion;
+  j["mesh"] = {{"vertices", skin.numVertices()},
+               {"triangles", skin.numTriangles()},
+               {"hash", hex64(meshHash(skin))}};
+  // float -> double is exact, and nlohmann writes doubles with round-trip precision.
+  if (!g.length.empty()) j["length"] = g.length;
+  if (!g.density.empty()) j["density"] = g.density;
+  if (!g.tint.empty()) {
+    nlohmann::json t = nlohmann::json::array();
+    for (const Eigen::Vector3f& c : g.tint) t.push_back({c.x(), c.y(), c.z()});
+    j["tint"] = std::move(t);
+  }
+  return j.dump() + "\n";
+}
+
+void writeGroomFile(const std::string& path, const skin::SkinMesh& skin, const VertexGroom& g) {
+  writeFileAtomically(path, groomFileJson(skin, g));
+}
+
+VertexGroom parseGroomFile(const std::string& text, const std::string& source,
+                           const skin::SkinMesh& skin, const std::string& modelName) {
+  const nlohmann::json doc = JsonReader::parseText(text, source);
+  const JsonReader j(doc, source);
+  if (!j.isObject()) j.fail("expected a pelage groom file (a JSON object)");
+  if (!j.has("format") || !j.at("format").json().is_string() || j.string("format") != kFormat)
+    j.fail(str("not a groom file: expected \"format\": \"", kFormat,
+               "\" (groom files come from `pelage info --groom-out` or Python's write_groom)"));
+  j.rejectUnknown({"format", "version", "mesh", "length", "density", "tint"});
+  j.integer("version", kGroomFileVersion, kGroomFileVersion);
+  const JsonReader mesh = j.at("mesh");
+  mesh.rejectUnknown({"vertices", "triangles", "hash"});
+  const std::int64_t nV = mesh.integer("vertices", 0, std::int64_t(1) << 31);
+  const std::int64_t nT = mesh.integer("triangles", 0, std::int64_t(1) << 31);
+  const std::string hash = mesh.string("hash");
+  const std::string ours = hex64(meshHash(skin));
+  if (nV != skin.numVertices() || nT != skin.numTriangles() || hash != ours)
+    inputError(source, ": the groom belongs to another mesh (", nV, " vertices, ", nT,
+               " triangles, hash ", excerpt(hash), "); model '", excerpt(modelName), "' has ",
+               skin.numVertices(), " vertices, ", skin.numTriangles(), " triangles, hash ", ours,
+               " (a groom is keyed to the skin it was made on, as loaded with the same options)");
+  const auto n = static_cast<std::size_t>(nV);
+  VertexGroom g;
+  if (j.has("length")) g.length = readValues(j, "length", n, 1, 0.0, 10.0);
+  if (j.has("density")) g.density = readValues(j, "density", n, 1, 0.0, 100.0);
+  if (j.has("tint")) {
+    const std::vector<float> t = readValues(j, "tint", n, 3, 0.0, 10.0);
+    g.tint.resize(n);
+    for (std::size_t v = 0; v < n; ++v)
+      g.tint[v] = Eigen::Vector3f(t[3 * v], t[3 * v + 1], t[3 * v + 2]);
+  }
+  return g;
+}
+
+VertexGroom readGroomFile(const std::string& path, const skin::SkinMesh& skin,
+                          const std::string& modelName) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec))
+    throw MissingFileError("groom", ": " + path + ": cannot open file (missing or unreadable)");
+  try {
+    return parseGroomFile(readTextFile(path), path, skin, modelName);
+  } catch (const InputError& e) {
+    fieldError("groom", ": ", e.what());
+  }
+}
+
+}  // namespace pelage::fur

@@ -1,0 +1,183 @@
+// The groom (fur/groom.h): region weights from skin regions and joint weights, the regions' vertex
+// values on a grid, groom files (bit-identical round trip, another mesh refused, ranges), and the
+// roots a vertex groom grows.
+#include "pelage/fur/groom.h"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <random>
+
+#include "../test_support.h"
+#include "fur_test_support.h"
+#include "pelage/util/error.h"
+
+namespace pelage::fur {
+namespace {
+
+// A 4 x 4 grid (25 vertices): the left half (x < 0.02) in region "left", bound half to segment
+// "a" and half to "b" along x: vertex weight on "b" = x / 0.04.
+struct Grid {
+  skin::SkinMesh skin = test::makeGrid(4, 0.01f, 0.01f);
+  anatomy::Body body;
+  Grid() {
+    body.segments.resize(2);
+    body.segments[0].name = "a";
+    body.segments[1].name = "b";
+    body.segments[1].parent = 0;
+    body.inverseBind.assign(2, Eigen::Affine3f::Identity());
+    skin.regionNames = {"body", "left"};
+    for (auto v : skin.mesh.vertices()) {
+      const float x = skin.mesh.point(v)[0];
+      skin.mesh.property(skin.region, v) = x < 0.015f ? 1 : 0;
+      skin::Binding b;
+      b.segment = {0, 1, 0, 0};
+      b.weight = {1.0f - x / 0.04f, x / 0.04f, 0.0f, 0.0f};
+      skin.mesh.property(skin.binding, v) = b;
+    }
+  }
+  float x(int v) const { return skin.restPositions()[3 * v]; }
+};
+
+TEST(Groom, RegionWeightsFromRegionsAndJoints) {
+  const Grid g;
+  RegionMatch m;
+  const std::vector<float> left = regionWeights(g.skin, g.body, "LEFT", &m);
+  EXPECT_EQ(m.regions, std::vector<std::string>{"left"});
+  EXPECT_TRUE(m.joints.empty());
+  const std::vector<float> b = regionWeights(g.skin, g.body, "b", &m);
+  EXPECT_EQ(m.joints, std::vector<std::string>{"b"});
+  const std::vector<float> all = regionWeights(g.skin, g.body, "*", &m);
+  EXPECT_EQ(m.vertices, 25);
+  for (int v = 0; v < 25; ++v) {
+    EXPECT_EQ(left[static_cast<std::size_t>(v)], g.x(v) < 0.015f ? 1.0f : 0.0f);
+    EXPECT_FLOAT_EQ(b[static_cast<std::size_t>(v)], g.x(v) / 0.04f);
+    EXPECT_EQ(all[static_cast<std::size_t>(v)], 1.0f);  // body + region matched: 1
+  }
+}
+
+TEST(Groom, RegionsInListOrderOnTopOfAStart) {
+  const Grid g;
+  FurParams p;
+  p.regions = {{.match = "b", .lengthScale = 3.0f},
+               {.match = "left", .lengthMm = 5.0f, .densityScale = 0.5f},
+               {.match = "a", .tint = {0.5f, 1.0f, 2.0f}}};
+  VertexGroom start;
+  start.length.assign(25, 0.02f);
+  const VertexGroom out = groomFromRegions(g.skin, g.body, p, "test", nullptr, start);
+  for (int v = 0; v < 25; ++v) {
+    const auto vs = static_cast<std::size_t>(v);
+    const float wb = g.x(v) / 0.04f;
+    float len = 0.02f + wb * (0.06f - 0.02f);
+    if (wb == 1.0f) len = 0.06f;
+    if (g.x(v) < 0.015f) len = 0.005f;  // weight 1 in "left": the mm length exactly
+    EXPECT_FLOAT_EQ(out.length[vs], len) << v;
+    EXPECT_FLOAT_EQ(out.density[vs], g.x(v) < 0.015f ? 0.5f : 1.0f) << v;
+    const float wa = 1.0f - wb;
+    EXPECT_FLOAT_EQ(out.tint[vs].x(), 1.0f + wa * (0.5f - 1.0f)) << v;
+    EXPECT_FLOAT_EQ(out.tint[vs].z(), 1.0f + wa * (2.0f - 1.0f)) << v;
+  }
+  FurParams none;
+  EXPECT_TRUE(groomFromRegions(g.skin, g.body, none, "test").empty());
+  p.regions.push_back({.match = "tail*"});
+  test::expectInputError(
+      [&] { groomFromRegions(g.skin, g.body, p, "fur 'x'"); },
+      {"fur 'x'", "regions[3].match 'tail*'", "regions: body, left", "joints: a, b"});
+}
+
+TEST(Groom, FileRoundTripsBitIdenticallyAndRefusesAnotherMesh) {
+  const Grid g;
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  VertexGroom v;
+  for (int i = 0; i < 25; ++i) {
+    v.length.push_back(u(rng) * 0.1f);
+    v.density.push_back(u(rng) * 3.0f);
+    v.tint.emplace_back(u(rng), u(rng) * 10.0f, 1.0f / 3.0f);
+  }
+  const std::string file = testing::TempDir() + "grid.groom.json";
+  writeGroomFile(file, g.skin, v);
+  const VertexGroom back = readGroomFile(file, g.skin, "grid");
+  ASSERT_EQ(back.length.size(), 25u);
+  EXPECT_EQ(std::memcmp(back.length.data(), v.length.data(), 25 * sizeof(float)), 0);
+  EXPECT_EQ(std::memcmp(back.density.data(), v.density.data(), 25 * sizeof(float)), 0);
+  EXPECT_EQ(std::memcmp(back.tint.data(), v.tint.data(), 25 * sizeof(Eigen::Vector3f)), 0);
+  EXPECT_EQ(groomFileJson(g.skin, back), test::readText(file));
+  // The same counts but another shape: the hash tells them apart.
+  const skin::SkinMesh moved = test::makeGrid(4, 0.011f, 0.01f);
+  test::expectInputError([&] { readGroomFile(file, moved, "moved grid"); },
+                         {"groom", file, "another mesh", "25 vertices", "model 'moved grid'"});
+  const skin::SkinMesh bigger = test::makeGrid(5, 0.01f, 0.01f);
+  test::expectInputError([&] { readGroomFile(file, bigger, "bigger"); }, {"36 vertices"});
+  EXPECT_THROW(readGroomFile(testing::TempDir() + "absent.json", g.skin, "grid"), MissingFileError);
+}
+
+TEST(Groom, FileValuesAreChecked) {
+  const Grid g;
+  VertexGroom v;
+  v.density.assign(25, 1.0f);
+  std::string text = groomFileJson(g.skin, v);
+  const std::string good = text;
+  text.replace(text.find("[1.0,"), 5, "[-1.0,");
+  test::expectInputError([&] { parseGroomFile(text, "f.json", g.skin, "grid"); },
+                         {"f.json", "density[0]", "[0, 100]"});
+  text = good;
+  text.replace(text.find("[1.0,"), 5, "[\"x\",");
+  test::expectInputError([&] { parseGroomFile(text, "f.json", g.skin, "grid"); }, {"density[0]"});
+  text = good;
+  text.replace(text.find("\"density\""), 9, "\"densty\"");
+  test::expectInputError([&] { parseGroomFile(text, "f.json", g.skin, "grid"); }, {"densty"});
+  test::expectInputError([&] { parseGroomFile("{}", "f.json", g.skin, "grid"); },
+                         {"f.json", "not a groom file"});
+  test::expectInputError([&] { parseGroomFile("[1,", "f.json", g.skin, "grid"); }, {"f.json"});
+}
+
+TEST(Groom, VertexLengthsAndDensityShapeTheRoots) {
+  const Grid g;
+  FurParams p = test::simpleParams(HairStyle::Polyline, 20000);
+  Groom groom;
+  // No hair on the left (length 0 there), density 3 on the far right column of triangles.
+  groom.vertex.length.assign(25, 0.01f);
+  groom.vertex.density.assign(25, 1.0f);
+  for (int v = 0; v < 25; ++v) {
+    if (g.x(v) < 0.005f) groom.vertex.length[static_cast<std::size_t>(v)] = 0.0f;
+    if (g.x(v) > 0.035f) groom.vertex.density[static_cast<std::size_t>(v)] = 3.0f;
+  }
+  const FurRoots roots = growRoots(g.skin, p, groom);
+  EXPECT_EQ(roots.vertexLength, groom.vertex.length);
+  // Triangles whose three vertices have length 0: none here (each touches x = 0.01). Per-triangle
+  // densities: a triangle with k vertices on the right edge has mean (3 - k + 3 k) / 3.
+  std::vector<double> weight(32);
+  double sum = 0.0;
+  for (int t = 0; t < 32; ++t) {
+    const std::int32_t* tv = g.skin.triangles.data() + 3 * t;
+    double d = 0.0;
+    for (int k = 0; k < 3; ++k) d += groom.vertex.density[static_cast<std::size_t>(tv[k])];
+    weight[static_cast<std::size_t>(t)] = d / 3.0;
+    sum += d / 3.0;
+  }
+  for (int t = 0; t < 32; ++t) {
+    const double expected = 20000.0 * weight[static_cast<std::size_t>(t)] / sum;
+    const std::int32_t n = roots.coats[0].triangleStart[static_cast<std::size_t>(t) + 1] -
+                           roots.coats[0].triangleStart[static_cast<std::size_t>(t)];
+    EXPECT_LE(std::abs(n - expected), 1.0) << "triangle " << t;  // random rounding
+  }
+}
+
+TEST(Groom, HairsOnAGroomMatchTheReferenceOnEveryPathAndThreadCount) {
+  // Vertex lengths from 0 (bare) to twice the skin's, and densities, on a curved skin: every
+  // style, kernel target and thread count gives the scalar reference's hairs bit for bit.
+  const skin::SkinMesh s = test::makeSphere(0.1f, 24, 48);
+  skin::DeformedSkin d;
+  skin::restSkin(s, d);
+  Groom groom;
+  for (int v = 0; v < s.numVertices(); ++v) {
+    const float z = s.restPositions()[3 * v + 2];
+    groom.vertex.length.push_back(z < -0.07f ? 0.0f : s.furLengths()[v] * (1.5f + 10.0f * z));
+    groom.vertex.density.push_back(z > 0.0f ? 2.0f : 0.5f);
+  }
+  test::checkStylesAgainstReference(s, d, 6000, Eigen::Vector3f(0.0f, 0.0f, 0.1f), groom);
+}
+
+}  // namespace
+}  // namespace pelage::fur

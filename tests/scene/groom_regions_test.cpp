@@ -1,0 +1,195 @@
+// Fur grooming by region (fur/groom.h, scene::growFur) on the shared Fox: the coat issue's
+// acceptance (b_Tail* 2.0x, b_Head* 0.4x where those joints' weights are 1, unchanged away from
+// them, a monotone blend between), density and tint by region, lengths in mm, and the errors.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "../test_support.h"
+#include "pelage/fur/generate.h"
+#include "pelage/fur/groom.h"
+#include "pelage/fur/preset.h"
+#include "pelage/skin/deform.h"
+#include "pelage/util/color.h"
+#include "scene_fixture.h"
+
+namespace pelage {
+namespace {
+
+const scene::Model* fox() {
+  static const std::optional<scene::Model> m = test::loadCreature("Fox");
+  return m ? &*m : nullptr;
+}
+
+fur::FurParams foxParams() {
+  fur::FurParams p = fur::loadFurPreset("default");
+  p.setHairCount(30000);
+  return p;
+}
+
+// Each overcoat root's rest-pose hair length (sec. 3.2's interpolated length).
+std::vector<float> restLengths(const scene::Model& m, const fur::FurRoots& roots) {
+  skin::DeformedSkin rest;
+  skin::restSkin(m.skin, rest);
+  std::vector<float> out(static_cast<std::size_t>(roots.coats[0].size()));
+  for (std::int64_t k = 0; k < roots.coats[0].size(); ++k)
+    out[static_cast<std::size_t>(k)] = fur::rootInput(m.skin, roots, rest, 0, k).length;
+  return out;
+}
+
+// The weight of root k's three vertices in `w`, and its barycentric blend.
+struct RootWeights {
+  float v[3];
+  float blend;
+};
+RootWeights rootWeights(const scene::Model& m, const fur::FurRoots& roots, std::int64_t k,
+                        const std::vector<float>& w) {
+  const fur::CoatRoots& cr = roots.coats[0];
+  const auto ks = static_cast<std::size_t>(k);
+  const std::int32_t* tv = m.skin.triangles.data() + 3 * static_cast<std::size_t>(cr.triangle[ks]);
+  const float* b = roots.barycentric.data() + 4 * cr.tableIndex[ks];
+  RootWeights r{};
+  for (int i = 0; i < 3; ++i) r.v[i] = w[static_cast<std::size_t>(tv[i])];
+  r.blend = b[0] * r.v[0] + b[1] * r.v[1] + b[2] * r.v[2];
+  return r;
+}
+
+TEST(GroomRegions, FoxTailTwiceHeadShorterUnchangedAwayBlendedBetween) {
+  const scene::Model* m = fox();
+  if (!m) GTEST_SKIP() << "shared Fox model absent";
+  const fur::FurParams plain = foxParams();
+  fur::FurParams groomed = plain;
+  groomed.regions = {{.match = "b_Tail*", .lengthScale = 2.0f},
+                     {.match = "b_Head*", .lengthScale = 0.4f}};
+  const scene::Fur a = scene::growFur(*m, plain, "test");
+  const scene::Fur b = scene::growFur(*m, groomed, "test");
+  // The same roots: lengths change, where hairs grow does not.
+  ASSERT_EQ(a.roots.coats[0].triangle, b.roots.coats[0].triangle);
+  ASSERT_EQ(a.roots.coats[0].tableIndex, b.roots.coats[0].tableIndex);
+  const std::vector<float> la = restLengths(*m, a.roots), lb = restLengths(*m, b.roots);
+  const std::vector<float> tail = fur::regionWeights(m->skin, m->body, "b_Tail*");
+  const std::vector<float> head = fur::regionWeights(m->skin, m->body, "b_Head*");
+  int inTail = 0, inHead = 0, away = 0, between = 0;
+  std::vector<std::pair<float, float>> blend;  // (tail weight at the root, length ratio)
+  for (std::int64_t k = 0; k < b.roots.coats[0].size(); ++k) {
+    const auto ks = static_cast<std::size_t>(k);
+    const RootWeights t = rootWeights(*m, b.roots, k, tail), h = rootWeights(*m, b.roots, k, head);
+    const float ratio = lb[ks] / la[ks];
+    if (t.v[0] == 1.0f && t.v[1] == 1.0f && t.v[2] == 1.0f) {
+      EXPECT_NEAR(ratio, 2.0f, 1e-6f) << "root " << k;
+      ++inTail;
+    } else if (h.v[0] == 1.0f && h.v[1] == 1.0f && h.v[2] == 1.0f) {
+      EXPECT_NEAR(ratio, 0.4f, 1e-6f) << "root " << k;
+      ++inHead;
+    } else if (std::max({t.v[0], t.v[1], t.v[2], h.v[0], h.v[1], h.v[2]}) == 0.0f) {
+      EXPECT_EQ(std::memcmp(&la[ks], &lb[ks], sizeof(float)), 0) << "root " << k;
+      ++away;
+    } else if (h.blend == 0.0f) {
+      // The Fox's vertex lengths are all equal, so the blend is exactly 1 + the tail weight.
+      EXPECT_NEAR(ratio, 1.0f + t.blend, 1e-5f) << "root " << k;
+      blend.emplace_back(t.blend, ratio);
+      ++between;
+    }
+  }
+  EXPECT_GT(inTail, 200);
+  EXPECT_GT(inHead, 200);
+  EXPECT_GT(away, 5000);
+  EXPECT_GT(between, 200);
+  std::sort(blend.begin(), blend.end());
+  for (std::size_t i = 1; i < blend.size(); ++i)
+    EXPECT_GE(blend[i].second, blend[i - 1].second - 1e-5f) << "the blend is not monotone";
+}
+
+TEST(GroomRegions, DensityTintAndLengthInMillimetres) {
+  const scene::Model* m = fox();
+  if (!m) GTEST_SKIP() << "shared Fox model absent";
+  fur::FurParams p = foxParams();
+  p.coats[0].color.source = fur::ColorSource::Material;
+  p.coats[0].color.hueVariation = p.coats[0].color.valueVariation = 0.0f;
+  p.coats[0].color.tipLightness = 1.0f;
+  p.coats[0].color.hasTipColor = false;
+  p.regions = {{.match = "*", .lengthMm = 10.0f},
+               {.match = "b_Head*", .densityScale = 0.0f},
+               {.match = "b_Tail*", .tint = {0.5f, 0.5f, 0.5f}}};
+  const scene::Fur f = scene::growFur(*m, p, "test");
+  // Random rounding over the skin's triangles: within 5 standard deviations (at most 0.5 sqrt(nT)
+  // per coat).
+  EXPECT_NEAR(static_cast<double>(f.roots.total()), 30000.0,
+              5.0 * std::sqrt(2.0 * 0.25 * m->skin.numTriangles()))
+      << "a density region moves hairs, it keeps the total";
+  const std::vector<float> len = restLengths(*m, f.roots);
+  const std::vector<float> head = fur::regionWeights(m->skin, m->body, "b_Head*");
+  const std::vector<float> tail = fur::regionWeights(m->skin, m->body, "b_Tail*");
+  const fur::CoatColors& cc = f.colors.coats[0];
+  ASSERT_TRUE(cc.perHair);
+  int tinted = 0;
+  for (std::int64_t k = 0; k < f.roots.coats[0].size(); ++k) {
+    const auto ks = static_cast<std::size_t>(k);
+    EXPECT_NEAR(len[ks], 0.010f, 1e-7f) << "root " << k;
+    const RootWeights h = rootWeights(*m, f.roots, k, head);
+    EXPECT_FALSE(h.v[0] == 1.0f && h.v[1] == 1.0f && h.v[2] == 1.0f)
+        << "root " << k << " grew where the density is 0";
+    const RootWeights t = rootWeights(*m, f.roots, k, tail);
+    if (t.v[0] == 1.0f && t.v[1] == 1.0f && t.v[2] == 1.0f) {
+      // Half the coat's linear diffuse, within the 8-bit sRGB code's step.
+      const Eigen::Vector3f c = fur::hairColorAt(cc, k, 0.0f);
+      const Eigen::Vector3f d = srgbToLinear(p.coats[0].material.diffuse) * 0.5f;
+      EXPECT_LT((c - d).cwiseAbs().maxCoeff(), 0.01f) << "root " << k;
+      ++tinted;
+    }
+  }
+  EXPECT_GT(tinted, 100);
+}
+
+TEST(GroomRegions, ErrorsNameThePresetFileTheRegionAndTheField) {
+  const scene::Model* m = fox();
+  if (!m) GTEST_SKIP() << "shared Fox model absent";
+  const std::string file = testing::TempDir() + "regions_typo.json";
+  test::writeText(file, R"({"regions": [{"match": "b_Tail*", "lengthScale": 2},
+                                        {"match": "b_Tial*", "lengthScale": 2}]})");
+  fur::FurParams p = fur::loadFurPreset(file);
+  p.setHairCount(1000);
+  test::expectInputError(
+      [&] { scene::growFur(*m, p, "fur 'regions_typo'"); },
+      {file, "regions[1].match 'b_Tial*'", "matches no region or joint", "b_Tail01_012"});
+  test::writeText(file, R"({"regions": [{"match": "b_Tail*", "lengthScale": 20}]})");
+  test::expectInputError([&] { fur::loadFurPreset(file); },
+                         {file, "regions[0].lengthScale", "[0, 10]"});
+  test::writeText(file, R"({"regions": [{"match": "b_Tail*", "stiffness": 0.5}]})");
+  test::expectInputError([&] { fur::loadFurPreset(file); }, {file, "regions[0]", "stiffness"});
+  test::writeText(file, R"({"regions": [{"lengthScale": 2}]})");
+  test::expectInputError([&] { fur::loadFurPreset(file); }, {file, "regions[0]", "match"});
+}
+
+TEST(GroomRegions, TheReadmeExampleGroomsTheFox) {
+  const scene::Model* m = fox();
+  if (!m) GTEST_SKIP() << "shared Fox model absent";
+  fur::FurParams p = fur::loadFurPreset(PELAGE_SOURCE_DIR "/docs/examples/fox_groom.json");
+  EXPECT_EQ(p.regions.size(), 6u);
+  EXPECT_DOUBLE_EQ(p.coverage, 0.95);  // the default's coat, from its base
+  p.setHairCount(20000);
+  std::vector<fur::RegionMatch> matches;
+  fur::groomFromRegions(m->skin, m->body, p, "example", &matches);
+  ASSERT_EQ(matches.size(), 6u);
+  for (const fur::RegionMatch& r : matches) EXPECT_GT(r.vertices, 50) << r.pattern;
+  EXPECT_GT(scene::growFur(*m, p, "example").roots.total(), 19000);
+}
+
+TEST(GroomRegions, PresetRoundTripAndRegrowth) {
+  fur::FurParams p = foxParams();
+  p.regions = {{.match = "b_Tail*",
+                .lengthScale = 2.0f,
+                .lengthMm = 30.0f,
+                .densityScale = 1.5f,
+                .tint = {0.5f, 0.25f, 1.0f}}};
+  const fur::FurParams back = fur::parseFurPreset(fur::furPresetJson(p), "round trip");
+  EXPECT_EQ(back.regions, p.regions);
+  fur::FurParams q = p;
+  q.regions[0].lengthScale = 1.5f;
+  EXPECT_TRUE(scene::rootsDiffer(p, q));
+}
+
+}  // namespace
+}  // namespace pelage

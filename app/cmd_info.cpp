@@ -45,10 +45,8 @@ void addInfoCommand(CLI::App& app) {
     const scene::Model m = args->load();
     // The preset's regions on this creature (a pattern that matches nothing is an error here).
     std::vector<fur::RegionMatch> matches;
-    fur::VertexGroom fromFile;
-    if (!asked.groom.empty()) fromFile = fur::readGroomFile(asked.groom, m.skin, m.name);
-    const fur::VertexGroom groom = fur::groomFromRegions(
-        m.skin, m.body, asked, "fur '" + asked.name + "'", &matches, std::move(fromFile));
+    const fur::VertexGroom groom = fur::resolveVertexGroom(m.skin, m.body, m.name, asked,
+                                                           "fur '" + asked.name + "'", &matches);
     if (!groomOut->empty()) {
       fur::VertexGroom out = groom;
       if (out.length.empty())

@@ -137,4 +137,12 @@ VertexGroom groomFromRegions(const skin::SkinMesh& skin, const anatomy::Body& bo
   return g;
 }
 
+VertexGroom resolveVertexGroom(const skin::SkinMesh& skin, const anatomy::Body& body,
+                               const std::string& modelName, const FurParams& params,
+                               const std::string& source, std::vector<RegionMatch>* matches) {
+  VertexGroom fromFile;
+  if (!params.groom.empty()) fromFile = readGroomFile(params.groom, skin, modelName);
+  return groomFromRegions(skin, body, params, source, matches, std::move(fromFile));
+}
+
 }  // namespace pelage::fur

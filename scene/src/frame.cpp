@@ -20,12 +20,7 @@ Fur growFur(const Model& model, fur::FurParams params, const std::string& source
   fur::validateFurParams(params, source);
   Fur f;
   f.groom = fur::loadGroomMaps(params.maps, model.skin, model.name);
-  fur::VertexGroom fromFile;
-  if (!params.groom.empty()) {
-    fromFile = fur::readGroomFile(params.groom, model.skin, model.name);
-  }
-  f.groom.vertex =
-      fur::groomFromRegions(model.skin, model.body, params, source, nullptr, std::move(fromFile));
+  f.groom.vertex = fur::resolveVertexGroom(model.skin, model.body, model.name, params, source);
   params = fur::fitCoverageToBudget(model.skin, std::move(params),
                                     fur::groomedLengths(model.skin, f.groom.vertex));
   f.roots = fur::growRoots(model.skin, params, f.groom);

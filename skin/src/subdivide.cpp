@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <unordered_map>
@@ -13,11 +14,6 @@
 
 namespace pelage::skin {
 namespace {
-
-// A new vertex as weights over the old ones.
-struct Mask {
-  std::vector<std::pair<std::int32_t, double>> terms;
-};
 
 // One edge of the old mesh: its ends (a < b).
 struct Edge {
@@ -55,12 +51,13 @@ SkinMesh subdivideOnce(const SkinMesh& in) {
     }
   const auto nE = static_cast<std::int32_t>(edges.size());
 
-  // Values: an old vertex keeps its own, an edge vertex takes the mean of its ends'.
-  std::vector<Mask> masks(static_cast<std::size_t>(nV + nE));
-  for (std::int32_t v = 0; v < nV; ++v) masks[static_cast<std::size_t>(v)].terms = {{v, 1.0}};
+  // Values: each new vertex takes the mean of its two ends' (an old vertex is both its ends, so it
+  // keeps its own exactly).
+  std::vector<std::array<std::int32_t, 2>> ends(static_cast<std::size_t>(nV + nE));
+  for (std::int32_t v = 0; v < nV; ++v) ends[static_cast<std::size_t>(v)] = {v, v};
   for (std::int32_t e = 0; e < nE; ++e) {
     const Edge& ed = edges[static_cast<std::size_t>(e)];
-    masks[static_cast<std::size_t>(nV + e)].terms = {{ed.a, 0.5}, {ed.b, 0.5}};
+    ends[static_cast<std::size_t>(nV + e)] = {ed.a, ed.b};
   }
   // Positions: old vertices stay; an edge vertex is the midpoint of the PN triangles' cubic edge
   // curve (Vlachos et al. 2001) through its ends with their (area-weighted) vertex normals:
@@ -140,26 +137,18 @@ SkinMesh subdivideOnce(const SkinMesh& in) {
     inputTriangles.insert(inputTriangles.end(), f.begin(), f.end());
   }
   addSkinProperties(out);
-  std::vector<double> weight(16);
   for (std::int32_t v = 0; v < nV2; ++v) {
-    const Mask& m = masks[static_cast<std::size_t>(v)];
+    const auto [ea, eb] = ends[static_cast<std::size_t>(v)];
     const TriMesh::VertexHandle h = vh[static_cast<std::size_t>(v)];
-    // Fur length: bare stays bare.
-    bool bare = false;
+    // Fur length: bare stays bare; the region of the barer end.
     double length = 0.0;
     Eigen::Vector3d d = Eigen::Vector3d::Zero();
-    for (const auto& [u, w] : m.terms) {
-      length += w * static_cast<double>(len[u]);
-      for (int k = 0; k < 3; ++k) d[k] += w * static_cast<double>(dir[3 * u + k]);
+    for (const std::int32_t u : {ea, eb}) {
+      length += 0.5 * static_cast<double>(len[u]);
+      for (int k = 0; k < 3; ++k) d[k] += 0.5 * static_cast<double>(dir[3 * u + k]);
     }
-    std::int32_t r = region[v < nV ? v : edges[static_cast<std::size_t>(v - nV)].a];
-    if (v < nV) {
-      bare = len[v] == 0.0f;
-    } else {
-      const Edge& ed = edges[static_cast<std::size_t>(v - nV)];
-      bare = len[ed.a] == 0.0f || len[ed.b] == 0.0f;
-      if (len[ed.a] != 0.0f && len[ed.b] == 0.0f) r = region[ed.b];
-    }
+    const bool bare = len[ea] == 0.0f || len[eb] == 0.0f;
+    const std::int32_t r = len[ea] != 0.0f && len[eb] == 0.0f ? region[eb] : region[ea];
     out.mesh.property(out.furLength, h) = bare ? 0.0f : static_cast<float>(std::max(0.0, length));
     out.mesh.property(out.region, h) = r;
     const double dn = d.norm();
@@ -168,16 +157,16 @@ SkinMesh subdivideOnce(const SkinMesh& in) {
     out.mesh.property(out.segmentDirection, h) = OpenMesh::Vec3f(df.x(), df.y(), df.z());
     // Skin weights: summed per segment, the 4 largest (ties: the lower segment) renormalised.
     std::vector<std::pair<std::int32_t, double>> sum;
-    for (const auto& [u, w] : m.terms)
+    for (const std::int32_t u : {ea, eb})
       for (std::size_t k = 0; k < 4; ++k) {
         const float bw = bind[u].weight[k];
         if (bw == 0.0f) continue;
         const std::int32_t s = bind[u].segment[k];
         auto it = std::find_if(sum.begin(), sum.end(), [s](const auto& e) { return e.first == s; });
         if (it == sum.end())
-          sum.push_back({s, w * static_cast<double>(bw)});
+          sum.push_back({s, 0.5 * static_cast<double>(bw)});
         else
-          it->second += w * static_cast<double>(bw);
+          it->second += 0.5 * static_cast<double>(bw);
       }
     std::sort(sum.begin(), sum.end(), [](const auto& x, const auto& y) {
       return x.second != y.second ? x.second > y.second : x.first < y.first;
@@ -190,7 +179,7 @@ SkinMesh subdivideOnce(const SkinMesh& in) {
       b.segment[k] = sum[k].first;
       b.weight[k] = total > 0.0 ? static_cast<float>(std::max(0.0, sum[k].second) / total) : 0.0f;
     }
-    if (!(total > 0.0)) b = bind[m.terms.front().first];
+    if (!(total > 0.0)) b = bind[ea];
     out.mesh.property(out.binding, h) = b;
   }
   const auto carry = [&](const auto& values, auto& result) {
@@ -198,9 +187,8 @@ SkinMesh subdivideOnce(const SkinMesh& in) {
     using V = typename std::decay_t<decltype(values)>::value_type;
     result.assign(static_cast<std::size_t>(nV2), V::Zero());
     for (std::int32_t v = 0; v < nV2; ++v)
-      for (const auto& [u, w] : masks[static_cast<std::size_t>(v)].terms)
-        result[static_cast<std::size_t>(v)] +=
-            static_cast<float>(w) * values[static_cast<std::size_t>(u)];
+      for (const std::int32_t u : ends[static_cast<std::size_t>(v)])
+        result[static_cast<std::size_t>(v)] += 0.5f * values[static_cast<std::size_t>(u)];
   };
   carry(in.vertexColor, out.vertexColor);
   carry(in.furColor, out.furColor);

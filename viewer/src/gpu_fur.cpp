@@ -164,7 +164,6 @@ struct GpuFur::Impl {
     vertexCount = s.numVertices();
     triangles = makeBuffer(static_cast<GLsizeiptr>(s.triangles.size() * sizeof(std::int32_t)),
                            s.triangles.data());
-    lengths = makeBuffer(static_cast<GLsizeiptr>(vertexCount) * 4, s.furLengths());
     directions = makeBuffer(static_cast<GLsizeiptr>(vertexCount) * 12, nullptr);
   }
 
@@ -173,7 +172,8 @@ struct GpuFur::Impl {
                  " triangles, skin has ", triangleCount);
     barycentric = makeBuffer(static_cast<GLsizeiptr>(r.barycentric.size() * sizeof(float)),
                              r.barycentric.data());
-    // A groom's vertex lengths replace the skin's (fur/groom.h).
+    // The vertex lengths the hairs interpolate (FurRoots::lengths: a groom's, else the skin's);
+    // uploaded with the roots, which every new skin is followed by.
     lengths = makeBuffer(static_cast<GLsizeiptr>(vertexCount) * 4, r.lengths(*skin));
     for (int c = 0; c < fur::kCoatCount; ++c) {
       const fur::CoatRoots& cr = r.coats[static_cast<std::size_t>(c)];

@@ -103,6 +103,13 @@ VertexGroom parseGroomFile(const std::string& text, const std::string& source,
 VertexGroom readGroomFile(const std::string& path, const skin::SkinMesh& skin,
                           const std::string& modelName);
 
+// The per-vertex groom a fur grows from: params.groom's file read on `skin` (none: empty), then
+// params.regions applied on top (groomFromRegions; `source` and `matches` as there).
+VertexGroom resolveVertexGroom(const skin::SkinMesh& skin, const anatomy::Body& body,
+                               const std::string& modelName, const FurParams& params,
+                               const std::string& source,
+                               std::vector<RegionMatch>* matches = nullptr);
+
 // The fur length at each vertex: the groom's when it has lengths, else the skin's.
 inline const float* groomedLengths(const skin::SkinMesh& skin, const VertexGroom& vertex) {
   return vertex.length.empty() ? skin.furLengths() : vertex.length.data();

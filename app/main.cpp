@@ -14,6 +14,7 @@
 #include "options.h"
 #include "pelage/util/error.h"
 #include "pelage/util/interrupt.h"
+#include "pelage/util/version.h"
 
 namespace {
 
@@ -83,7 +84,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   pelage::app::CommonOptions common;
   common.add(app, false);
-  app.set_version_flag("--version", "pelage 0.1.0");
+  app.set_version_flag("--version", std::string("pelage ") + pelage::util::kVersion);
   pelage::app::addInfoCommand(app);
   pelage::app::addSkinCommand(app);
   pelage::app::addHairCommand(app);

@@ -33,12 +33,26 @@ if(PELAGE_FUZZ)
 endif()
 
 # pelage_module(NAME SOURCES ... DEPS ...): a library target pelage_NAME with alias pelage::NAME,
-# public headers in NAME/include.
+# public headers in NAME/include. Installed (`cmake --install`) as pelage::NAME of the pelage CMake
+# package (cmake/pelageConfig.cmake.in), its headers under include/pelage/.
+include(GNUInstallDirs)
 function(pelage_module name)
   cmake_parse_arguments(ARG "" "" "SOURCES;PUBLIC_DEPS;PRIVATE_DEPS" ${ARGN})
   add_library(pelage_${name} STATIC ${ARG_SOURCES})
   add_library(pelage::${name} ALIAS pelage_${name})
-  target_include_directories(pelage_${name} PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/include
-                                            PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/src)
-  target_link_libraries(pelage_${name} PUBLIC ${ARG_PUBLIC_DEPS} PRIVATE ${ARG_PRIVATE_DEPS} pelage_warnings)
+  set_target_properties(pelage_${name} PROPERTIES EXPORT_NAME ${name})
+  target_include_directories(pelage_${name}
+    PUBLIC $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include> $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>
+    PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/src)
+  target_link_libraries(pelage_${name} PUBLIC ${ARG_PUBLIC_DEPS}
+                        PRIVATE ${ARG_PRIVATE_DEPS} $<BUILD_INTERFACE:pelage_warnings>)
+  install(TARGETS pelage_${name} EXPORT pelageTargets
+          ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT dev)
+  # One folder of headers per module folder (viewer/ holds both render and viewer).
+  get_directory_property(_installed PELAGE_HEADERS_INSTALLED)
+  if(NOT _installed AND EXISTS ${CMAKE_CURRENT_SOURCE_DIR}/include)
+    install(DIRECTORY ${CMAKE_CURRENT_SOURCE_DIR}/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
+            COMPONENT dev FILES_MATCHING PATTERN "*.h")
+    set_directory_properties(PROPERTIES PELAGE_HEADERS_INSTALLED ON)
+  endif()
 endfunction()

@@ -18,6 +18,7 @@ from ._pelage import (  # noqa: F401
     Hairs,
     InputError,
     Model,
+    __version__,
     analyze,
     export,
     load,

@@ -42,6 +42,7 @@
 #include "pelage/util/interrupt.h"
 #include "pelage/util/log.h"
 #include "pelage/util/parallel.h"
+#include "pelage/util/version.h"
 #ifdef PELAGE_HAVE_RENDER
 #include "pelage/viewer/gl_context.h"
 #include "pelage/viewer/render_sequence.h"
@@ -748,6 +749,7 @@ PYBIND11_MODULE(_pelage, m) {
   using namespace pelage;
   using namespace pelage::python;
   m.doc() = "pelage: animated furred creatures (Van Gelder & Wilhelms 1997 fur model)";
+  m.attr("__version__") = util::kVersion;  // CMake's project(VERSION), as `pelage --version`
 
   // pelage's warnings become Python warnings (UserWarning), Ctrl-C a KeyboardInterrupt within a
   // frame of any long call.

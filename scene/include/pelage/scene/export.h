@@ -15,6 +15,7 @@
 #include "pelage/scene/frame_range.h"
 #include "pelage/scene/model.h"
 #include "pelage/scene/playback.h"
+#include "pelage/util/version.h"
 
 namespace pelage::scene {
 
@@ -30,7 +31,7 @@ struct ExportOptions {
   ExportFormat format = ExportFormat::Ply;
   std::string out;      // usda: the .usda file; ply, glb: the directory for frame_NNNNN.*
   bool resume = false;  // ply, glb: keep complete frames, remove killed runs' temporaries
-  std::string generator = "pelage 0.1.0";  // glb asset generator
+  std::string generator = std::string("pelage ") + util::kVersion;  // glb asset generator
 };
 
 // Checks the output (extension, a directory for per-frame formats, writable) and --resume's

@@ -2,8 +2,8 @@
 # pelage as a C++ user meets it (README, "Using pelage from C++"): installs BUILD_DIR into a fresh
 # prefix, checks what a consumer needs is there (CLI, libraries, headers, CMake package, data, the
 # Python package) and the version everywhere, then configures examples/ as a separate CMake
-# project with find_package(pelage), builds it and runs the first three tutorials. Run by CTest as
-# `install_package` (make test).
+# project with find_package(pelage), builds it and runs the tutorials (the fourth, a window, under
+# Xvfb when it is there). Run by CTest as `install_package` (make test).
 #   scripts/install-test.sh BUILD_DIR VERSION
 set -euo pipefail
 if [ $# -ne 2 ] || [ ! -d "$1" ]; then
@@ -96,4 +96,10 @@ say "102_droop: 31 frames, last: $(tail -1 "$work/102.log" | tr -s ' ')"
 size=$(od -An -tu1 -j16 -N8 "$work/out/frame.png" | awk '{print $3 * 256 + $4 "x" $7 * 256 + $8}')
 [ "$size" = "320x180" ] || fail "103_render_png wrote a $size PNG, not 320x180"
 say "103_render_png: $(cat "$work/103.log")"
+# The fourth needs a display: under Xvfb when there is one (CI has it), two frames.
+if command -v xvfb-run >/dev/null; then
+  xvfb-run -a -s "-screen 0 1280x720x24" "$ex/104_gl_loop" monkey 2 >"$work/104.log" 2>&1 ||
+    { cat "$work/104.log"; fail "104_gl_loop under Xvfb"; }
+  say "104_gl_loop (Xvfb, 2 frames): $(tail -1 "$work/104.log")"
+fi
 say "passed"

@@ -27,6 +27,12 @@ inline float smoothMin(float a, float b, float k) {
   return std::min(a, b) - h * h * k * 0.25f;
 }
 
+// 3 t^2 - 2 t^3 on t clamped to [0, 1]: the blends across joints and region borders.
+inline float smoothstep01(float t) {
+  t = std::clamp(t, 0.0f, 1.0f);
+  return t * t * (3.0f - 2.0f * t);
+}
+
 // Axis-aligned bounds of a shape.
 inline Eigen::AlignedBox3f shapeBounds(const anatomy::Shape& s) {
   Eigen::AlignedBox3f box;

@@ -38,7 +38,9 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(
         BadHair{"UnknownPreset", "--fur fig99", "unknown fur preset 'fig99'"},
         BadHair{"MissingPresetFile", "--fur /nonexistent/x.json", "cannot open file"},
-        BadHair{"AbsurdCount", "--hairs 2e10", "need"},
+        BadHair{"AbsurdCount", "--hairs 2e10",
+                "2e+10 hairs need 4.6 TB (polyline overcoat, polyline undercoat); accepted: 0 to "
+                "2e+07 hairs"},
         BadHair{"NegativeCount", "--hairs -3", "out of range"},
         BadHair{"BadStyle", "--style spaghetti", "accepted: line, polyline, curve, tube"},
         BadHair{"Stiffness", "--stiffness 2", "stiffness = 2 is out of range [0, 1]"},

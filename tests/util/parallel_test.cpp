@@ -44,17 +44,25 @@ TEST(Parallel, ChunksAreTheSameFixedBoundariesForEveryThreadCount) {
   setThreadCount(0);
 }
 
-TEST(Parallel, ChunksCoverRangeWithoutOverlap) {
-  setThreadCount(4);
-  std::vector<int> owner(1000, -1);
-  std::atomic<int> chunkId{0};
-  parallelForChunks(1000, 64, [&](std::int64_t b, std::int64_t e) {
-    EXPECT_LE(e - b, 64);
-    const int id = chunkId++;
-    for (std::int64_t i = b; i < e; ++i) owner[static_cast<std::size_t>(i)] = id;
-  });
-  for (int o : owner) EXPECT_GE(o, 0);
-  EXPECT_EQ(chunkId.load(), 16);
+// The chunks are [c grain, min((c + 1) grain, n)) whatever the thread count: what the
+// bit-identical reductions (chunk partials summed in chunk order) rest on.
+TEST(Parallel, ChunksAreFixedWhateverTheThreadCount) {
+  for (const std::int64_t n : {0, 1, 63, 64, 65, 1000}) {
+    std::vector<std::pair<std::int64_t, std::int64_t>> expected;
+    for (std::int64_t b = 0; b < n; b += 64)
+      expected.emplace_back(b, std::min<std::int64_t>(b + 64, n));
+    for (const int threads : {1, 2, 4, 7}) {
+      setThreadCount(threads);
+      std::mutex m;
+      std::vector<std::pair<std::int64_t, std::int64_t>> chunks;
+      parallelForChunks(n, 64, [&](std::int64_t b, std::int64_t e) {
+        std::lock_guard<std::mutex> lock(m);
+        chunks.emplace_back(b, e);
+      });
+      std::sort(chunks.begin(), chunks.end());
+      EXPECT_EQ(chunks, expected) << "n " << n << ", " << threads << " threads";
+    }
+  }
   setThreadCount(0);
 }
 

@@ -14,6 +14,7 @@ void addHairCommand(CLI::App& app);
 void addBenchCommand(CLI::App& app);
 void addExportCommand(CLI::App& app);
 void addAnalyzeCommand(CLI::App& app);
+void addGroomCommand(CLI::App& app);
 // `pelage view` and `pelage render` exist only with the viewer (PELAGE_BUILD_VIEWER).
 void addViewCommand(CLI::App& app);
 void addRenderCommand(CLI::App& app);

@@ -88,6 +88,7 @@ int main(int argc, char** argv) {
   pelage::app::addInfoCommand(app);
   pelage::app::addSkinCommand(app);
   pelage::app::addHairCommand(app);
+  pelage::app::addGroomCommand(app);
   pelage::app::addBenchCommand(app);
   pelage::app::addAnalyzeCommand(app);
   pelage::app::addExportCommand(app);

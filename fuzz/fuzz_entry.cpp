@@ -13,6 +13,7 @@
 #include "pelage/animation/clip_file.h"
 #include "pelage/animation/gltf_import.h"
 #include "pelage/fur/groom.h"
+#include "pelage/fur/groom_strokes.h"
 #include "pelage/fur/preset.h"
 #include "pelage/models/builtin.h"
 #include "pelage/skin/mesh_io.h"
@@ -123,6 +124,19 @@ void runGroom(const std::uint8_t* data, std::size_t size) {
     throw std::logic_error("groom file round trip differs");
 }
 
+// A strokes file: one that loads writes back to the same text, and applied to the grid above it
+// keeps every groom value in its range (what a groom file accepts).
+void runStrokes(const std::uint8_t* data, std::size_t size) {
+  const std::vector<fur::GroomStroke> strokes =
+      fur::parseGroomStrokes(std::string(reinterpret_cast<const char*>(data), size), "fuzz.json");
+  const std::string text = fur::groomStrokesJson(strokes);
+  if (fur::groomStrokesJson(fur::parseGroomStrokes(text, "round trip")) != text)
+    throw std::logic_error("strokes round trip differs");
+  fur::VertexGroom g;
+  fur::applyGroomStrokes(groomMesh(), strokes, g);
+  fur::parseGroomFile(fur::groomFileJson(groomMesh(), g), "brushed", groomMesh(), "grid");
+}
+
 void runImage(const std::uint8_t* data, std::size_t size) {
   const std::uint8_t mode = size > 0 ? data[size - 1] : 0;
   ImageLimits limits;
@@ -147,8 +161,8 @@ void runImage(const std::uint8_t* data, std::size_t size) {
 }  // namespace
 
 const std::vector<std::string>& targetNames() {
-  static const std::vector<std::string> names = {"creature", "preset", "clip",  "pose",
-                                                 "gltf",     "mesh",   "image", "groom"};
+  static const std::vector<std::string> names = {"creature", "preset", "clip",  "pose",   "gltf",
+                                                 "mesh",     "image",  "groom", "strokes"};
   return names;
 }
 
@@ -170,6 +184,8 @@ bool runTarget(std::string_view name, const std::uint8_t* data, std::size_t size
       runImage(data, size);
     else if (name == "groom")
       runGroom(data, size);
+    else if (name == "strokes")
+      runStrokes(data, size);
     else
       throw std::invalid_argument("unknown fuzz target " + std::string(name));
     return true;
@@ -187,6 +203,25 @@ std::string groomExample() {
     g.tint.emplace_back(0.1f * static_cast<float>(v % 7), 1.0f, 0.7f);
   }
   return fur::groomFileJson(groomMesh(), g);
+}
+
+std::string strokesExample() {
+  fur::GroomStroke a;
+  a.tool = fur::BrushTool::Length;
+  a.points = {{0.005f, 0.01f, 0.002f}, {0.02f, 0.025f, 0.0f}, {0.03f, 0.03f, -0.001f}};
+  a.radius = 0.012f;
+  a.strength = 1.5f;
+  a.mirrorAxis = 2;
+  fur::GroomStroke b;
+  b.tool = fur::BrushTool::Density;
+  b.points = {{0.02f, 0.02f, 0.0f}};
+  b.radius = 0.01f;
+  b.strength = 0.25f;
+  fur::GroomStroke c = b;
+  c.tool = fur::BrushTool::Color;
+  c.strength = 0.5f;
+  c.color = {0.2f, 0.4f, 2.0f};
+  return fur::groomStrokesJson({a, b, c});
 }
 
 std::string meshInput(std::string_view extension, std::string_view fileBytes) {

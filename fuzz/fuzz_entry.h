@@ -14,7 +14,8 @@
 
 namespace pelage::fuzz {
 
-// The fuzzed input readers, by name: creature, preset, clip, pose, gltf, mesh, image, groom.
+// The fuzzed input readers, by name: creature, preset, clip, pose, gltf, mesh, image, groom,
+// strokes.
 const std::vector<std::string>& targetNames();
 
 // Runs target `name` on `data`; true when the input was accepted, false when it was rejected with
@@ -30,5 +31,8 @@ std::string meshInput(std::string_view extension, std::string_view fileBytes);
 // Groom inputs are groom files (fur/groom.h) for the target's own mesh, a 4 x 4-vertex grid; this
 // is a valid one (its corpus seed, fuzz/corpus/groom/example.json, is this text).
 std::string groomExample();
+// Strokes inputs are grooming strokes files (fur/groom_strokes.h), applied to the groom target's
+// grid; this is a valid one (its corpus seed, fuzz/corpus/strokes/example.json, is this text).
+std::string strokesExample();
 
 }  // namespace pelage::fuzz

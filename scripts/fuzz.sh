@@ -16,9 +16,9 @@ shift || true
 ci=0
 if [ "$seconds" = ci ]; then ci=1; seconds=0; fi
 # Runs per target in CI mode (about 40-60 s each at the rates measured on a 2-core VM).
-declare -A ci_runs=([creature]=200000 [preset]=300000 [clip]=300000 [pose]=500000 [gltf]=4000 [mesh]=20000 [image]=3000 [groom]=100000)
+declare -A ci_runs=([creature]=200000 [preset]=300000 [clip]=300000 [pose]=500000 [gltf]=4000 [mesh]=20000 [image]=3000 [groom]=100000 [strokes]=100000)
 targets=("$@")
-[ ${#targets[@]} -eq 0 ] && targets=(creature preset clip pose gltf mesh image groom)
+[ ${#targets[@]} -eq 0 ] && targets=(creature preset clip pose gltf mesh image groom strokes)
 build=build-fuzz
 
 if ! command -v clang++-14 >/dev/null || ! ls /usr/lib/llvm-14/lib/clang/*/lib/linux/libclang_rt.fuzzer-x86_64.a >/dev/null 2>&1; then

@@ -114,10 +114,13 @@ VertexGroom parseGroomFile(const std::string& text, const std::string& source,
                " (a groom is keyed to the skin it was made on, as loaded with the same options)");
   const auto n = static_cast<std::size_t>(nV);
   VertexGroom g;
-  if (j.has("length")) g.length = readValues(j, "length", n, 1, 0.0, 10.0);
-  if (j.has("density")) g.density = readValues(j, "density", n, 1, 0.0, 100.0);
+  if (j.has("length"))
+    g.length = readValues(j, "length", n, 1, 0.0, static_cast<double>(kMaxGroomLengthMeters));
+  if (j.has("density"))
+    g.density = readValues(j, "density", n, 1, 0.0, static_cast<double>(kMaxGroomDensity));
   if (j.has("tint")) {
-    const std::vector<float> t = readValues(j, "tint", n, 3, 0.0, 10.0);
+    const std::vector<float> t =
+        readValues(j, "tint", n, 3, 0.0, static_cast<double>(kMaxGroomTint));
     g.tint.resize(n);
     for (std::size_t v = 0; v < n; ++v)
       g.tint[v] = Eigen::Vector3f(t[3 * v], t[3 * v + 1], t[3 * v + 2]);

@@ -174,6 +174,45 @@ Dynamics dynamicsFrom(const py::object& d) {
   return out;
 }
 
+fur::VertexGroom vertexGroomFrom(int vertices, const py::object& length, const py::object& density,
+                                 const py::object& tint) {
+  const auto nV = static_cast<py::ssize_t>(vertices);
+  const auto column = [&](const py::object& o, const char* name) {
+    std::vector<float> out;
+    if (o.is_none()) return out;
+    const auto a = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(o);
+    if (!a || a.ndim() != 1 || a.shape(0) != nV)
+      throw InputError(std::string(name),
+                       str("must be an array of shape (", nV, ",), one value per skin vertex"));
+    out.assign(a.data(), a.data() + nV);
+    return out;
+  };
+  fur::VertexGroom g;
+  g.length = column(length, "length");
+  g.density = column(density, "density");
+  if (!tint.is_none()) {
+    const auto a = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(tint);
+    if (!a || a.ndim() != 2 || a.shape(0) != nV || a.shape(1) != 3)
+      throw InputError("tint",
+                       str("must be an array of shape (", nV, ", 3), one RGB per skin vertex"));
+    for (py::ssize_t v = 0; v < nV; ++v) g.tint.emplace_back(a.at(v, 0), a.at(v, 1), a.at(v, 2));
+  }
+  return g;
+}
+
+py::dict groomDict(const fur::VertexGroom& g) {
+  py::dict d;
+  if (!g.length.empty())
+    d["length"] = py::array_t<float>({static_cast<py::ssize_t>(g.length.size())}, g.length.data());
+  if (!g.density.empty())
+    d["density"] =
+        py::array_t<float>({static_cast<py::ssize_t>(g.density.size())}, g.density.data());
+  if (!g.tint.empty())
+    d["tint"] = py::array_t<float>({static_cast<py::ssize_t>(g.tint.size()), py::ssize_t{3}},
+                                   g.tint.data()->data());
+  return d;
+}
+
 py::dict columns(const scene::AnalysisTable& t) {
   py::dict d;
   for (std::size_t c = 0; c < t.names.size(); ++c) {

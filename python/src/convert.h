@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "pelage/fur/dynamics.h"
+#include "pelage/fur/groom.h"
 #include "pelage/scene/analyze.h"
 #include "pelage/scene/frame_range.h"
 #include "pelage/util/error.h"
@@ -97,6 +98,14 @@ struct Dynamics {
   int preRoll = -1;
 };
 Dynamics dynamicsFrom(const py::object& d);
+
+// numpy arrays (None: absent) as a vertex groom of `vertices` vertices: length and density of shape
+// (vertices,), tint (vertices, 3); InputError naming the keyword for another shape.
+fur::VertexGroom vertexGroomFrom(int vertices, const py::object& length, const py::object& density,
+                                 const py::object& tint);
+// A vertex groom as a dict of numpy arrays, copied ("length", "density", "tint"; absent ones left
+// out).
+py::dict groomDict(const fur::VertexGroom& g);
 
 // A table as a dict of numpy columns in its order: "frame" and "held" int64, the rest float64, the
 // library's values as computed (no text round trip).

@@ -41,6 +41,12 @@ Args:
         [0, 10] (0 grows none), in place of the model's.
     density: None, or shape (vertices,): multiplies the hairs per area [0, 100] (the total kept).
     tint: None, or shape (vertices, 3): multiplies the hairs' linear colour [0, 10].
+    strokes: None, or grooming strokes applied on top of the arrays (those they need and that
+        are absent start from the model's lengths, density 1, tint 1): a strokes file's path,
+        or its JSON as a dict, {"strokes": [{"tool": "length" | "density" | "color",
+        "points": [[x, y, z], ...] (rest pose, metres), "radius": metres, "strength": s,
+        "color": [r, g, b] (color only), "mirror": "x" | "y" | "z"}, ...]}, as `pelage groom`
+        reads it (README, "Grooming strokes").
 
 Vertices are in Model.skin()'s order. A wrong shape or a value out of range is a ValueError
 naming the argument, and nothing is written.)doc";

@@ -22,6 +22,7 @@
 #include "pelage/fur/colors.h"
 #include "pelage/fur/dynamics.h"
 #include "pelage/fur/groom.h"
+#include "pelage/fur/groom_strokes.h"
 #include "pelage/fur/preset.h"
 #include "pelage/scene/analyze.h"
 #include "pelage/scene/export.h"
@@ -110,51 +111,21 @@ fur::FurParams furParams(const std::string& preset, const py::kwargs& fields) {
   return fur::applyFurPresetFields(base, doc.dump(), "fur()");
 }
 
-// Model.write_groom: numpy arrays (one value, or one RGB triple, per skin vertex) into a groom
-// file.
+// Model.write_groom: numpy arrays (convert.h) and grooming strokes (a strokes file's path or its
+// JSON as a dict) into a groom file, checked by its reader before anything is written.
 void writeGroom(const PyModel& m, const std::string& path, const py::object& length,
-                const py::object& density, const py::object& tint) {
+                const py::object& density, const py::object& tint, const py::object& strokes) {
   const skin::SkinMesh& skin = m.model->skin;
-  const auto nV = static_cast<py::ssize_t>(skin.numVertices());
-  const auto column = [&](const py::object& o, const char* name) {
-    std::vector<float> out;
-    if (o.is_none()) return out;
-    const auto a = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(o);
-    if (!a || a.ndim() != 1 || a.shape(0) != nV)
-      throw InputError(std::string(name),
-                       str("must be an array of shape (", nV, ",), one value per skin vertex"));
-    out.assign(a.data(), a.data() + nV);
-    return out;
-  };
-  fur::VertexGroom g;
-  g.length = column(length, "length");
-  g.density = column(density, "density");
-  if (!tint.is_none()) {
-    const auto a = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(tint);
-    if (!a || a.ndim() != 2 || a.shape(0) != nV || a.shape(1) != 3)
-      throw InputError("tint",
-                       str("must be an array of shape (", nV, ", 3), one RGB per skin vertex"));
-    for (py::ssize_t v = 0; v < nV; ++v) g.tint.emplace_back(a.at(v, 0), a.at(v, 1), a.at(v, 2));
-  }
-  // The reader's checks (ranges, finiteness) before anything is written.
+  fur::VertexGroom g = vertexGroomFrom(skin.numVertices(), length, density, tint);
+  if (!strokes.is_none())
+    fur::applyGroomStrokes(skin,
+                           py::isinstance<py::str>(strokes)
+                               ? fur::readGroomStrokes(strokes.cast<std::string>())
+                               : fur::parseGroomStrokes(toJson(strokes).dump(), "strokes"),
+                           g);
   const std::string text = fur::groomFileJson(skin, g);
   (void)fur::parseGroomFile(text, path, skin, m.model->name);
   writeFileAtomically(path, text);
-}
-
-// Fur.groom: the fur's resolved per-vertex groom values, copied into numpy arrays.
-py::dict groomOf(const PyFur& f) {
-  const fur::VertexGroom& g = f.fur->groom.vertex;
-  py::dict d;
-  if (!g.length.empty())
-    d["length"] = py::array_t<float>({static_cast<py::ssize_t>(g.length.size())}, g.length.data());
-  if (!g.density.empty())
-    d["density"] =
-        py::array_t<float>({static_cast<py::ssize_t>(g.density.size())}, g.density.data());
-  if (!g.tint.empty())
-    d["tint"] = py::array_t<float>({static_cast<py::ssize_t>(g.tint.size()), py::ssize_t{3}},
-                                   g.tint.data()->data());
-  return d;
 }
 
 // The fur of `furArg` (None: the default preset's), which must have grown on `model`.
@@ -582,7 +553,8 @@ PYBIND11_MODULE(_pelage, m) {
           },
           py::arg("preset") = "default", doc::kGrowFurDoc)
       .def("write_groom", &writeGroom, py::arg("path"), py::arg("length") = py::none(),
-           py::arg("density") = py::none(), py::arg("tint") = py::none(), doc::kWriteGroomDoc)
+           py::arg("density") = py::none(), py::arg("tint") = py::none(),
+           py::arg("strokes") = py::none(), doc::kWriteGroomDoc)
       .def("__repr__", [](const PyModel& s) {
         return "<pelage.Model " + s.model->name + ": " + std::to_string(s.model->body.size()) +
                " segments, " + std::to_string(s.model->skin.numTriangles()) + " triangles, " +
@@ -596,10 +568,11 @@ PYBIND11_MODULE(_pelage, m) {
             return fromJson(nlohmann::json::parse(fur::furPresetJson(f.fur->params)));
           },
           "The parameters (dict), as the preset file's fields.")
-      .def_property_readonly("groom", &groomOf,
-                             "The per-vertex groom the hairs grew from (dict of numpy arrays: "
-                             "'length' (nV,) metres, 'density' (nV,), 'tint' (nV, 3); only those "
-                             "a groom file or the regions set).")
+      .def_property_readonly(
+          "groom", [](const PyFur& f) { return groomDict(f.fur->groom.vertex); },
+          "The per-vertex groom the hairs grew from (dict of numpy arrays: "
+          "'length' (nV,) metres, 'density' (nV,), 'tint' (nV, 3); only those "
+          "a groom file or the regions set).")
       .def_property_readonly(
           "roots", [](const PyFur& f) { return f.fur->roots.total(); },
           "Hairs grown, both coats (int).")

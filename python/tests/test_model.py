@@ -130,3 +130,47 @@ def test_subdivision_levels():
     for bad in (4, -1, "twice"):
         with pytest.raises((ValueError, TypeError)):
             pelage.load(path, subdivide=bad)
+
+
+@pytest.mark.skipif(not os.path.exists(os.path.join(SHARED, "Fox", "Fox.glb")),
+                    reason="the shared glTF models are not here")
+def test_grooming_strokes_equal_the_command_line(tmp_path, cli):
+    path = os.path.join(SHARED, "Fox", "Fox.glb")
+    fox = pelage.load(path)
+    rest = fox.skin()[0]
+    back = [[0.2, 0, 0.669], [0.0, 0, 0.643], [-0.2, 0, 0.651], [-0.4, 0, 0.613]]
+    # A dab on the head's left side (the skin vertex nearest a point there), mirrored to the right.
+    dab = rest[np.argmin(np.linalg.norm(rest - np.array([0.45, 0.05, 0.73]), axis=1))]
+    strokes = {"strokes": [
+        {"tool": "length", "points": back, "radius": 0.06, "strength": 1.5},
+        {"tool": "color", "points": [dab.tolist()], "radius": 0.05, "strength": 1.0,
+         "color": [0.2, 0.2, 0.2], "mirror": "y"}]}
+    from_python = tmp_path / "python.groom.json"
+    fox.write_groom(str(from_python), strokes=strokes)
+    # The command line on the same strokes (a file) writes the same bytes.
+    strokes_file = tmp_path / "back.json"
+    strokes_file.write_text(json.dumps(strokes))
+    from_cli = tmp_path / "cli.groom.json"
+    cli("groom", path, "--strokes", strokes_file, "--out", from_cli)
+    assert from_python.read_bytes() == from_cli.read_bytes()
+    groom = fox.fur(hairs=100, groom=str(from_python)).groom
+    # Far from the strokes the model's own length (one length everywhere on a glTF creature) and
+    # tint 1, bit for bit; within half the radius of the back's line, 1.5 times that length.
+    far = (rest[:, 0] > 0.3) | (rest[:, 0] < -0.5)  # the line runs from x = 0.2 to -0.4
+    model_length = groom["length"][far][0]
+    assert np.isclose(model_length, 0.0351, rtol=0.01)
+    assert np.all(groom["length"][far] == model_length)
+    on_line = (np.abs(rest[:, 1]) < 0.005) & (rest[:, 0] > -0.2) & (rest[:, 0] < 0.0)
+    on_line &= rest[:, 2] > 0.6
+    assert on_line.sum() > 3
+    assert np.all(groom["length"][on_line] == np.float32(1.5) * model_length)
+    for centre in (dab, dab * np.array([1, -1, 1])):
+        inside = np.linalg.norm(rest - centre, axis=1) <= 0.025  # half the radius: full
+        assert inside.sum() >= 3
+        assert np.allclose(groom["tint"][inside], 0.2)
+    assert np.all(groom["tint"][rest[:, 0] < 0.35] == 1.0)
+    with pytest.raises(ValueError, match=r"strokes\[0\].radius"):
+        fox.write_groom(str(tmp_path / "bad.json"),
+                        strokes={"strokes": [{"tool": "length", "points": [[0, 0, 0]],
+                                              "radius": 0, "strength": 2}]})
+    assert not os.path.exists(tmp_path / "bad.json")

@@ -268,7 +268,7 @@ TEST(SharedOptions, UsageErrorsExitTwoWithThePrefix) {
   const std::string critter = PELAGE_SOURCE_DIR "/tests/scene/critter.json";
   const std::vector<std::pair<std::string, std::string>> cases = {
       {"", "A subcommand is required"},
-      {"groom " + critter, "unknown command 'groom' (commands: info, skin, hair, bench"},
+      {"comb " + critter, "unknown command 'comb' (commands: info, skin, hair, groom, bench"},
       {"hair " + critter, "--out is required"},
       {"render " + critter + " --out " + dir.file("r") + " --colour red", "--colour"},
       {"hair " + critter + " --hairs lots --out " + dir.file("h.ply"), "lots"},

@@ -65,11 +65,15 @@ TEST(FuzzEntry, ProjectFilesAreAccepted) {
   }
 }
 
-TEST(FuzzEntry, GroomSeedIsTheExampleAndLoads) {
+TEST(FuzzEntry, GroomAndStrokesSeedsAreTheExamplesAndLoad) {
   const std::string example = pelage::fuzz::groomExample();
   EXPECT_TRUE(run("groom", example));
   EXPECT_EQ(readFile(kFuzzDir / "corpus" / "groom" / "example.json"), example)
       << "the seed is groomExample()'s text";
+  const std::string strokes = pelage::fuzz::strokesExample();
+  EXPECT_TRUE(run("strokes", strokes));
+  EXPECT_EQ(readFile(kFuzzDir / "corpus" / "strokes" / "example.json"), strokes)
+      << "the seed is strokesExample()'s text";
 }
 
 TEST(FuzzEntry, BadInputsAreRejectedNotCrashed) {

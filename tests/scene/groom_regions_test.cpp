@@ -1,15 +1,18 @@
 // Fur grooming by region (fur/groom.h, scene::growFur) on the shared Fox: the coat issue's
 // acceptance (b_Tail* 2.0x, b_Head* 0.4x where those joints' weights are 1, unchanged away from
-// them, a monotone blend between), density and tint by region, lengths in mm, and the errors.
+// them, a monotone blend between), density and tint by region, lengths in mm, and the errors; a
+// length stroke (fur/groom_strokes.h), the grooming issue's acceptance.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 
 #include "../test_support.h"
 #include "pelage/fur/generate.h"
 #include "pelage/fur/groom.h"
+#include "pelage/fur/groom_strokes.h"
 #include "pelage/fur/preset.h"
 #include "pelage/skin/deform.h"
 #include "pelage/util/color.h"
@@ -141,6 +144,61 @@ TEST(GroomRegions, DensityTintAndLengthInMillimetres) {
     }
   }
   EXPECT_GT(tinted, 100);
+}
+
+// The grooming issue's length acceptance: a length stroke along the Fox's back from the shoulders
+// to the tail, radius 6 cm, strength 1.5 (a strokes file, as `pelage groom` reads it): the hairs
+// rooted within 3 cm of the stroke have a median length ratio in [1.3, 1.6]; those farther than
+// 15 cm are bit-identical; the roots are the same.
+TEST(GroomStrokes, FoxLengthStrokeAlongTheBack) {
+  const scene::Model* m = fox();
+  if (!m) GTEST_SKIP() << "shared Fox model absent";
+  const std::vector<fur::GroomStroke> strokes = fur::parseGroomStrokes(R"({"strokes": [
+      {"tool": "length", "radius": 0.06, "strength": 1.5,
+       "points": [[0.2, 0, 0.669], [0.1, 0, 0.65], [0.0, 0, 0.643], [-0.1, 0, 0.649],
+                  [-0.2, 0, 0.651], [-0.3, 0, 0.642], [-0.4, 0, 0.613]]}]})",
+                                                                       "back.json");
+  fur::FurParams p = foxParams();
+  fur::VertexGroom g = fur::resolveVertexGroom(m->skin, m->body, m->name, p, "test");
+  fur::applyGroomStrokes(m->skin, strokes, g);
+  test::TempDir dir;
+  fur::writeGroomFile(dir.file("back.groom.json"), m->skin, g);
+  const scene::Fur before = scene::growFur(*m, p, "test");
+  p.groom = dir.file("back.groom.json");
+  const scene::Fur after = scene::growFur(*m, p, "test");
+  ASSERT_EQ(after.roots.coats[0].triangle, before.roots.coats[0].triangle);
+  ASSERT_EQ(after.roots.coats[0].tableIndex, before.roots.coats[0].tableIndex);
+  const std::vector<float> a = restLengths(*m, before.roots), b = restLengths(*m, after.roots);
+  skin::DeformedSkin rest;
+  skin::restSkin(m->skin, rest);
+  const std::vector<Eigen::Vector3f>& line = strokes[0].points;
+  std::vector<float> ratios;
+  int far = 0;
+  for (std::int64_t k = 0; k < before.roots.coats[0].size(); ++k) {
+    const fur::Vec3<float> h = fur::rootInput(m->skin, before.roots, rest, 0, k).root;
+    const Eigen::Vector3f r(h.x, h.y, h.z);
+    float d = 1e9f;
+    for (std::size_t i = 1; i < line.size(); ++i) {
+      const Eigen::Vector3f ab = line[i] - line[i - 1];
+      const float t = std::clamp((r - line[i - 1]).dot(ab) / ab.squaredNorm(), 0.0f, 1.0f);
+      d = std::min(d, (line[i - 1] + t * ab - r).norm());
+    }
+    const auto ks = static_cast<std::size_t>(k);
+    if (d <= 0.03f && a[ks] > 0.0f) ratios.push_back(b[ks] / a[ks]);
+    if (d > 0.15f) {
+      EXPECT_EQ(b[ks], a[ks]) << "root " << k << ", " << d << " m from the stroke";
+      ++far;
+    }
+  }
+  ASSERT_GT(ratios.size(), 50u);
+  EXPECT_GT(far, 10000);
+  std::nth_element(ratios.begin(), ratios.begin() + static_cast<std::ptrdiff_t>(ratios.size() / 2),
+                   ratios.end());
+  const float median = ratios[ratios.size() / 2];
+  EXPECT_GE(median, 1.3f);
+  EXPECT_LE(median, 1.6f);
+  std::printf("length stroke: %zu hairs within 3 cm, median ratio %.4f; %d hairs beyond 15 cm\n",
+              ratios.size(), static_cast<double>(median), far);
 }
 
 TEST(GroomRegions, ErrorsNameThePresetFileTheRegionAndTheField) {

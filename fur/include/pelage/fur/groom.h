@@ -20,6 +20,12 @@
 
 namespace pelage::fur {
 
+// The ranges of the per-vertex values (groom files, strokes): length in metres, density scale,
+// tint per channel.
+inline constexpr float kMaxGroomLengthMeters = 10.0f;
+inline constexpr float kMaxGroomDensity = 100.0f;
+inline constexpr float kMaxGroomTint = 10.0f;
+
 // Per-vertex groom values; each array has one entry per skin vertex, or is empty (neutral).
 //  length: the fur length at the vertex (metres), replacing the skin's (Van Gelder & Wilhelms 1997,
 //    sec. 3.2: a hair's length is interpolated from its triangle's vertex lengths); 0 grows none.

@@ -1,0 +1,66 @@
+// Grooming strokes as data (issue 28): what a brush does to a fur's per-vertex groom (groom.h),
+// recorded as JSON so that a stroke can be replayed without a display (`pelage groom`, Python) and
+// tested:
+//   {"strokes": [{"tool": "length", "points": [[x, y, z], ...], "radius": 0.06, "strength": 1.5,
+//                 "mirror": "y"}, ...]}
+// Points are in the model's rest pose, metres. Each stroke covers the skin vertices near the
+// polyline through its points (one point: a dab) with a falloff of the distance d from it: full
+// strength where d <= radius / 2, smoothstep down to 0 at the radius, nothing beyond (vertices
+// farther than the radius keep their values bit for bit). Tools (w: the falloff weight):
+//  length:  the fur length times 1 + w (strength - 1), at most 10 m; strength (0, 10] (1.5: half
+//           as long again);
+//  density: the density scale painted toward `strength`, [0, 100]: d + w (strength - d);
+//  color:   the tint painted toward `color` (linear RGB multipliers, [0, 10] each) with opacity
+//           `strength` [0, 1]: t + w strength (color - t).
+// "mirror": "x", "y" or "z" applies the stroke a second time with that coordinate negated (the
+// creature's symmetry plane through the origin). Strokes apply in list order. The comb, cut and
+// clump brushes are not there yet: a stroke with one of them is refused by name.
+#pragma once
+
+#include <Eigen/Core>
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "pelage/fur/groom.h"
+#include "pelage/skin/skin_mesh.h"
+
+namespace pelage::fur {
+
+enum class BrushTool { Length, Density, Color };
+
+struct GroomStroke {
+  BrushTool tool = BrushTool::Length;
+  std::vector<Eigen::Vector3f> points;      // rest pose, metres; at least one
+  float radius = 0.05f;                     // metres, (0, 10]
+  float strength = 1.0f;                    // the tool's range (above)
+  Eigen::Vector3f color{1.0f, 1.0f, 1.0f};  // the colour tool's target tint
+  int mirrorAxis = -1;                      // 0, 1, 2 (x, y, z) or -1: none
+};
+
+inline constexpr std::size_t kMaxGroomStrokes = 100000;
+inline constexpr std::size_t kMaxStrokePoints = 100000;
+inline constexpr float kMaxBrushRadiusMeters = 10.0f;
+
+// "length", "density", "color".
+const char* brushToolName(BrushTool tool);
+
+// Parses a strokes file's text from `source`; InputError naming the source, the field
+// (strokes[2].radius) and the accepted range.
+std::vector<GroomStroke> parseGroomStrokes(const std::string& text, const std::string& source);
+// The same for a file.
+std::vector<GroomStroke> readGroomStrokes(const std::string& path);
+// The strokes as a strokes file's JSON text (parseGroomStrokes reads it back to the same strokes).
+std::string groomStrokesJson(const std::vector<GroomStroke>& strokes);
+
+// The falloff weight of a vertex at distance d from a stroke of radius r: 1 for d <= r / 2,
+// smoothstep to 0 at d = r, 0 beyond.
+float brushFalloff(float distance, float radius);
+
+// Applies `strokes` in order to `groom` on `skin` (rest positions). Arrays the strokes need and
+// `groom` lacks start from the skin's fur lengths, density 1, tint 1.
+void applyGroomStrokes(const skin::SkinMesh& skin, const std::vector<GroomStroke>& strokes,
+                       VertexGroom& groom);
+
+}  // namespace pelage::fur

@@ -1,0 +1,194 @@
+#include "pelage/fur/groom_strokes.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "pelage/util/error.h"
+#include "pelage/util/json_reader.h"
+#include "pelage/util/parallel.h"
+
+namespace pelage::fur {
+namespace {
+
+using Vec3 = Eigen::Vector3f;
+
+constexpr const char* kToolNames[] = {"length", "density", "color"};
+constexpr const char* kAbsentTools[] = {"comb", "cut", "clump"};
+constexpr const char* kAxes[] = {"x", "y", "z"};
+
+// `f` as the double of its shortest decimal (0.06f -> 0.06), so that a written strokes file reads
+// as it was typed; it parses back to the same float.
+double decimal(float f) {
+  char text[32];
+  const auto r = std::to_chars(text, text + sizeof text, f);
+  return std::strtod(std::string(text, r.ptr).c_str(), nullptr);
+}
+
+// Distance from p to the polyline through `points` (a single point: to it).
+float polylineDistance(const std::vector<Vec3>& points, const Vec3& p) {
+  float best = (p - points[0]).squaredNorm();
+  for (std::size_t i = 1; i < points.size(); ++i) {
+    const Vec3 a = points[i - 1], ab = points[i] - a;
+    const float len2 = ab.squaredNorm();
+    const float t = len2 > 0.0f ? std::clamp((p - a).dot(ab) / len2, 0.0f, 1.0f) : 0.0f;
+    best = std::min(best, (a + t * ab - p).squaredNorm());
+  }
+  return std::sqrt(best);
+}
+
+// One pass of `s` with its points as given.
+void applyStroke(const skin::SkinMesh& skin, const GroomStroke& s, const std::vector<Vec3>& points,
+                 VertexGroom& g) {
+  Eigen::AlignedBox3f box;
+  for (const Vec3& p : points) box.extend(p);
+  box.min().array() -= s.radius;
+  box.max().array() += s.radius;
+  const float* rest = skin.restPositions();
+  parallelFor(skin.numVertices(), 1024, [&](std::int64_t v) {
+    const Vec3 p = Eigen::Map<const Vec3>(rest + 3 * v);
+    if (!box.contains(p)) return;
+    const float w = brushFalloff(polylineDistance(points, p), s.radius);
+    if (w <= 0.0f) return;
+    const auto i = static_cast<std::size_t>(v);
+    switch (s.tool) {
+      case BrushTool::Length:
+        g.length[i] =
+            std::min(g.length[i] * (1.0f + w * (s.strength - 1.0f)), kMaxGroomLengthMeters);
+        break;
+      case BrushTool::Density:
+        g.density[i] += w * (s.strength - g.density[i]);
+        break;
+      case BrushTool::Color:
+        g.tint[i] += (w * s.strength) * (s.color - g.tint[i]);
+        break;
+    }
+  });
+}
+
+}  // namespace
+
+const char* brushToolName(BrushTool tool) {
+  return kToolNames[static_cast<int>(tool)];
+}
+
+float brushFalloff(float distance, float radius) {
+  if (!(distance < radius)) return 0.0f;
+  const float t = std::clamp(2.0f * (radius - distance) / radius, 0.0f, 1.0f);
+  return t * t * (3.0f - 2.0f * t);
+}
+
+// The strokes of a parsed strokes file.
+static std::vector<GroomStroke> strokesFrom(const JsonReader& root) {
+  if (!root.isObject()) root.fail("expected a strokes file: {\"strokes\": [...]}");
+  root.rejectUnknown({"strokes"});
+  const JsonReader list = root.at("strokes");
+  if (list.size() > kMaxGroomStrokes)
+    list.fail(str(list.size(), " strokes; accepted: at most ", kMaxGroomStrokes));
+  std::vector<GroomStroke> strokes(list.size());
+  for (std::size_t k = 0; k < list.size(); ++k) {
+    const JsonReader j = list.at(k);
+    if (!j.isObject()) j.fail("expected a stroke object");
+    j.rejectUnknown({"tool", "points", "radius", "strength", "color", "mirror"});
+    GroomStroke& s = strokes[k];
+    const std::string tool = j.string("tool");
+    const auto known = std::find(std::begin(kToolNames), std::end(kToolNames), tool);
+    if (known == std::end(kToolNames)) {
+      if (std::find(std::begin(kAbsentTools), std::end(kAbsentTools), tool) !=
+          std::end(kAbsentTools))
+        j.at("tool").fail(str("the '", tool, "' brush is not available yet (accepted: length, ",
+                              "density, color)"));
+      j.at("tool").fail(str("unknown brush '", tool, "' (accepted: length, density, color)"));
+    }
+    s.tool = static_cast<BrushTool>(known - std::begin(kToolNames));
+    const JsonReader points = j.at("points");
+    if (points.size() < 1 || points.size() > kMaxStrokePoints)
+      points.fail(str(points.size(), " points; accepted: 1 to ", kMaxStrokePoints));
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const Vec3 p = points.at(i).asVec3();
+      if (!p.allFinite()) points.at(i).fail("expected finite coordinates (metres)");
+      s.points.push_back(p);
+    }
+    s.radius = static_cast<float>(j.number("radius", 1e-6, kMaxBrushRadiusMeters));
+    switch (s.tool) {
+      case BrushTool::Length:
+        s.strength = static_cast<float>(j.number("strength", 1e-6, 10.0));
+        break;
+      case BrushTool::Density:
+        s.strength =
+            static_cast<float>(j.number("strength", 0.0, static_cast<double>(kMaxGroomDensity)));
+        break;
+      case BrushTool::Color: {
+        s.strength = static_cast<float>(j.number("strength", 1.0, 0.0, 1.0));
+        s.color = j.vec3("color");
+        for (int c = 0; c < 3; ++c)
+          if (!(s.color[c] >= 0.0f && s.color[c] <= kMaxGroomTint))
+            j.at("color").fail(str("component ", c, " = ", s.color[c], " is out of range [0, 10]"));
+        break;
+      }
+    }
+    if (s.tool != BrushTool::Color && j.has("color"))
+      j.at("color").fail(str("only the color brush takes a colour (this is ", tool, ")"));
+    if (j.has("mirror")) {
+      const std::string axis = j.string("mirror");
+      const auto a = std::find(std::begin(kAxes), std::end(kAxes), axis);
+      if (a == std::end(kAxes))
+        j.at("mirror").fail(str("unknown axis '", axis, "' (accepted: x, y, z)"));
+      s.mirrorAxis = static_cast<int>(a - std::begin(kAxes));
+    }
+  }
+  return strokes;
+}
+
+std::vector<GroomStroke> parseGroomStrokes(const std::string& text, const std::string& source) {
+  const nlohmann::json doc = JsonReader::parseText(text, source);
+  return strokesFrom(JsonReader(doc, source));
+}
+
+std::vector<GroomStroke> readGroomStrokes(const std::string& path) {
+  const nlohmann::json doc = JsonReader::parseFile(path);
+  return strokesFrom(JsonReader(doc, path));
+}
+
+std::string groomStrokesJson(const std::vector<GroomStroke>& strokes) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const GroomStroke& s : strokes) {
+    nlohmann::json j;
+    j["tool"] = brushToolName(s.tool);
+    nlohmann::json points = nlohmann::json::array();
+    for (const Vec3& p : s.points)
+      points.push_back({decimal(p.x()), decimal(p.y()), decimal(p.z())});
+    j["points"] = points;
+    j["radius"] = decimal(s.radius);
+    j["strength"] = decimal(s.strength);
+    if (s.tool == BrushTool::Color)
+      j["color"] = {decimal(s.color.x()), decimal(s.color.y()), decimal(s.color.z())};
+    if (s.mirrorAxis >= 0) j["mirror"] = kAxes[s.mirrorAxis];
+    list.push_back(j);
+  }
+  return nlohmann::json{{"strokes", list}}.dump() + "\n";
+}
+
+void applyGroomStrokes(const skin::SkinMesh& skin, const std::vector<GroomStroke>& strokes,
+                       VertexGroom& g) {
+  const auto n = static_cast<std::size_t>(skin.numVertices());
+  for (const GroomStroke& s : strokes) {
+    if (s.tool == BrushTool::Length && g.length.empty())
+      g.length.assign(skin.furLengths(), skin.furLengths() + n);
+    if (s.tool == BrushTool::Density && g.density.empty()) g.density.assign(n, 1.0f);
+    if (s.tool == BrushTool::Color && g.tint.empty()) g.tint.assign(n, Vec3::Ones());
+    applyStroke(skin, s, s.points, g);
+    if (s.mirrorAxis >= 0) {
+      std::vector<Vec3> mirrored = s.points;
+      for (Vec3& p : mirrored) p[s.mirrorAxis] = -p[s.mirrorAxis];
+      applyStroke(skin, s, mirrored, g);
+    }
+  }
+}
+
+}  // namespace pelage::fur

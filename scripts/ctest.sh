@@ -59,4 +59,23 @@ if [ -f "$first" ]; then
     }' "$first"
 fi
 echo "== tests failed in $build: $failed $rerun"
+# LeakSanitizer's own crash: its tracer thread, which stops every thread of the process at exit to
+# scan for leaks, sometimes dies with SIGSEGV while llvmpipe's threads come and go ("Tracer caught
+# signal 11 ... LeakSanitizer has encountered a fatal error"; 2 of ~60 GL tests in one CI run, under
+# load). That is the tool failing, not the test: when every failed test's first run ended that way
+# and all of them passed when rerun alone (the rerun under the same sanitizers, leak check
+# included), the run passes, saying so.
+if [ "$rerun" = "passed when run alone" ] && [ -f "$first" ]; then
+  counts=$(awk '
+    /^[0-9]+\/[0-9]+ Testing: / { n = 0; inblock = 1; tool = 0; passed = 0 }
+    inblock && /LeakSanitizer has encountered a fatal error/ { tool = 1 }
+    inblock && /^Test Passed\.$/ { passed = 1 }
+    inblock && /time elapsed: / { inblock = 0; if (!passed) { failed++; if (tool) crashed++ } }
+    END { print failed + 0, crashed + 0 }' "$first")
+  if [ "${counts% *}" -gt 0 ] && [ "${counts% *}" = "${counts#* }" ]; then
+    echo "== every failure above is LeakSanitizer's tracer crashing at exit, and every one of those"
+    echo "== tests passed when rerun alone under the same sanitizers: the run passes"
+    exit 0
+  fi
+fi
 exit 1

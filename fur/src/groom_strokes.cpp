@@ -114,7 +114,8 @@ static std::vector<GroomStroke> strokesFrom(const JsonReader& root) {
       if (!p.allFinite()) points.at(i).fail("expected finite coordinates (metres)");
       s.points.push_back(p);
     }
-    s.radius = static_cast<float>(j.number("radius", 1e-6, kMaxBrushRadiusMeters));
+    s.radius =
+        static_cast<float>(j.number("radius", 1e-6, static_cast<double>(kMaxBrushRadiusMeters)));
     switch (s.tool) {
       case BrushTool::Length:
         s.strength = static_cast<float>(j.number("strength", 1e-6, 10.0));

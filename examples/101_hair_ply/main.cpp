@@ -8,6 +8,7 @@
 // (default: the current folder), each hair a polyline with a width and a colour per point.
 #include <cstdio>
 #include <exception>
+#include <stdexcept>
 #include <string>
 
 #include "pelage/fur/colors.h"
@@ -21,9 +22,9 @@ int main(int argc, char** argv) {
   using namespace pelage;
   const std::string modelSpec = argc > 1 ? argv[1] : "monkey";
   const std::string clipName = argc > 2 ? argv[2] : "";
-  const int frames = argc > 3 ? std::stoi(argv[3]) : 3;
   const std::string outDir = argc > 4 ? argv[4] : ".";
   try {
+    const int frames = argc > 3 ? std::stoi(argv[3]) : 3;
     // 1. The creature: its body (segments or joints), its skin bound to them, its clips. glTF
     //    skins under 4,000 triangles are subdivided so that roots grow on a smooth surface.
     scene::Model model = scene::loadModel(modelSpec);
@@ -54,6 +55,10 @@ int main(int argc, char** argv) {
       std::printf("%s: %lld hairs, %lld points\n", (outDir + name).c_str(),
                   static_cast<long long>(hairs.drawn()), static_cast<long long>(counts.vertices));
     }
+  } catch (const std::invalid_argument&) {  // std::stoi on an argument that is not a number
+    std::fprintf(stderr,
+                 "usage: 101_hair_ply [MODEL [CLIP [FRAMES [OUT_DIR]]]]: FRAMES is a number\n");
+    return 2;
   } catch (const std::exception& e) {  // pelage reports bad input as InputError (util/error.h)
     std::fprintf(stderr, "101_hair_ply: %s\n", e.what());
     return 1;

@@ -8,6 +8,7 @@
 // frame: the body's tilt from upright and the coat's mean droop in both models.
 #include <cstdio>
 #include <exception>
+#include <stdexcept>
 #include <string>
 
 #include "pelage/fur/preset.h"
@@ -17,8 +18,8 @@
 
 int main(int argc, char** argv) {
   using namespace pelage;
-  const int frames = argc > 1 ? std::stoi(argv[1]) : 31;
   try {
+    const int frames = argc > 1 ? std::stoi(argv[1]) : 31;
     scene::Model model = scene::loadModel("monkey");
     fur::FurParams params = fur::loadFurPreset("default");
     params.setHairCount(20000);
@@ -34,6 +35,9 @@ int main(int argc, char** argv) {
     for (const scene::FrameAnalysis& f : result.frames)
       std::printf("%5d  %8.1f  %12.2f  %17.2f\n", f.frame, f.tiltDeg,
                   f.quasiStatic.all.droopMeanDeg, f.dynamic.all.droopMeanDeg);
+  } catch (const std::invalid_argument&) {  // std::stoi on an argument that is not a number
+    std::fprintf(stderr, "usage: 102_droop [FRAMES]: FRAMES is a number\n");
+    return 2;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "102_droop: %s\n", e.what());
     return 1;

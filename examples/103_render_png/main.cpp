@@ -8,6 +8,7 @@
 #include <exception>
 #include <filesystem>
 #include <memory>
+#include <stdexcept>
 #include <string>
 
 #include "pelage/fur/preset.h"
@@ -42,6 +43,11 @@ int main(int argc, char** argv) {
     viewer::writePng(out, image);  // opaque RGBA, written to a temporary file and renamed
     std::printf("%s: %dx%d, %lld hairs drawn on %s\n", out.c_str(), image.width, image.height,
                 static_cast<long long>(stats.hairsDrawn), context->info().renderer.c_str());
+  } catch (const std::invalid_argument&) {  // std::stoi on an argument that is not a number
+    std::fprintf(
+        stderr,
+        "usage: 103_render_png [MODEL [OUT.png [WIDTH HEIGHT]]]: WIDTH and HEIGHT are numbers\n");
+    return 2;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "103_render_png: %s\n", e.what());
     return 1;

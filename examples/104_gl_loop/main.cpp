@@ -12,6 +12,7 @@
 
 #include <cstdio>
 #include <exception>
+#include <stdexcept>
 #include <string>
 
 #include "pelage/fur/preset.h"
@@ -23,7 +24,6 @@
 int main(int argc, char** argv) {
   using namespace pelage;
   const std::string modelSpec = argc > 1 ? argv[1] : "monkey";
-  const int frames = argc > 2 ? std::stoi(argv[2]) : -1;
   if (!glfwInit()) {
     std::fprintf(stderr, "104_gl_loop: GLFW could not start (no display?)\n");
     return 1;
@@ -42,6 +42,7 @@ int main(int argc, char** argv) {
   glfwSwapInterval(1);
   int status = 0;
   try {
+    const int frames = argc > 2 ? std::stoi(argv[2]) : -1;
     scene::Model model = scene::loadModel(modelSpec);
     const scene::Fur fur = scene::growFur(model, fur::loadFurPreset("default"));
     scene::PlaybackOptions options;
@@ -66,6 +67,9 @@ int main(int argc, char** argv) {
     }
     std::printf("104_gl_loop: %s, %lld hairs\n", model.name.c_str(),
                 static_cast<long long>(fur.roots.total()));
+  } catch (const std::invalid_argument&) {  // std::stoi on an argument that is not a number
+    std::fprintf(stderr, "usage: 104_gl_loop [MODEL [FRAMES]]: FRAMES is a number\n");
+    status = 2;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "104_gl_loop: %s\n", e.what());
     status = 1;

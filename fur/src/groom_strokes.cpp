@@ -71,20 +71,8 @@ void applyStroke(const skin::SkinMesh& skin, const GroomStroke& s, const std::ve
   });
 }
 
-}  // namespace
-
-const char* brushToolName(BrushTool tool) {
-  return kToolNames[static_cast<int>(tool)];
-}
-
-float brushFalloff(float distance, float radius) {
-  if (!(distance < radius)) return 0.0f;
-  const float t = std::clamp(2.0f * (radius - distance) / radius, 0.0f, 1.0f);
-  return t * t * (3.0f - 2.0f * t);
-}
-
 // The strokes of a parsed strokes file.
-static std::vector<GroomStroke> strokesFrom(const JsonReader& root) {
+std::vector<GroomStroke> strokesFrom(const JsonReader& root) {
   if (!root.isObject()) root.fail("expected a strokes file: {\"strokes\": [...]}");
   root.rejectUnknown({"strokes"});
   const JsonReader list = root.at("strokes");
@@ -144,6 +132,18 @@ static std::vector<GroomStroke> strokesFrom(const JsonReader& root) {
     }
   }
   return strokes;
+}
+
+}  // namespace
+
+const char* brushToolName(BrushTool tool) {
+  return kToolNames[static_cast<int>(tool)];
+}
+
+float brushFalloff(float distance, float radius) {
+  if (!(distance < radius)) return 0.0f;
+  const float t = std::clamp(2.0f * (radius - distance) / radius, 0.0f, 1.0f);
+  return t * t * (3.0f - 2.0f * t);
 }
 
 std::vector<GroomStroke> parseGroomStrokes(const std::string& text, const std::string& source) {

@@ -12,6 +12,7 @@
 #include "commands.h"
 #include "options.h"
 #include "pelage/animation/clip_file.h"
+#include "pelage/scene/analysis_plot.h"
 #include "pelage/scene/analyze.h"
 #include "pelage/scene/frame_range.h"
 #include "pelage/scene/plot.h"
@@ -20,134 +21,6 @@
 
 namespace pelage::app {
 namespace {
-
-std::vector<double> column(const scene::AnalysisResult& r,
-                           double (*get)(const scene::FrameAnalysis&)) {
-  std::vector<double> v;
-  for (const scene::FrameAnalysis& f : r.frames) v.push_back(get(f));
-  return v;
-}
-
-scene::PlotPanel orientationPanel(const scene::AnalysisResult& r, const std::vector<double>& t) {
-  scene::PlotPanel p;
-  p.yLabel = "body orientation (deg): up vector of segment '" + r.orientationSegment + "'";
-  p.series.push_back({"pitch (about world Y)", t,
-                      column(r, [](const scene::FrameAnalysis& f) { return f.pitchDeg; }),
-                      scene::plotColor(7), false});
-  p.series.push_back({"tilt from vertical", t,
-                      column(r, [](const scene::FrameAnalysis& f) { return f.tiltDeg; }),
-                      scene::plotColor(4), false});
-  return p;
-}
-
-scene::PlotSpec analysisPlot(const scene::AnalysisResult& r, const std::string& title) {
-  scene::PlotSpec spec;
-  spec.title = title;
-  spec.xLabel = "time (s)";
-  spec.width = 1200;
-  spec.height = 1100;
-  const std::vector<double> t = column(r, [](const scene::FrameAnalysis& f) { return f.seconds; });
-  spec.panels.push_back(orientationPanel(r, t));
-  const auto qsColor = scene::plotColor(0), dynColor = scene::plotColor(1);
-  scene::PlotPanel droop{"mean droop angle (deg): end direction vs weightless direction", {}};
-  droop.series.push_back(
-      {"quasi-static (paper)", t,
-       column(r, [](const scene::FrameAnalysis& f) { return f.quasiStatic.all.droopMeanDeg; }),
-       qsColor, r.dynamics});
-  scene::PlotPanel height{"mean tip height above the root (mm)", {}};
-  height.series.push_back(
-      {"quasi-static (paper)", t,
-       column(r, [](const scene::FrameAnalysis& f) { return f.quasiStatic.tipHeightMm; }), qsColor,
-       r.dynamics});
-  scene::PlotPanel bodyUp{"mean droop along the body's up axis (mm): < 0 toward its belly", {}};
-  bodyUp.series.push_back(
-      {"quasi-static (paper)", t,
-       column(r, [](const scene::FrameAnalysis& f) { return f.quasiStatic.droopBodyUpMm; }),
-       qsColor, r.dynamics});
-  if (r.dynamics) {
-    droop.series.push_back(
-        {"dynamic", t,
-         column(r, [](const scene::FrameAnalysis& f) { return f.dynamic.all.droopMeanDeg; }),
-         dynColor, false});
-    droop.series.push_back({"dynamic - quasi-static lag", t,
-                            column(r, [](const scene::FrameAnalysis& f) { return f.lagDeg; }),
-                            scene::plotColor(2), false});
-    height.series.push_back(
-        {"dynamic", t,
-         column(r, [](const scene::FrameAnalysis& f) { return f.dynamic.tipHeightMm; }), dynColor,
-         false});
-    bodyUp.series.push_back(
-        {"dynamic", t,
-         column(r, [](const scene::FrameAnalysis& f) { return f.dynamic.droopBodyUpMm; }), dynColor,
-         false});
-  }
-  spec.panels.push_back(droop);
-  spec.panels.push_back(height);
-  spec.panels.push_back(bodyUp);
-  if (r.dynamics) {
-    scene::PlotPanel offset{"dynamic ends' distance from the quasi-static ends (mm)", {}};
-    offset.series.push_back({"mean distance", t,
-                             column(r, [](const scene::FrameAnalysis& f) { return f.offsetMm; }),
-                             scene::plotColor(3), false});
-    if (r.settling.measured)
-      offset.series.push_back(
-          {"along its direction at the stop", t,
-           column(r, [](const scene::FrameAnalysis& f) { return f.stopResponseMm; }),
-           scene::plotColor(9), false});
-    spec.panels.push_back(offset);
-    spec.height = 1350;
-  }
-  if (r.settling.measured) {
-    spec.markerX = r.settling.stopSeconds;
-    spec.markerLabel = "body stops";
-  }
-  return spec;
-}
-
-scene::PlotSpec sweepPlot(const scene::SweepResult& s, const std::string& title) {
-  scene::PlotSpec spec;
-  spec.title = title;
-  spec.xLabel = "time (s)";
-  spec.width = 1200;
-  spec.height = 900;
-  const scene::AnalysisResult& first = s.runs.front();
-  const std::vector<double> t =
-      column(first, [](const scene::FrameAnalysis& f) { return f.seconds; });
-  spec.panels.push_back(orientationPanel(first, t));
-  const bool dyn = first.dynamics;
-  scene::PlotPanel droop{
-      std::string("mean droop angle (deg)") + (dyn ? ", dynamic" : ", quasi-static"), {}};
-  scene::PlotPanel height{
-      std::string("mean tip height above the root (mm)") + (dyn ? ", dynamic" : ", quasi-static"),
-      {}};
-  const std::vector<double>& values = s.values;
-  for (std::size_t i = 0; i < s.runs.size(); ++i) {
-    char label[64];
-    std::snprintf(label, sizeof label, "%s = %g", s.spec.parameter.c_str(), values[i]);
-    const auto color = scene::plotColor(static_cast<int>(i));
-    droop.series.push_back(
-        {label, t,
-         column(
-             s.runs[i],
-             dyn ? +[](const scene::FrameAnalysis& f) { return f.dynamic.all.droopMeanDeg; }
-                 : +[](const scene::FrameAnalysis& f) { return f.quasiStatic.all.droopMeanDeg; }),
-         color, false});
-    height.series.push_back(
-        {label, t,
-         column(
-             s.runs[i],
-             dyn ? +[](const scene::FrameAnalysis& f) { return f.dynamic.tipHeightMm; }
-                 : +[](const scene::FrameAnalysis& f) { return f.quasiStatic.tipHeightMm; }),
-         color, false});
-  }
-  spec.panels.push_back(droop);
-  spec.panels.push_back(height);
-  if (first.settling.measured) {
-    spec.markerX = first.settling.stopSeconds;
-    spec.markerLabel = "body stops";
-  }
-  return spec;
-}
 
 void printSummary(const scene::AnalysisResult& r) {
   if (r.frames.empty()) return;
@@ -261,10 +134,8 @@ void addAnalyzeCommand(CLI::App& app) {
     opt.clock.preRollFrames = dyn->preRoll;
     opt.holdSeconds = o->hold;
     opt.groups = scene::parseAnalysisGroups(o->groups);
-    if (!(o->hold >= 0.0 && o->hold <= 1000.0))
-      inputError("--hold ", o->hold, " is out of range [0, 1000] seconds");
-    if (!o->plot.empty() && std::filesystem::path(o->plot).extension() != ".png")
-      inputError("--plot '", o->plot, "' must name a .png file");
+    scene::validateHoldSeconds(o->hold);
+    if (!o->plot.empty()) scene::validatePlotFile(o->plot);
     scene::SweepSpec sweep;
     if (!o->sweep.empty()) {
       sweep = scene::parseSweep(o->sweep);
@@ -279,27 +150,19 @@ void addAnalyzeCommand(CLI::App& app) {
     pose->sequence(m, po);
     opt.clip = po.clip;
     opt.stillPose = po.stillPose;
-    opt.clock.startSeconds = po.startSeconds;
-    const scene::FrameRange frames = range->range(m, opt.clip, po.startSeconds, quiet);
+    opt.clock.startSeconds = po.clock.startSeconds;
+    const scene::FrameRange frames = range->range(m, opt.clip, po.clock.startSeconds, quiet);
     opt.frames = frames;
     const std::string clipName =
         opt.clip >= 0 ? m.clips[static_cast<std::size_t>(opt.clip)].name : "still pose";
     const scene::Fur fur =
         scene::growFur(m, params, "fur '" + params.name + "' with the command-line options");
-    std::string title = "pelage analyze: " + m.name + ", clip " + clipName + ", fur " +
-                        params.name + ", " + std::to_string(fur.roots.total()) + " hairs";
-    if (opt.dynamics) {
-      char buf[160];
-      const fur::CoatDynamics& cd = opt.dynamicsParams.coats[0];
-      std::snprintf(buf, sizeof buf, ", dynamics f0 %g Hz, zeta %g",
-                    static_cast<double>(cd.frequencyHz), static_cast<double>(cd.dampingRatio));
-      title += buf;
-    }
+    const std::string title = scene::analysisTitle(m, fur, opt);
     if (!o->sweep.empty()) {
       const scene::SweepResult s = scene::sweepClip(m, fur, opt, sweep, o->sweepIndex);
       writeFileAtomically(o->out, scene::sweepCsv(s));
       if (!o->plot.empty())
-        scene::writePlotPng(o->plot, sweepPlot(s, title + ", sweep " + o->sweep));
+        scene::writePlotPng(o->plot, scene::sweepPlot(s, title + ", sweep " + o->sweep));
       if (quiet) return;
       std::printf("%s: %zu frames x %zu values of %s (%s)\n", o->out.c_str(),
                   s.runs.front().frames.size(), s.values.size(), sweep.parameter.c_str(),
@@ -309,7 +172,7 @@ void addAnalyzeCommand(CLI::App& app) {
     }
     const scene::AnalysisResult r = scene::analyzeClip(m, fur, opt);
     writeFileAtomically(o->out, scene::analysisCsv(r));
-    if (!o->plot.empty()) scene::writePlotPng(o->plot, analysisPlot(r, title));
+    if (!o->plot.empty()) scene::writePlotPng(o->plot, scene::analysisPlot(r, title));
     if (quiet) return;
     std::printf(
         "%s: %zu frames of clip %s at %g fps, %lld hairs (%s); body orientation from segment "

@@ -58,14 +58,14 @@ void runExport(ExportArgs& a) {
   scene::Model model = a.model.load();
   scene::PlaybackOptions& po = eo.playback;
   a.pose.sequence(model, po);
-  po.framesPerSecond = a.range.fps;
+  po.clock.fps = a.range.fps;
   po.dynamics = a.dynamics.enabled();
   po.dynamicsParams = dynamics;
-  po.preRollFrames = a.dynamics.preRoll;
+  po.clock.preRollFrames = a.dynamics.preRoll;
   const int clip = po.clip;
   if (po.dynamics && clip < 0)
     inputError("--dynamics on needs a clip (--clip): the rest pose does not move");
-  eo.frames = a.range.range(model, clip, po.startSeconds, quiet);
+  eo.frames = a.range.range(model, clip, po.clock.startSeconds, quiet);
   const int first = eo.frames.first, last = eo.frames.last;
   const scene::Fur fur = scene::growFur(model, params, "fur '" + params.name + "'");
   if (!quiet) {

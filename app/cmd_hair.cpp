@@ -137,8 +137,8 @@ void addHairCommand(CLI::App& app) {
         inputError(
             "--dynamics on needs --clip naming one of the model's clips (see `pelage info`)");
       po.clip = scene::resolveClip(m, pose->clip);
-      po.framesPerSecond = frames->fps;
-      po.preRollFrames = dynamics->preRoll;
+      po.clock.fps = frames->fps;
+      po.clock.preRollFrames = dynamics->preRoll;
       po.dynamics = true;
       po.dynamicsParams = dyn;
       shown = scene::oneFrameAt(po, pose->time);
@@ -155,13 +155,10 @@ void addHairCommand(CLI::App& app) {
     const fur::HairPlyCounts n = fur::writeHairPly(*out, frame, params, comment, &fur.colors);
     if (quiet) return;
     if (dynamics->enabled()) {
-      scene::DynamicsClock clock;
-      clock.fps = frames->fps;
-      clock.preRollFrames = dynamics->preRoll;
       std::printf(
           "dynamic fur: frame %d of clip %s at %g fps (time %.4f s), simulated from frame %d\n",
           shown, m.clips[static_cast<std::size_t>(po.clip)].name.c_str(), frames->fps,
-          shown / frames->fps, scene::preRollStart(shown, clock));
+          po.clock.secondsAt(shown), scene::preRollStart(shown, po.clock));
     }
     std::printf("%s: %s on %s (%d triangles, %.4f m^2 furred)\n", out->c_str(), params.name.c_str(),
                 m.name.c_str(), m.skin.numTriangles(), roots.furredArea);

@@ -85,7 +85,7 @@ void runRender(RenderArgs& a) {
   if (!a.range.frames.empty()) o.frames = scene::parseFrameRange(a.range.frames);
   o.width = a.view.width();
   o.height = a.view.height();
-  o.playback.framesPerSecond = a.range.fps;
+  o.playback.clock.fps = a.range.fps;
   o.samples = a.view.samples;
   o.outDir = a.out;
   o.resume = a.resume;
@@ -135,10 +135,10 @@ void runRender(RenderArgs& a) {
   const bool quiet = a.common.quiet;
   scene::Model model = a.model.load();
   a.pose.sequence(model, o.playback);
-  o.frames = a.range.range(model, o.playback.clip, o.playback.startSeconds, quiet);
+  o.frames = a.range.range(model, o.playback.clip, o.playback.clock.startSeconds, quiet);
   o.playback.dynamics = a.dynamics.enabled();
   o.playback.dynamicsParams = dynamics;
-  o.playback.preRollFrames = a.dynamics.preRoll;
+  o.playback.clock.preRollFrames = a.dynamics.preRoll;
   viewer::validateSequenceOptions(o);
   const scene::Fur fur = scene::growFur(model, params, "fur '" + params.name + "'");
   auto context = viewer::createHeadlessContext();
@@ -153,7 +153,7 @@ void runRender(RenderArgs& a) {
                   : "rest pose",
         params.name.c_str(), static_cast<long long>(fur.roots.total()),
         o.playback.dynamics ? " (dynamic, CPU)" : "", o.frames.first, o.frames.last,
-        o.playback.framesPerSecond, o.width, o.height, o.outDir.c_str());
+        o.playback.clock.fps, o.width, o.height, o.outDir.c_str());
     std::printf("render: %s, %s (%s); %d worker threads\n", info.renderer.c_str(),
                 info.version.c_str(), info.backend.c_str(), threadCount());
     std::fflush(stdout);

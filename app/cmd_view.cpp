@@ -78,7 +78,7 @@ void addViewCommand(CLI::App& app) {
     pose->sequence(m, po);
     o->clip = po.clip;
     o->stillPose = po.stillPose;
-    o->time = po.startSeconds;
+    o->time = po.clock.startSeconds;
     int status = 0;
     try {
       status = viewer::runViewer(*o, std::move(m));

@@ -13,6 +13,7 @@
 #include "pelage/anatomy/pose_file.h"
 #include "pelage/animation/clip.h"
 #include "pelage/fur/preset.h"
+#include "pelage/scene/clock.h"
 #include "pelage/skin/skin_mesh.h"
 #include "pelage/util/color.h"
 #include "pelage/util/log.h"
@@ -44,7 +45,7 @@ int& sharedThreads() {
 }  // namespace
 
 std::string_view optionForField(std::string_view field) {
-  static constexpr std::array<std::pair<std::string_view, std::string_view>, 27> kOptions{{
+  static constexpr std::array<std::pair<std::string_view, std::string_view>, 28> kOptions{{
       {"benchmark frames", "--benchmark-frames"},
       {"benchmark hairs", "--benchmark-hairs"},
       {"camera", "--camera"},
@@ -59,6 +60,7 @@ std::string_view optionForField(std::string_view field) {
       {"hold", "--hold"},
       {"no fur", "--no-fur"},
       {"out", "--out"},
+      {"plot", "--plot"},
       {"preroll", "--preroll"},
       {"resume", "--resume"},
       {"samples", "--samples"},
@@ -185,7 +187,7 @@ void PoseOptions::sequence(scene::Model& model, scene::PlaybackOptions& playback
   playback.clip = scene::resolveClip(model, clip);
   if (playback.clip < 0 && timeOption && timeOption->count() > 0)
     inputError("--time needs a clip, and model '", model.name, "' has none");
-  playback.startSeconds = time;
+  playback.clock.startSeconds = time;
 }
 
 // ---- FurOptions ----------------------------------------------------------------------------

@@ -144,7 +144,7 @@ struct ViewOptions {
   int samples = -1;
   std::string camera = "three-quarter";
   bool follow = false;
-  double fov = scene::kDefaultFovYDegrees;
+  double fov = static_cast<double>(scene::kDefaultFovYDegrees);
   std::string hairSource = "gpu";
   std::string shading = "paper";
   bool lines = false;

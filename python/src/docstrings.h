@@ -128,6 +128,8 @@ Args:
         {"stiffness": [0.2, 0.5, 0.8]} (the values) or {"stiffness": (0.2, 0.8, 4)} (first,
         last, count); parameters stiffness [0, 1], frequency (0, 100] Hz, damping [0, 10]
         (frequency and damping need dynamics).
+    plot: a .png path: also draws the main curves against time there, the plot of
+        `pelage analyze --plot` (None or "": no plot).
 
 An unknown keyword is a ValueError listing these.
 

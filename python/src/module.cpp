@@ -24,6 +24,7 @@
 #include "pelage/fur/groom.h"
 #include "pelage/fur/groom_strokes.h"
 #include "pelage/fur/preset.h"
+#include "pelage/scene/analysis_plot.h"
 #include "pelage/scene/analyze.h"
 #include "pelage/scene/export.h"
 #include "pelage/scene/model.h"
@@ -232,7 +233,7 @@ std::shared_ptr<PyHairs> takeHairs(scene::Playback& playback, std::shared_ptr<co
   h->index();
   h->clip = playback.options().clip;
   h->frameNumber = frame;
-  h->seconds = playback.options().startSeconds + frame / playback.options().framesPerSecond;
+  h->seconds = playback.options().clock.secondsAt(frame);
   return h;
 }
 
@@ -241,12 +242,12 @@ scene::PlaybackOptions playbackOptions(scene::Model& model, const py::object& cl
                                        double fps, const Dynamics& dyn) {
   scene::PlaybackOptions po;
   po.clip = clipIndex(model, clip);
-  po.framesPerSecond = fps;
-  po.startSeconds = time;
+  po.clock.fps = fps;
+  po.clock.startSeconds = time;
   po.hairSource = scene::HairSource::Cpu;
   po.dynamics = dyn.on;
   po.dynamicsParams = dyn.params;
-  po.preRollFrames = dyn.preRoll;
+  po.clock.preRollFrames = dyn.preRoll;
   return po;
 }
 
@@ -297,7 +298,7 @@ struct FrameIterator {
 py::dict analyze(PyModel& m, const py::object& clip, const py::object& furArg,
                  const py::kwargs& kwargs) {
   const Keywords kw("analyze", kwargs,
-                    {"frames", "dynamics", "hold", "groups", "fps", "time", "sweep"});
+                    {"frames", "dynamics", "hold", "groups", "fps", "time", "sweep", "plot"});
   scene::Model& model = *m.model;
   const std::shared_ptr<const scene::Fur> fur = furOf(m, furArg);
   const Dynamics dyn = dynamicsFrom(kw.object("dynamics"));
@@ -312,15 +313,28 @@ py::dict analyze(PyModel& m, const py::object& clip, const py::object& furArg,
   opt.holdSeconds = kw.get("hold", 0.0);
   opt.groups = scene::parseAnalysisGroups(kw.get<std::string>("groups", "region"));
   opt.frames = frameRange(kw.object("frames"), scene::wholeClip(model, opt.clip, fps));
+  const std::string plot = kw.get<std::string>("plot", "");
+  if (!plot.empty()) scene::validatePlotFile(plot);
   scene::AnalysisTable table;
   const py::object sweep = kw.object("sweep");
   if (!sweep.is_none()) {
     const scene::SweepSpec spec = sweepOf(sweep);
+    // The plot's title says the sweep as it was given (the command line's text), or its parameter.
+    const std::string sweepText =
+        py::isinstance<py::str>(sweep) ? sweep.cast<std::string>() : spec.parameter;
     py::gil_scoped_release release;
-    table = scene::sweepTable(scene::sweepClip(model, *fur, opt, spec));
+    const scene::SweepResult result = scene::sweepClip(model, *fur, opt, spec);
+    table = scene::sweepTable(result);
+    if (!plot.empty())
+      scene::writePlotPng(plot, scene::sweepPlot(result, scene::analysisTitle(model, *fur, opt) +
+                                                             ", sweep " + sweepText));
   } else {
     py::gil_scoped_release release;
-    table = scene::analysisTable(scene::analyzeClip(model, *fur, opt));
+    const scene::AnalysisResult result = scene::analyzeClip(model, *fur, opt);
+    table = scene::analysisTable(result);
+    if (!plot.empty())
+      scene::writePlotPng(plot,
+                          scene::analysisPlot(result, scene::analysisTitle(model, *fur, opt)));
   }
   flushWarnings();
   return columns(table);

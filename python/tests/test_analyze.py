@@ -101,3 +101,23 @@ def test_a_misspelt_keyword_lists_the_accepted_ones(monkey):
         pelage.analyze(monkey, "walk", frame=3)
     with pytest.raises(ValueError, match=r"export\(\): unknown keyword 'fromat'.*format"):
         pelage.export(monkey, "walk", out="x", fromat="ply")
+
+
+def test_plot_equals_the_command_lines(monkey, cli, tmp_path):
+    fur = monkey.fur(hairs=2000)
+    for name, extra_py, extra_cli in (("a", {}, []),
+                                      ("s", {"sweep": "stiffness=0.2:0.8:3"},
+                                       ["--sweep", "stiffness=0.2:0.8:3"])):
+        plot = tmp_path / (name + "_py.png")
+        pelage.analyze(monkey, "tumble", fur=fur, frames=(0, 6), plot=str(plot), **extra_py)
+        cli("analyze", "--clip", "tumble", "--hairs", 2000, "--frames", "0:6", *extra_cli,
+            "--out", tmp_path / (name + ".csv"), "--plot", tmp_path / (name + "_cli.png"))
+        assert plot.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+        assert plot.read_bytes() == (tmp_path / (name + "_cli.png")).read_bytes(), name
+
+
+def test_a_plot_that_is_not_png_is_refused_before_the_run(monkey, tmp_path):
+    with pytest.raises(pelage.InputError, match=r"plot '.*p\.jpg' must name a \.png file"):
+        pelage.analyze(monkey, "tumble", fur=monkey.fur(hairs=500), frames=(0, 2),
+                       plot=str(tmp_path / "p.jpg"))
+    assert not (tmp_path / "p.jpg").exists()

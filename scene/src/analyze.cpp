@@ -344,7 +344,7 @@ void checkOptions(const Model& model, const AnalysisOptions& o) {
   PELAGE_CHECK(o.clip >= -1 && o.clip < static_cast<int>(model.clips.size()), "clip ", o.clip);
   if (o.dynamics && o.clip < 0)
     fieldError("dynamics", "on needs a clip: the rest pose does not move");
-  validateFramesPerSecond(o.clock.fps);
+  validateClock(o.clock);
   validateFrameRange(o.frames);
   validateHoldSeconds(o.holdSeconds);
   if (!(o.settleTolerance > 0.0 && o.settleTolerance < 1.0))
@@ -385,9 +385,7 @@ AnalysisResult analyzeClip(const Model& model, const Fur& fur, const AnalysisOpt
   PlaybackOptions po;
   po.clip = options.clip;
   po.stillPose = options.stillPose;
-  po.startSeconds = options.clock.startSeconds;
-  po.framesPerSecond = options.clock.fps;
-  po.preRollFrames = options.clock.preRollFrames;
+  po.clock = options.clock;
   po.dynamics = options.dynamics;
   po.dynamicsParams = options.dynamicsParams;
   po.hairSource = HairSource::Cpu;

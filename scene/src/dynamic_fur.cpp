@@ -1,33 +1,27 @@
 #include "pelage/scene/dynamic_fur.h"
 
-#include <algorithm>
-
 #include "pelage/util/error.h"
 #include "pelage/util/interrupt.h"
 
 namespace pelage::scene {
 
-int preRollStart(int firstFrame, const DynamicsClock& clock) {
-  if (clock.preRollFrames < 0) return 0;
-  return std::max(0, firstFrame - clock.preRollFrames);
-}
-
 void preRollDynamics(const Model& model, const Fur& fur, const fur::DynamicsParams& dynamics,
-                     int clip, int firstFrame, const DynamicsClock& clock,
-                     fur::FurDynamicsState& state, FrameState& scratch) {
-  PELAGE_CHECK(clock.fps >= 1.0 && clock.fps <= 1000.0, "fps ", clock.fps);
+                     int clip, int firstFrame, const Clock& clock, fur::FurDynamicsState& state,
+                     FrameState& scratch) {
+  PELAGE_CHECK(clock.fps >= kMinFramesPerSecond && clock.fps <= kMaxFramesPerSecond, "fps ",
+               clock.fps);
   fur::resetFurDynamics(fur.roots, state);
   for (int f = preRollStart(firstFrame, clock); f < firstFrame; ++f) {
     checkInterrupt();
-    evaluateClipFrame(model, clip, clock.startSeconds + f / clock.fps, scratch);
-    stepClipDynamics(model, fur, dynamics, clock, nullptr, state, scratch);
+    evaluateClipFrame(model, clip, clock.secondsAt(f), scratch);
+    stepClipDynamics(model, fur, dynamics, 1.0 / clock.fps, nullptr, state, scratch);
   }
 }
 
 void stepClipDynamics(const Model& model, const Fur& fur, const fur::DynamicsParams& dynamics,
-                      const DynamicsClock& clock, const fur::FurView* view,
-                      fur::FurDynamicsState& state, FrameState& frame) {
-  const double dt = 1.0 / clock.fps;
+                      double stepSeconds, const fur::FurView* view, fur::FurDynamicsState& state,
+                      FrameState& frame) {
+  const double dt = stepSeconds;
   if (!view) {
     fur::stepFurDynamics(model.skin, fur.roots, fur.params, dynamics, frame.skin, dt, state,
                          frame.furWorkspace);

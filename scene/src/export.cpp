@@ -60,7 +60,7 @@ ExportReport exportClip(const Model& model, const Fur& fur, const ExportOptions&
   std::unique_ptr<UsdaWriter> usd;
   if (options.format == ExportFormat::Usda) {
     UsdExportOptions uo;
-    uo.framesPerSecond = po.framesPerSecond;
+    uo.framesPerSecond = po.clock.fps;
     uo.firstFrame = first;
     uo.lastFrame = last;
     uo.comment =
@@ -98,8 +98,7 @@ ExportReport exportClip(const Model& model, const Fur& fur, const ExportOptions&
         break;
       case ExportFormat::Ply:
         fur::writeHairPly(framePath(f), state.fur, fur.params,
-                          str("model ", model.name, ", frame ", f, " (",
-                              po.startSeconds + static_cast<double>(f) / po.framesPerSecond,
+                          str("model ", model.name, ", frame ", f, " (", po.clock.secondsAt(f),
                               " s), fur ", fur.params.name, ", seed ", fur.params.seed),
                           &fur.colors);
         report.files.push_back(framePath(f));

@@ -19,36 +19,17 @@ FrameRange wholeClip(const Model& model, int clip, double fps) {
 int oneFrameAt(PlaybackOptions& options, double seconds) {
   validateStartSeconds(seconds);
   if (!options.dynamics) {
-    options.startSeconds = seconds;
+    options.clock.startSeconds = seconds;
     return 0;
   }
-  options.startSeconds = 0.0;
-  return static_cast<int>(std::lround(seconds * options.framesPerSecond));
-}
-
-void validateFramesPerSecond(double fps, std::string_view field) {
-  if (!(fps >= kMinFramesPerSecond && fps <= kMaxFramesPerSecond))
-    fieldError(std::string(field), fps, " is out of range [", kMinFramesPerSecond, ", ",
-               kMaxFramesPerSecond, "]");
-}
-
-void validateStartSeconds(double seconds, std::string_view field) {
-  if (!(seconds >= 0.0 && seconds <= kMaxStartSeconds))
-    fieldError(std::string(field), seconds, " is out of range [0, ",
-               static_cast<long long>(kMaxStartSeconds), "] seconds");
-}
-
-void validatePreRoll(int frames, std::string_view field, bool allowFromStart) {
-  if (frames < (allowFromStart ? -1 : 0) || frames > kMaxPreRollFrames)
-    fieldError(std::string(field), frames, " is out of range [0, ", kMaxPreRollFrames, "] frames");
+  options.clock.startSeconds = 0.0;
+  return static_cast<int>(std::lround(seconds * options.clock.fps));
 }
 
 void validatePlaybackOptions(const Model& model, const PlaybackOptions& o) {
   PELAGE_CHECK(o.clip >= -1 && o.clip < static_cast<int>(model.clips.size()), "clip ", o.clip,
                " of ", model.clips.size());
-  validateFramesPerSecond(o.framesPerSecond);
-  validateStartSeconds(o.startSeconds);
-  validatePreRoll(o.preRollFrames);
+  validateClock(o.clock);
   if (o.dynamics) {
     if (o.clip < 0) fieldError("dynamics", "on needs a clip: the rest pose does not move");
     fur::validateDynamicsParams(o.dynamicsParams, "dynamics");
@@ -63,9 +44,7 @@ Playback::Playback(const Model& model, const Fur& fur, PlaybackOptions options)
   validatePlaybackOptions(model, options_);
   stillPose_ =
       options_.stillPose.local.empty() ? anatomy::restPose(model.body) : options_.stillPose;
-  clock_.fps = options_.framesPerSecond;
-  clock_.startSeconds = options_.startSeconds;
-  clock_.preRollFrames = options_.preRollFrames;
+  stepSeconds_ = 1.0 / options_.clock.fps;
   generation_ = fur.generation;
   evaluatePose(0, state_);
   firstFraming_ = framing();
@@ -89,9 +68,7 @@ void Playback::setDynamics(bool on, const fur::DynamicsParams& params) {
 
 void Playback::evaluatePose(int frame, FrameState& into) const {
   if (options_.clip >= 0)
-    evaluateClipFrame(*model_, options_.clip,
-                      options_.startSeconds + static_cast<double>(frame) / options_.framesPerSecond,
-                      into);
+    evaluateClipFrame(*model_, options_.clip, options_.clock.secondsAt(frame), into);
   else
     evaluateFrame(*model_, stillPose_, into);
 }
@@ -102,22 +79,20 @@ void Playback::poseFrame(int frame) {
   if (options_.dynamics && frame != nextFrame_) {
     // Reached out of order (the first frame, or one after skipped frames): pre-roll the springs
     // through the frames before it, exactly as a whole run from frame 0 reaches it.
-    clock_.fps = options_.framesPerSecond;
-    clock_.preRollFrames = options_.preRollFrames;
-    preRollDynamics(*model_, *fur_, options_.dynamicsParams, options_.clip, frame, clock_,
+    preRollDynamics(*model_, *fur_, options_.dynamicsParams, options_.clip, frame, options_.clock,
                     dynamics_, scratch_);
     running_ = true;
     generation_ = fur_->generation;
     nextFrame_ = frame;
   }
   evaluatePose(frame, state_);
-  clock_.fps = options_.framesPerSecond;
+  stepSeconds_ = 1.0 / options_.clock.fps;
   stepPending_ = true;
 }
 
 void Playback::holdFrame() {
   checkInterrupt();
-  clock_.fps = options_.framesPerSecond;
+  stepSeconds_ = 1.0 / options_.clock.fps;
   stepPending_ = true;
   nextFrame_ = -1;
 }
@@ -125,8 +100,7 @@ void Playback::holdFrame() {
 void Playback::posePose(const anatomy::Pose& pose, double stepSeconds) {
   evaluateFrame(*model_, pose, state_);
   // The spring step is exact for any dt; dt is kept in [1 ms, 1 s] (fps [1, 1000]).
-  clock_.fps = 1.0 / std::clamp(stepSeconds, 1e-3, 1.0);
-  clock_.preRollFrames = -1;
+  stepSeconds_ = std::clamp(stepSeconds, 1e-3, 1.0);
   stepPending_ = true;
   nextFrame_ = -1;
 }
@@ -143,7 +117,7 @@ void Playback::step(const fur::FurView* view) {
     generation_ = fur_->generation;
     running_ = true;
   }
-  stepClipDynamics(*model_, *fur_, options_.dynamicsParams, clock_, view, dynamics_, state_);
+  stepClipDynamics(*model_, *fur_, options_.dynamicsParams, stepSeconds_, view, dynamics_, state_);
   stepPending_ = false;
   if (nextFrame_ >= 0) ++nextFrame_;
 }

@@ -253,9 +253,13 @@ RgbImage renderPlot(const PlotSpec& spec) {
   return canvas.take();
 }
 
+void validatePlotFile(const std::string& path, const std::string& field) {
+  if (lowerExtension(path) != ".png") fieldError(field, "'", path, "' must name a .png file");
+}
+
 void writePlotPng(const std::string& path, const PlotSpec& spec) {
+  validatePlotFile(path);
   const RgbImage img = renderPlot(spec);
-  if (lowerExtension(path) != ".png") inputError(path, ": a plot is written as PNG (.png)");
   writeImageFile(path, img.rgb.data(), img.width, img.height, 3);
 }
 

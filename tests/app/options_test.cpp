@@ -129,7 +129,7 @@ TEST(SharedOptions, HelpDefaultsAreTheLibrariesDefaults) {
   EXPECT_EQ(helpDefault("render", "--frequency"), g(static_cast<double>(d.frequencyHz)));
   EXPECT_EQ(helpDefault("render", "--damping"), g(static_cast<double>(d.dampingRatio)));
   const scene::PlaybackOptions playback;
-  EXPECT_EQ(helpDefault("export", "--fps"), g(playback.framesPerSecond));
+  EXPECT_EQ(helpDefault("export", "--fps"), g(playback.clock.fps));
   EXPECT_EQ(helpDefault("render", "--fov"), g(static_cast<double>(scene::kDefaultFovYDegrees)));
   const viewer::SequenceOptions sequence;
   const viewer::ViewerOptions viewer;

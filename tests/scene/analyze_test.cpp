@@ -346,7 +346,7 @@ TEST(Analyze, AFrameRangePreRollsFromTheClipStartAndMatchesTheWholeRun) {
   EXPECT_NE(quick.frames[0].dynamic.all.droopMeanDeg, whole.frames[12].dynamic.all.droopMeanDeg);
   EXPECT_EQ(preRollStart(12, part.clock), 10);
   EXPECT_EQ(preRollStart(1, part.clock), 0);
-  EXPECT_EQ(preRollStart(12, DynamicsClock{}), 0);
+  EXPECT_EQ(preRollStart(12, Clock{}), 0);
 }
 
 TEST(Analyze, BadRangesAndSweepsAreInputErrors) {

@@ -25,7 +25,7 @@ class RenderSequenceTest : public GlTest {
     viewer::SequenceOptions o;
     o.playback.clip = 0;
     o.frames = {first, last};
-    o.playback.framesPerSecond = 12.0;
+    o.playback.clock.fps = 12.0;
     o.width = 96;
     o.height = 72;
     o.samples = 0;
@@ -185,7 +185,7 @@ TEST_F(RenderSequenceTest, UnwritableOutputAndBadOptionsAreInputErrors) {
   o.video = dir.file("clip.avi");
   EXPECT_THROW(viewer::renderSequence(wagCritter(), wagFur(), o), InputError);
   o = options(dir);
-  o.playback.framesPerSecond = 0.0;
+  o.playback.clock.fps = 0.0;
   EXPECT_THROW(viewer::renderSequence(wagCritter(), wagFur(), o), InputError);
   o = options(dir);
   o.width = 8;

@@ -36,7 +36,7 @@ void defaultWrite(const std::string& path, const std::vector<std::uint8_t>& byte
 
 void validateSequenceOptions(const SequenceOptions& o) {
   scene::validateImageSize(o.width, o.height);
-  scene::validateFramesPerSecond(o.playback.framesPerSecond);
+  scene::validateClock(o.playback.clock);
   scene::validateFrameRange(o.frames);
   scene::validateSamples(o.samples);
   if (o.encoderThreads < 0 || o.encoderThreads > 256)
@@ -45,7 +45,6 @@ void validateSequenceOptions(const SequenceOptions& o) {
   if (o.outDir.empty()) fieldError("out", ": an output directory is required");
   if (o.playback.dynamics && o.playback.clip < 0)
     fieldError("dynamics", "on needs a clip: the rest pose does not move");
-  scene::validatePreRoll(o.playback.preRollFrames);
   if (o.skinColor) scene::validateColor(*o.skinColor, "skin color");
   if (!o.video.empty()) {
     const std::string ext = fs::path(o.video).extension().string();
@@ -141,7 +140,7 @@ SequenceReport renderSequence(const scene::Model& model, const scene::Fur& fur,
   std::unique_ptr<VideoEncoder> video;
   if (!options.video.empty())
     video = std::make_unique<VideoEncoder>(options.video, options.width, options.height,
-                                           options.playback.framesPerSecond);
+                                           options.playback.clock.fps);
   if (video) report.removedTemporaries += video->removedTemporaries();
 
   SequenceRenderer sequence(model, fur, options);

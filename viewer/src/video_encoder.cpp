@@ -154,16 +154,7 @@ VideoEncoder::VideoEncoder(const std::string& path, int width, int height, doubl
 }
 
 VideoEncoder::~VideoEncoder() {
-  if (!done_) {
-    if (pipe_ >= 0) ::close(pipe_);
-    pipe_ = -1;
-    if (pid_ > 0) {
-      ::kill(pid_, SIGKILL);
-      int status = 0;
-      ::waitpid(pid_, &status, 0);
-    }
-    std::remove(tempPath_.c_str());
-  }
+  if (!done_) stop();
   forgetTemporaries();
 }
 

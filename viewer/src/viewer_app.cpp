@@ -16,6 +16,7 @@
 #include <thread>
 
 #include "pelage/fur/preset.h"
+#include "pelage/scene/clock.h"
 #include "pelage/util/error.h"
 #include "pelage/util/path.h"
 #include "pelage/viewer/gl.h"

@@ -3,8 +3,6 @@
 // share and seed; read-only during playback.
 #pragma once
 
-#include <Eigen/Core>
-
 #include <array>
 #include <cstdint>
 #include <string>

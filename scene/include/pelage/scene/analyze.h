@@ -34,7 +34,7 @@ struct AnalysisOptions {
   double holdSeconds = 0.0;  // after frames.last, the last pose held still this long (see below)
   bool dynamics = false;     // also the damped dynamic ends (fur/dynamics.h)
   fur::DynamicsParams dynamicsParams;
-  DynamicsClock clock;  // fps, start time and pre-roll
+  Clock clock;  // fps, start time and pre-roll
   AnalysisGroups groups = AnalysisGroups::Region;
   double settleTolerance = 0.02;  // settled: within this fraction of the largest swing, (0, 1)
 };

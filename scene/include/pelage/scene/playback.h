@@ -15,15 +15,13 @@
 // Playback owns the per-frame state, the dynamic springs and the pre-roll.
 #pragma once
 
-#include <Eigen/Core>
-
 #include <cstdint>
-#include <string_view>
 #include <utility>
 
 #include "pelage/anatomy/pose.h"
 #include "pelage/fur/dynamics.h"
 #include "pelage/scene/camera.h"
+#include "pelage/scene/clock.h"
 #include "pelage/scene/draw_list.h"
 #include "pelage/scene/dynamic_fur.h"
 #include "pelage/scene/frame.h"
@@ -34,10 +32,9 @@
 namespace pelage::scene {
 
 struct PlaybackOptions {
-  int clip = -1;                  // index into model.clips; -1: the still pose in every frame
-  anatomy::Pose stillPose;        // the pose without a clip; empty: the rest pose
-  double framesPerSecond = 30.0;  // frame f shows clip time start + f / fps, [1, 1000]
-  double startSeconds = 0.0;      // the clip time of frame 0, [0, 1000000]
+  int clip = -1;            // index into model.clips; -1: the still pose in every frame
+  anatomy::Pose stillPose;  // the pose without a clip; empty: the rest pose
+  Clock clock;              // frame f shows clip time clock.secondsAt(f); the dynamics' pre-roll
   // Where hairs are computed. Dynamic fur is computed on the CPU (its state lives there), so with
   // dynamics on the CPU's hairs are drawn whatever this says (see hairSource()).
   HairSource hairSource = HairSource::Gpu;
@@ -45,22 +42,7 @@ struct PlaybackOptions {
   // Needs a clip for sequence frames.
   bool dynamics = false;
   fur::DynamicsParams dynamicsParams;
-  // Frames simulated before a sequence frame reached out of order: -1, from frame 0 (exact);
-  // else this many frames earlier (faster, approximately equal), [0, 10000000].
-  int preRollFrames = -1;
 };
-
-// The limits of a playback's clock, each checked by its validator (InputError naming `field`, as
-// every client reports it: the command line names the option, Python the keyword).
-inline constexpr double kMinFramesPerSecond = 1.0;
-inline constexpr double kMaxFramesPerSecond = 1000.0;
-void validateFramesPerSecond(double fps, std::string_view field = "fps");
-inline constexpr double kMaxStartSeconds = 1e6;
-void validateStartSeconds(double seconds, std::string_view field = "time");
-// [0, kMaxPreRollFrames], or -1 (from frame 0: the default, not a value to type) where
-// `allowFromStart`.
-inline constexpr int kMaxPreRollFrames = 10000000;
-void validatePreRoll(int frames, std::string_view field = "preroll", bool allowFromStart = true);
 
 // Checks the options against `model` (clip index, fps, pre-roll, dynamics parameters, dynamics
 // without a clip); InputError naming the field ("fps", "preroll", "dynamics", ...) otherwise.
@@ -154,12 +136,13 @@ class Playback {
   Framing firstFraming_;
   DrawList list_;
   // Dynamic fur: the springs, whether they run (false: the next step restarts them), the roots
-  // they were sized to, whether the posed frame still needs its step and how long it is.
+  // they were sized to, whether the posed frame still needs its step and how long it is (the
+  // sequence's 1 / fps, or the time between the viewer's poses).
   fur::FurDynamicsState dynamics_;
   bool running_ = false;
   std::uint64_t generation_ = 0;
   bool stepPending_ = false;
-  DynamicsClock clock_;
+  double stepSeconds_ = 0.0;
   int nextFrame_ = -1;  // the sequence frame the springs are ready to step to (-1: none)
 };
 

@@ -51,7 +51,11 @@ std::array<std::uint8_t, 3> plotColor(int index);
 // Draws the plot. PELAGE_CHECK on sizes out of range or a spec without panels.
 RgbImage renderPlot(const PlotSpec& spec);
 
-// Writes the plot as a PNG atomically; InputError naming the file when it cannot be written.
+// A plot's file names a .png; InputError naming `field` otherwise.
+void validatePlotFile(const std::string& path, const std::string& field = "plot");
+
+// Writes the plot as a PNG atomically (validatePlotFile first); InputError naming the file when it
+// cannot be written.
 void writePlotPng(const std::string& path, const PlotSpec& spec);
 
 }  // namespace pelage::scene

@@ -153,8 +153,7 @@ void addAnalyzeCommand(CLI::App& app) {
     opt.clock.startSeconds = po.clock.startSeconds;
     const scene::FrameRange frames = range->range(m, opt.clip, po.clock.startSeconds, quiet);
     opt.frames = frames;
-    const std::string clipName =
-        opt.clip >= 0 ? m.clips[static_cast<std::size_t>(opt.clip)].name : "still pose";
+    const std::string clipName = scene::analysisClipName(m, opt.clip);
     const scene::Fur fur =
         scene::growFur(m, params, "fur '" + params.name + "' with the command-line options");
     const std::string title = scene::analysisTitle(m, fur, opt);

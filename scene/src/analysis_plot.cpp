@@ -9,10 +9,9 @@
 namespace pelage::scene {
 
 std::string analysisTitle(const Model& model, const Fur& fur, const AnalysisOptions& options) {
-  const std::string clipName =
-      options.clip >= 0 ? model.clips[static_cast<std::size_t>(options.clip)].name : "still pose";
-  std::string title = "pelage analyze: " + model.name + ", clip " + clipName + ", fur " +
-                      fur.params.name + ", " + std::to_string(fur.roots.total()) + " hairs";
+  std::string title = "pelage analyze: " + model.name + ", clip " +
+                      analysisClipName(model, options.clip) + ", fur " + fur.params.name + ", " +
+                      std::to_string(fur.roots.total()) + " hairs";
   if (options.dynamics) {
     char buf[160];
     const fur::CoatDynamics& cd = options.dynamicsParams.coats[0];

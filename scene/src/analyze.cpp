@@ -364,6 +364,10 @@ double parseNumber(const std::string& text, const std::string& field, const std:
 
 }  // namespace
 
+std::string analysisClipName(const Model& model, int clip) {
+  return clip >= 0 ? model.clips[static_cast<std::size_t>(clip)].name : "still pose";
+}
+
 void validateHoldSeconds(double seconds, const std::string& field) {
   if (!(seconds >= 0.0 && seconds <= kMaxHoldSeconds))
     fieldError(field, seconds, " is out of range [0, ", kMaxHoldSeconds, "] seconds");
@@ -378,8 +382,7 @@ AnalysisGroups parseAnalysisGroups(const std::string& name, const std::string& f
 AnalysisResult analyzeClip(const Model& model, const Fur& fur, const AnalysisOptions& options) {
   checkOptions(model, options);
   AnalysisResult result;
-  result.clipName =
-      options.clip >= 0 ? model.clips[static_cast<std::size_t>(options.clip)].name : "still pose";
+  result.clipName = analysisClipName(model, options.clip);
   result.fps = options.clock.fps;
   result.dynamics = options.dynamics;
   PlaybackOptions po;

@@ -115,6 +115,9 @@ struct AnalysisResult {
   SettlingAnalysis settling;
 };
 
+// The name an analysis gives its clip: the clip's, or "still pose" for clip -1.
+std::string analysisClipName(const Model& model, int clip);
+
 // Runs the clip's frames (and the hold) and measures every hair of both coats (hairs of length 0
 // are skipped). Parallel over hairs; bit-identical whatever the thread count. Throws InputError
 // for a frame range or hold out of range.

@@ -214,10 +214,11 @@ void FurOptions::add(CLI::App& cmd) {
   widthOption = cmd.add_option("--hair-width", hairWidth,
                                "Hair width at the root of both coats, mm [0.001, 20]; the tips "
                                "keep their share of it (default: the preset's, 0.4 to 0.02)");
-  cmd.add_option("--groom", groom,
-                 "Groom file of per-vertex values (length, density, tint) for this model's mesh, "
-                 "from Python's Model.write_groom or `pelage info --groom-out` (default: the "
-                 "preset's 'groom', else none)");
+  cmd.add_option(
+      "--groom", groom,
+      "Groom file of per-vertex values (length, density, tint, comb) for this model's mesh, "
+      "from Python's Model.write_groom or `pelage info --groom-out` (default: the "
+      "preset's 'groom', else none)");
   cmd.add_option("--fur-set", settings,
                  "Any preset field, FIELD=VALUE (repeatable), e.g. overcoat.stiffness=0.6, "
                  "undercoat.diffuse=[0.3,0.2,0.1], overcoat.curl.turns=3, culling.enabled=false "

@@ -201,6 +201,7 @@ std::string groomExample() {
     g.length.push_back(0.001f * static_cast<float>(v) + 0.0123f);
     g.density.push_back(v % 3 == 0 ? 0.0f : 1.0f / 3.0f * static_cast<float>(v));
     g.tint.emplace_back(0.1f * static_cast<float>(v % 7), 1.0f, 0.7f);
+    g.comb.emplace_back(0.125f * static_cast<float>(v % 5), -0.5f, 0.0f);
   }
   return fur::groomFileJson(groomMesh(), g);
 }
@@ -221,7 +222,10 @@ std::string strokesExample() {
   c.tool = fur::BrushTool::Color;
   c.strength = 0.5f;
   c.color = {0.2f, 0.4f, 2.0f};
-  return fur::groomStrokesJson({a, b, c});
+  fur::GroomStroke d = a;
+  d.tool = fur::BrushTool::Comb;
+  d.strength = 0.75f;
+  return fur::groomStrokesJson({a, b, c, d});
 }
 
 std::string meshInput(std::string_view extension, std::string_view fileBytes) {

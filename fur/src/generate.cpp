@@ -32,6 +32,12 @@ void FloatBuffer::resize(std::size_t n) {
   size_ = n;
 }
 
+CoatShape makeCoatShape(const FurParams& params, const FurRoots& roots, int coat) {
+  CoatShape c = makeCoatShape(params, coat);
+  c.comb = roots.coats[static_cast<std::size_t>(coat)].comb.empty() ? 0 : 1;
+  return c;
+}
+
 CoatShape makeCoatShape(const FurParams& params, int coat) {
   const CoatParams& cp = params.coats[static_cast<std::size_t>(coat)];
   CoatShape c;
@@ -225,7 +231,7 @@ void detail::generateFurWithDynamics(
     if (!emit && !dynamics[ci]) continue;
     HairBuffers& hb = frame.coats[ci];
     const std::uint64_t seed = coatSeed(roots.seed, c);
-    const CoatShape shape = makeCoatShape(params, c);
+    const CoatShape shape = makeCoatShape(params, roots, c);
     if (shape.twist) ensureTwist(params, c, seed, ws);
     std::int64_t drawn = cr.size();
     const std::int32_t* drawnStart = cr.triangleStart.data();
@@ -247,6 +253,7 @@ void detail::generateFurWithDynamics(
     a.tableIndex = cr.tableIndex.data();
     a.jitter = cr.jitter.data();
     a.lengthScale = cr.lengthScale.empty() ? nullptr : cr.lengthScale.data();
+    a.comb = cr.comb.empty() ? nullptr : cr.comb.data();
     a.barycentric = roots.barycentric.data();
     a.twist = shape.twist ? ws.twist[ci].data() : nullptr;
     a.positions = emit ? hb.positions.data() : nullptr;
@@ -304,7 +311,8 @@ HairInput<float> rootInput(const skin::SkinMesh& skin, const FurRoots& roots,
   }
   return interpolateRoot(roots.barycentric.data() + 4 * cr.tableIndex[r], records[0], records[1],
                          records[2], cr.jitter.data() + 4 * r,
-                         cr.lengthScale.empty() ? 1.0f : cr.lengthScale[r]);
+                         cr.lengthScale.empty() ? 1.0f : cr.lengthScale[r],
+                         cr.comb.empty() ? 0u : cr.comb[r]);
 }
 
 void referenceHair(const skin::SkinMesh& skin, const FurRoots& roots, const FurParams& params,
@@ -312,7 +320,7 @@ void referenceHair(const skin::SkinMesh& skin, const FurRoots& roots, const FurP
                    std::vector<float>& positions, std::vector<float>& normals) {
   const auto ci = static_cast<std::size_t>(coat);
   const CoatRoots& cr = roots.coats[ci];
-  const CoatShape shape = makeCoatShape(params, coat);
+  const CoatShape shape = makeCoatShape(params, roots, coat);
   const HairInput<float> in = rootInput(skin, roots, deformed, coat, rootIndex);
   const auto r = static_cast<std::size_t>(rootIndex);
   HairTwist<float> twist{};

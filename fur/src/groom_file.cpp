@@ -28,12 +28,13 @@ void mixBytes(std::uint64_t& h, const void* data, std::size_t n) {
   }
 }
 
-// One array of nV values (width 1 or 3), each finite in [lo, hi]; `field` names it.
+// One array of nV values (width 1 or 3: [x, y, z] triples), each finite in [lo, hi]; `field`
+// names it.
 std::vector<float> readValues(const JsonReader& doc, const char* field, std::size_t nV, int width,
                               double lo, double hi) {
   const JsonReader a = doc.at(field);
   if (!a.isArray() || a.size() != nV)
-    a.fail(str("expected an array of ", nV, width == 1 ? " numbers" : " [r, g, b] triples",
+    a.fail(str("expected an array of ", nV, width == 1 ? " numbers" : " [x, y, z] triples",
                " (one per skin vertex)"));
   std::vector<float> out(nV * static_cast<std::size_t>(width));
   const nlohmann::json& j = a.json();
@@ -68,7 +69,8 @@ std::string groomFileJson(const skin::SkinMesh& skin, const VertexGroom& g) {
   const auto nV = static_cast<std::size_t>(skin.numVertices());
   PELAGE_CHECK((g.length.empty() || g.length.size() == nV) &&
                    (g.density.empty() || g.density.size() == nV) &&
-                   (g.tint.empty() || g.tint.size() == nV),
+                   (g.tint.empty() || g.tint.size() == nV) &&
+                   (g.comb.empty() || g.comb.size() == nV),
                "groom arrays sized for another mesh");
   nlohmann::json j;
   j["format"] = kFormat;
@@ -79,11 +81,13 @@ std::string groomFileJson(const skin::SkinMesh& skin, const VertexGroom& g) {
   // float -> double is exact, and nlohmann writes doubles with round-trip precision.
   if (!g.length.empty()) j["length"] = g.length;
   if (!g.density.empty()) j["density"] = g.density;
-  if (!g.tint.empty()) {
+  const auto triples = [](const std::vector<Eigen::Vector3f>& values) {
     nlohmann::json t = nlohmann::json::array();
-    for (const Eigen::Vector3f& c : g.tint) t.push_back({c.x(), c.y(), c.z()});
-    j["tint"] = std::move(t);
-  }
+    for (const Eigen::Vector3f& c : values) t.push_back({c.x(), c.y(), c.z()});
+    return t;
+  };
+  if (!g.tint.empty()) j["tint"] = triples(g.tint);
+  if (!g.comb.empty()) j["comb"] = triples(g.comb);
   return j.dump() + "\n";
 }
 
@@ -99,7 +103,7 @@ VertexGroom parseGroomFile(const std::string& text, const std::string& source,
   if (!j.has("format") || !j.at("format").json().is_string() || j.string("format") != kFormat)
     j.fail(str("not a groom file: expected \"format\": \"", kFormat,
                "\" (groom files come from `pelage info --groom-out` or Python's write_groom)"));
-  j.rejectUnknown({"format", "version", "mesh", "length", "density", "tint"});
+  j.rejectUnknown({"format", "version", "mesh", "length", "density", "tint", "comb"});
   j.integer("version", kGroomFileVersion, kGroomFileVersion);
   const JsonReader mesh = j.at("mesh");
   mesh.rejectUnknown({"vertices", "triangles", "hash"});
@@ -118,12 +122,20 @@ VertexGroom parseGroomFile(const std::string& text, const std::string& source,
     g.length = readValues(j, "length", n, 1, 0.0, static_cast<double>(kMaxGroomLengthMeters));
   if (j.has("density"))
     g.density = readValues(j, "density", n, 1, 0.0, static_cast<double>(kMaxGroomDensity));
-  if (j.has("tint")) {
-    const std::vector<float> t =
-        readValues(j, "tint", n, 3, 0.0, static_cast<double>(kMaxGroomTint));
-    g.tint.resize(n);
+  const auto readTriples = [&](const char* field, double lo, double hi) {
+    const std::vector<float> t = readValues(j, field, n, 3, lo, hi);
+    std::vector<Eigen::Vector3f> out(n);
     for (std::size_t v = 0; v < n; ++v)
-      g.tint[v] = Eigen::Vector3f(t[3 * v], t[3 * v + 1], t[3 * v + 2]);
+      out[v] = Eigen::Vector3f(t[3 * v], t[3 * v + 1], t[3 * v + 2]);
+    return out;
+  };
+  if (j.has("tint")) g.tint = readTriples("tint", 0.0, static_cast<double>(kMaxGroomTint));
+  if (j.has("comb")) {
+    g.comb = readTriples("comb", -1.0, 1.0);
+    for (std::size_t v = 0; v < n; ++v)
+      if (!(g.comb[v].squaredNorm() <= kMaxCombLength2))
+        j.at("comb").fail(str("comb[", v, "] has length ", g.comb[v].norm(),
+                              "; accepted: at most 1 (the direction times the comb amount)"));
   }
   return g;
 }

@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "pelage/skin/deform.h"
 #include "pelage/util/error.h"
 #include "pelage/util/json_reader.h"
 #include "pelage/util/parallel.h"
@@ -18,8 +19,8 @@ namespace {
 
 using Vec3 = Eigen::Vector3f;
 
-constexpr const char* kToolNames[] = {"length", "density", "color"};
-constexpr const char* kAbsentTools[] = {"comb", "cut", "clump"};
+constexpr const char* kToolNames[] = {"length", "density", "color", "comb"};
+constexpr const char* kAbsentTools[] = {"cut", "clump"};
 constexpr const char* kAxes[] = {"x", "y", "z"};
 
 // `f` as the double of its shortest decimal (0.06f -> 0.06), so that a written strokes file reads
@@ -30,21 +31,28 @@ double decimal(float f) {
   return std::strtod(std::string(text, r.ptr).c_str(), nullptr);
 }
 
-// Distance from p to the polyline through `points` (a single point: to it).
-float polylineDistance(const std::vector<Vec3>& points, const Vec3& p) {
+// Distance from p to the polyline through `points` (a single point: to it), and the direction
+// (not normalised) of the polyline's nearest segment (0 for a single point).
+float polylineDistance(const std::vector<Vec3>& points, const Vec3& p, Vec3* direction = nullptr) {
   float best = (p - points[0]).squaredNorm();
+  if (direction) direction->setZero();
   for (std::size_t i = 1; i < points.size(); ++i) {
     const Vec3 a = points[i - 1], ab = points[i] - a;
     const float len2 = ab.squaredNorm();
     const float t = len2 > 0.0f ? std::clamp((p - a).dot(ab) / len2, 0.0f, 1.0f) : 0.0f;
-    best = std::min(best, (a + t * ab - p).squaredNorm());
+    const float d2 = (a + t * ab - p).squaredNorm();
+    if (d2 < best || (direction && direction->isZero() && d2 == best)) {
+      best = d2;
+      if (direction && len2 > 0.0f) *direction = ab;
+    }
   }
   return std::sqrt(best);
 }
 
-// One pass of `s` with its points as given.
+// One pass of `s` with its points as given (`restNormals`: the skin's rest vertex normals, for the
+// comb).
 void applyStroke(const skin::SkinMesh& skin, const GroomStroke& s, const std::vector<Vec3>& points,
-                 VertexGroom& g) {
+                 const std::vector<Vec3>& restNormals, VertexGroom& g) {
   Eigen::AlignedBox3f box;
   for (const Vec3& p : points) box.extend(p);
   box.min().array() -= s.radius;
@@ -53,7 +61,8 @@ void applyStroke(const skin::SkinMesh& skin, const GroomStroke& s, const std::ve
   parallelFor(skin.numVertices(), 1024, [&](std::int64_t v) {
     const Vec3 p = Eigen::Map<const Vec3>(rest + 3 * v);
     if (!box.contains(p)) return;
-    const float w = brushFalloff(polylineDistance(points, p), s.radius);
+    Vec3 along;
+    const float w = brushFalloff(polylineDistance(points, p, &along), s.radius);
     if (w <= 0.0f) return;
     const auto i = static_cast<std::size_t>(v);
     switch (s.tool) {
@@ -67,6 +76,15 @@ void applyStroke(const skin::SkinMesh& skin, const GroomStroke& s, const std::ve
       case BrushTool::Color:
         g.tint[i] += (w * s.strength) * (s.color - g.tint[i]);
         break;
+      case BrushTool::Comb: {
+        // The stroke's direction in the skin's tangent plane at the vertex; a convex step toward
+        // it keeps |comb| <= 1.
+        const Vec3& n = restNormals[i];
+        const Vec3 t = along - along.dot(n) * n;
+        const float len = t.norm();
+        if (len > 1e-12f) g.comb[i] += (w * s.strength) * (t / len - g.comb[i]);
+        break;
+      }
     }
   });
 }
@@ -90,8 +108,8 @@ std::vector<GroomStroke> strokesFrom(const JsonReader& root) {
       if (std::find(std::begin(kAbsentTools), std::end(kAbsentTools), tool) !=
           std::end(kAbsentTools))
         j.at("tool").fail(str("the '", tool, "' brush is not available yet (accepted: length, ",
-                              "density, color)"));
-      j.at("tool").fail(str("unknown brush '", tool, "' (accepted: length, density, color)"));
+                              "density, color, comb)"));
+      j.at("tool").fail(str("unknown brush '", tool, "' (accepted: length, density, color, comb)"));
     }
     s.tool = static_cast<BrushTool>(known - std::begin(kToolNames));
     const JsonReader points = j.at("points");
@@ -112,6 +130,13 @@ std::vector<GroomStroke> strokesFrom(const JsonReader& root) {
         s.strength =
             static_cast<float>(j.number("strength", 0.0, static_cast<double>(kMaxGroomDensity)));
         break;
+      case BrushTool::Comb: {
+        s.strength = static_cast<float>(j.number("strength", 1.0, 0.0, 1.0));
+        bool moves = false;
+        for (const Vec3& p : s.points) moves = moves || p != s.points[0];
+        if (!moves) points.fail("a comb stroke needs at least two distinct points (its direction)");
+        break;
+      }
       case BrushTool::Color: {
         s.strength = static_cast<float>(j.number("strength", 1.0, 0.0, 1.0));
         s.color = j.vec3("color");
@@ -178,16 +203,24 @@ std::string groomStrokesJson(const std::vector<GroomStroke>& strokes) {
 void applyGroomStrokes(const skin::SkinMesh& skin, const std::vector<GroomStroke>& strokes,
                        VertexGroom& g) {
   const auto n = static_cast<std::size_t>(skin.numVertices());
+  std::vector<Vec3> restNormals;
+  for (const GroomStroke& s : strokes)
+    if (s.tool == BrushTool::Comb && restNormals.empty()) {
+      skin::DeformedSkin rest;
+      skin::restSkin(skin, rest);
+      restNormals = std::move(rest.normals);
+    }
   for (const GroomStroke& s : strokes) {
     if (s.tool == BrushTool::Length && g.length.empty())
       g.length.assign(skin.furLengths(), skin.furLengths() + n);
     if (s.tool == BrushTool::Density && g.density.empty()) g.density.assign(n, 1.0f);
     if (s.tool == BrushTool::Color && g.tint.empty()) g.tint.assign(n, Vec3::Ones());
-    applyStroke(skin, s, s.points, g);
+    if (s.tool == BrushTool::Comb && g.comb.empty()) g.comb.assign(n, Vec3::Zero());
+    applyStroke(skin, s, s.points, restNormals, g);
     if (s.mirrorAxis >= 0) {
       std::vector<Vec3> mirrored = s.points;
       for (Vec3& p : mirrored) p[s.mirrorAxis] = -p[s.mirrorAxis];
-      applyStroke(skin, s, mirrored, g);
+      applyStroke(skin, s, mirrored, restNormals, g);
     }
   }
 }

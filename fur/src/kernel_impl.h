@@ -163,6 +163,20 @@ void runCoatRange(const CoatKernelArgs& a, std::int64_t begin, std::int64_t end)
         for (int l = 0; l < kFrameLanes; ++l) s[l] = a.lengthScale[roots[k * kFrameLanes + l]];
         inputs[k].length = inputs[k].length * B::loadFrame(s);
       }
+    // A groom's comb: each hair's first triangle edge and unpacked comb (interpolateRoot's).
+    if (a.comb)
+      for (int k = 0; k < frameBlocks; ++k) {
+        float cols[5][kFrameLanes];
+        for (int l = 0; l < kFrameLanes; ++l) {
+          const float* v[3];
+          triangleRecords(a, tris[k * kFrameLanes + l], v);
+          for (int x = 0; x < 3; ++x) cols[x][l] = v[1][x] - v[0][x];
+          unpackComb(a.comb[roots[k * kFrameLanes + l]], cols[3][l], cols[4][l]);
+        }
+        inputs[k].combEdge = {B::loadFrame(cols[0]), B::loadFrame(cols[1]), B::loadFrame(cols[2])};
+        inputs[k].combX = B::loadFrame(cols[3]);
+        inputs[k].combY = B::loadFrame(cols[4]);
+      }
     // 2. Frames, 2b. dynamics, 3. emission (the phases above, through the backend).
     B::frames(shape, inputs, frames, frameBlocks);
     if (a.dynamics) B::dynamics(shape, *a.dynamics, roots, count, frames, frameBlocks);

@@ -10,6 +10,8 @@
 #include <limits>
 
 #include "pelage/fur/hair_layout.h"
+#include "pelage/fur/hair_math.h"
+#include "pelage/skin/deform.h"
 #include "pelage/util/error.h"
 #include "pelage/util/parallel.h"
 #include "pelage/util/random.h"
@@ -171,8 +173,37 @@ bool triangleHasFur(const skin::SkinMesh& skin, const float* len, std::int32_t t
   return len[v[0]] > 0.0f || len[v[1]] > 0.0f || len[v[2]] > 0.0f;
 }
 
+namespace {
+// The comb of a root at barycentric b of triangle t: sum b_i comb_i of its vertices, in the root's
+// rest tangent frame (hair_math.h packComb; the same frame combedDirection builds per frame).
+std::uint32_t restComb(const skin::SkinMesh& skin, const skin::DeformedSkin& rest,
+                       const std::vector<Eigen::Vector3f>& comb, std::int32_t t, const float* b) {
+  const std::int32_t* v = skin.triangles.data() + 3 * static_cast<std::int64_t>(t);
+  Eigen::Vector3f c = Eigen::Vector3f::Zero(), n = Eigen::Vector3f::Zero();
+  for (int k = 0; k < 3; ++k) {
+    const auto vk = static_cast<std::size_t>(v[k]);
+    c += b[k] * comb[vk];
+    n += b[k] * rest.normals[vk];
+  }
+  if (c.squaredNorm() == 0.0f || n.squaredNorm() <= 1e-20f) return 0;
+  n.normalize();
+  const Eigen::Vector3f e = rest.positions[static_cast<std::size_t>(v[1])] -
+                            rest.positions[static_cast<std::size_t>(v[0])];
+  const Eigen::Vector3f tangent = e - e.dot(n) * n;
+  if (tangent.squaredNorm() <= 1e-20f) return 0;
+  const Eigen::Vector3f u = tangent.normalized(), w = n.cross(u);
+  return packComb(c.dot(u), c.dot(w));
+}
+}  // namespace
+
 FurRoots growRoots(const skin::SkinMesh& skin, const FurParams& params, const Groom& groom) {
   const std::int32_t nT = skin.numTriangles();
+  PELAGE_CHECK(groom.vertex.comb.empty() ||
+                   groom.vertex.comb.size() == static_cast<std::size_t>(skin.numVertices()),
+               "groom comb has ", groom.vertex.comb.size(), " values for ", skin.numVertices(),
+               " vertices");
+  skin::DeformedSkin rest;  // rest normals, for the comb's tangent frames
+  if (!groom.vertex.comb.empty()) skin::restSkin(skin, rest);
   const std::vector<double> area = triangleAreas(skin);
   PELAGE_CHECK(groom.vertex.length.empty() ||
                    groom.vertex.length.size() == static_cast<std::size_t>(skin.numVertices()),
@@ -282,6 +313,7 @@ FurRoots growRoots(const skin::SkinMesh& skin, const FurParams& params, const Gr
       PELAGE_CHECK(skin.hasUv(), "a length map on a skin without texture coordinates");
       cr.lengthScale.resize(n);
     }
+    if (!groom.vertex.comb.empty()) cr.comb.resize(n);
     parallelForChunks(nT, 4096, [&](std::int64_t tb, std::int64_t te) {
       for (std::int64_t t = tb; t < te; ++t) {
         const std::int64_t first = cr.triangleStart[static_cast<std::size_t>(t)];
@@ -302,6 +334,9 @@ FurRoots growRoots(const skin::SkinMesh& skin, const FurParams& params, const Gr
             cr.lengthScale[ks] =
                 groom.length.sample(skin.uvAt(static_cast<std::int32_t>(t), b)).x();
           }
+          if (!cr.comb.empty())
+            cr.comb[ks] = restComb(skin, rest, groom.vertex.comb, static_cast<std::int32_t>(t),
+                                   roots.barycentric.data() + 4 * cr.tableIndex[ks]);
           // Sec. 3.5 hair end randomize: xi uniform in the unit ball (direction uniform on the
           // sphere, radius cbrt(u3)).
           const auto uk = static_cast<std::uint64_t>(k);

@@ -175,7 +175,7 @@ Dynamics dynamicsFrom(const py::object& d) {
 }
 
 fur::VertexGroom vertexGroomFrom(int vertices, const py::object& length, const py::object& density,
-                                 const py::object& tint) {
+                                 const py::object& tint, const py::object& comb) {
   const auto nV = static_cast<py::ssize_t>(vertices);
   const auto column = [&](const py::object& o, const char* name) {
     std::vector<float> out;
@@ -187,16 +187,21 @@ fur::VertexGroom vertexGroomFrom(int vertices, const py::object& length, const p
     out.assign(a.data(), a.data() + nV);
     return out;
   };
+  const auto triples = [&](const py::object& o, const char* name, const char* what) {
+    std::vector<Eigen::Vector3f> out;
+    if (o.is_none()) return out;
+    const auto a = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(o);
+    if (!a || a.ndim() != 2 || a.shape(0) != nV || a.shape(1) != 3)
+      throw InputError(std::string(name), str("must be an array of shape (", nV, ", 3), one ", what,
+                                              " per skin vertex"));
+    for (py::ssize_t v = 0; v < nV; ++v) out.emplace_back(a.at(v, 0), a.at(v, 1), a.at(v, 2));
+    return out;
+  };
   fur::VertexGroom g;
   g.length = column(length, "length");
   g.density = column(density, "density");
-  if (!tint.is_none()) {
-    const auto a = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(tint);
-    if (!a || a.ndim() != 2 || a.shape(0) != nV || a.shape(1) != 3)
-      throw InputError("tint",
-                       str("must be an array of shape (", nV, ", 3), one RGB per skin vertex"));
-    for (py::ssize_t v = 0; v < nV; ++v) g.tint.emplace_back(a.at(v, 0), a.at(v, 1), a.at(v, 2));
-  }
+  g.tint = triples(tint, "tint", "RGB");
+  g.comb = triples(comb, "comb", "direction times amount");
   return g;
 }
 
@@ -207,9 +212,12 @@ py::dict groomDict(const fur::VertexGroom& g) {
   if (!g.density.empty())
     d["density"] =
         py::array_t<float>({static_cast<py::ssize_t>(g.density.size())}, g.density.data());
-  if (!g.tint.empty())
-    d["tint"] = py::array_t<float>({static_cast<py::ssize_t>(g.tint.size()), py::ssize_t{3}},
-                                   g.tint.data()->data());
+  const auto triples = [](const std::vector<Eigen::Vector3f>& v) {
+    return py::array_t<float>({static_cast<py::ssize_t>(v.size()), py::ssize_t{3}},
+                              v.data()->data());
+  };
+  if (!g.tint.empty()) d["tint"] = triples(g.tint);
+  if (!g.comb.empty()) d["comb"] = triples(g.comb);
   return d;
 }
 

@@ -100,11 +100,11 @@ struct Dynamics {
 Dynamics dynamicsFrom(const py::object& d);
 
 // numpy arrays (None: absent) as a vertex groom of `vertices` vertices: length and density of shape
-// (vertices,), tint (vertices, 3); InputError naming the keyword for another shape.
+// (vertices,), tint and comb (vertices, 3); InputError naming the keyword for another shape.
 fur::VertexGroom vertexGroomFrom(int vertices, const py::object& length, const py::object& density,
-                                 const py::object& tint);
-// A vertex groom as a dict of numpy arrays, copied ("length", "density", "tint"; absent ones left
-// out).
+                                 const py::object& tint, const py::object& comb);
+// A vertex groom as a dict of numpy arrays, copied ("length", "density", "tint", "comb"; absent
+// ones left out).
 py::dict groomDict(const fur::VertexGroom& g);
 
 // A table as a dict of numpy columns in its order: "frame" and "held" int64, the rest float64, the

@@ -41,9 +41,12 @@ Args:
         [0, 10] (0 grows none), in place of the model's.
     density: None, or shape (vertices,): multiplies the hairs per area [0, 100] (the total kept).
     tint: None, or shape (vertices, 3): multiplies the hairs' linear colour [0, 10].
+    comb: None, or shape (vertices, 3): the combed direction times the comb amount (length at
+        most 1; rest pose, in the skin's tangent plane): the hairs' weightless direction turns
+        toward it by the amount (1: lies along it; gravity still applies), 0: not combed.
     strokes: None, or grooming strokes applied on top of the arrays (those they need and that
-        are absent start from the model's lengths, density 1, tint 1): a strokes file's path,
-        or its JSON as a dict, {"strokes": [{"tool": "length" | "density" | "color",
+        are absent start from the model's lengths, density 1, tint 1, no comb): a strokes file's
+        path, or its JSON as a dict, {"strokes": [{"tool": "length" | "density" | "color" | "comb",
         "points": [[x, y, z], ...] (rest pose, metres), "radius": metres, "strength": s,
         "color": [r, g, b] (color only), "mirror": "x" | "y" | "z"}, ...]}, as `pelage groom`
         reads it (README, "Grooming strokes").

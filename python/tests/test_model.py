@@ -144,7 +144,8 @@ def test_grooming_strokes_equal_the_command_line(tmp_path, cli):
     strokes = {"strokes": [
         {"tool": "length", "points": back, "radius": 0.06, "strength": 1.5},
         {"tool": "color", "points": [dab.tolist()], "radius": 0.05, "strength": 1.0,
-         "color": [0.2, 0.2, 0.2], "mirror": "y"}]}
+         "color": [0.2, 0.2, 0.2], "mirror": "y"},
+        {"tool": "comb", "points": back, "radius": 0.06, "strength": 1.0}]}
     from_python = tmp_path / "python.groom.json"
     fox.write_groom(str(from_python), strokes=strokes)
     # The command line on the same strokes (a file) writes the same bytes.
@@ -169,6 +170,17 @@ def test_grooming_strokes_equal_the_command_line(tmp_path, cli):
         assert inside.sum() >= 3
         assert np.allclose(groom["tint"][inside], 0.2)
     assert np.all(groom["tint"][rest[:, 0] < 0.35] == 1.0)
+    # The comb: unit, toward the tail (-x), on the line; nothing far from it.
+    comb = groom["comb"]
+    assert np.allclose(np.linalg.norm(comb[on_line], axis=1), 1.0, atol=1e-5)
+    assert np.all(comb[on_line][:, 0] < -0.9)
+    assert np.all(comb[far] == 0.0)
+    # Combs from numpy: written and read back bit for bit; longer than 1 is refused by index.
+    combed = tmp_path / "comb.groom.json"
+    fox.write_groom(str(combed), comb=comb)
+    assert np.array_equal(bits(fox.fur(hairs=100, groom=str(combed)).groom["comb"]), bits(comb))
+    with pytest.raises(ValueError, match=r"comb\[0\] has length 1.55.*at most 1"):
+        fox.write_groom(str(tmp_path / "bad.json"), comb=np.full((len(rest), 3), 0.9))
     with pytest.raises(ValueError, match=r"strokes\[0\].radius"):
         fox.write_groom(str(tmp_path / "bad.json"),
                         strokes={"strokes": [{"tool": "length", "points": [[0, 0, 0]],

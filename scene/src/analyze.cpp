@@ -157,7 +157,7 @@ struct Run {
                                             perSegment.begin());
     layout.groups = static_cast<int>(names.size());
     for (int c = 0; c < fur::kCoatCount; ++c)
-      shapes[static_cast<std::size_t>(c)] = fur::makeCoatShape(fur.params, c);
+      shapes[static_cast<std::size_t>(c)] = fur::makeCoatShape(fur.params, fur.roots, c);
     previousEnds.assign(sites.size() * 6, 0.0f);
     stopDirections.assign(sites.size() * 3, 0.0f);
     const auto chunks = static_cast<std::size_t>(

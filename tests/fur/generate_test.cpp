@@ -52,6 +52,80 @@ TEST(Generate, EveryStyleMatchesTheReferenceAndIsDeterministic) {
   test::checkStylesAgainstReference(s, d, 6000, Eigen::Vector3f(0.0f, 0.0f, 0.1f));
 }
 
+TEST(Generate, CombedHairsMatchTheReferenceOnEveryPath) {
+  // A groom's comb (groom.h) on the sphere: at each vertex a tangent direction of its own times an
+  // amount in [0, 1] (every fourth vertex uncombed), so SIMD blocks mix combed, partly combed and
+  // uncombed hairs; every kernel target equals the scalar reference bit for bit.
+  const skin::SkinMesh s = test::makeSphere(0.1f, 24, 48);
+  skin::DeformedSkin d;
+  skin::restSkin(s, d);
+  Groom groom;
+  groom.vertex.comb.resize(static_cast<std::size_t>(s.numVertices()));
+  for (std::size_t v = 0; v < groom.vertex.comb.size(); ++v) {
+    const Eigen::Vector3f& n = d.normals[v];
+    const Eigen::Vector3f any(std::sin(0.7f * static_cast<float>(v)),
+                              std::cos(1.3f * static_cast<float>(v)), 0.5f);
+    const float amount = v % 4 == 0 ? 0.0f : static_cast<float>(v % 7) / 6.0f;
+    groom.vertex.comb[v] = amount * n.cross(any).normalized();
+  }
+  test::checkStylesAgainstReference(s, d, 6000, Eigen::Vector3f(0.0f, 0.0f, 0.1f), groom);
+}
+
+TEST(Generate, ACombLaysHairsAlongItAndLeavesUncombedHairsAsTheyWere) {
+  // A flat grid, normal +Z, no segment direction: uncombed hairs stand straight up. Combed +X with
+  // amount 1 on the right half, the weightless direction is +X; a horizontal hair has cos(theta) =
+  // 0, so gravity leaves it (sec. 3.5) and the line lies along +X. Hairs on triangles whose three
+  // vertices are uncombed are bit-identical to those of the fur without a groom.
+  const skin::SkinMesh s = test::makeGrid(8, 0.01f, 0.01f);
+  FurParams p = test::simpleParams(HairStyle::Line, 4000);
+  Groom groom;
+  groom.vertex.comb.assign(static_cast<std::size_t>(s.numVertices()), Eigen::Vector3f::Zero());
+  for (int v = 0; v < s.numVertices(); ++v)
+    if (s.restPositions()[3 * v] > 0.045f)
+      groom.vertex.comb[static_cast<std::size_t>(v)] = Eigen::Vector3f::UnitX();
+  const test::RestFur plain = test::restFur(s, p);
+  const FurRoots combed = growRoots(s, p, groom);
+  ASSERT_EQ(combed.coats[0].triangle, plain.roots.coats[0].triangle);
+  const FurFrame fa = test::furFrame(s, plain.roots, p, plain.rest);
+  const FurFrame fb = test::furFrame(s, combed, p, plain.rest);
+  const HairBuffers &a = fa.coats[0], &b = fb.coats[0];
+  int along = 0, same = 0;
+  for (std::int64_t h = 0; h < b.drawn; ++h) {
+    const std::int32_t* tv = s.triangles.data() + 3 * combed.coats[0].triangle[h];
+    int combedVertices = 0;
+    for (int k = 0; k < 3; ++k)
+      combedVertices += groom.vertex.comb[static_cast<std::size_t>(tv[k])].x() > 0.0f ? 1 : 0;
+    const Eigen::Vector3f chord = test::point(b, h, 1) - test::point(b, h, 0);
+    if (combedVertices == 3) {
+      EXPECT_GT(chord.x() / chord.norm(), 0.99999f) << "hair " << h;
+      ++along;
+    } else if (combedVertices == 0) {
+      EXPECT_EQ(test::point(b, h, 1), test::point(a, h, 1)) << "hair " << h;
+      ++same;
+    }
+  }
+  EXPECT_GT(along, 1000);
+  EXPECT_GT(same, 1000);
+}
+
+TEST(Generate, PackedCombsRoundTripWithinHalfAStep) {
+  for (const auto& [x, y] : std::vector<std::pair<float, float>>{
+           {0.0f, 0.0f}, {1.0f, 0.0f}, {0.0f, -1.0f}, {0.6f, -0.8f}, {-0.123f, 0.456f}}) {
+    float u = 2.0f, w = 2.0f;
+    unpackComb(packComb(x, y), u, w);
+    EXPECT_NEAR(u, x, 0.5f / 32767.0f);
+    EXPECT_NEAR(w, y, 0.5f / 32767.0f);
+  }
+  float u = 2.0f, w = 2.0f;
+  unpackComb(packComb(0.0f, 0.0f), u, w);
+  EXPECT_EQ(u, 0.0f);  // no comb: exactly 0, so d is kept exactly
+  EXPECT_EQ(w, 0.0f);
+  EXPECT_EQ(packComb(0.0f, 0.0f), 0u);
+  unpackComb(packComb(1.0f, -1.0f), u, w);
+  EXPECT_EQ(u, 1.0f);
+  EXPECT_EQ(w, -1.0f);
+}
+
 TEST(Generate, DegenerateHairPlanesMatchTheReferenceOnEveryPath) {
   // Sec. 3.7 fallbacks inside SIMD blocks: on the left half of a flat grid the vertices have no
   // segment direction, so with no end randomize the hairs stand straight up (d~ = n = U, e = U):

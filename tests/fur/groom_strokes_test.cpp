@@ -99,6 +99,38 @@ TEST(GroomStrokes, AMirroredStrokeAppliesOnBothSidesOfThePlane) {
   EXPECT_EQ(mirrored.length[c], 4.0f * grid().furLengths()[c]);
 }
 
+TEST(GroomStrokes, CombTurnsTowardTheStrokeInTheTangentPlaneAndMirrors) {
+  // A stroke along +X lifted 5 mm off the grid (normal +Z): the comb is the tangential +X, full
+  // under the core, the falloff's share at 1 cm, nothing beyond the radius; a second stroke along
+  // +Y at half strength moves it halfway: (1 - 1/2) X + 1/2 Y.
+  const GroomStroke along =
+      stroke(BrushTool::Comb, {{0.0f, 0.02f, 0.005f}, {0.04f, 0.02f, 0.005f}}, 0.015f, 1.0f);
+  VertexGroom g;
+  applyGroomStrokes(grid(), {along}, g);
+  const auto centre = static_cast<std::size_t>(vertexAt(0.02f, 0.02f));
+  const auto side = static_cast<std::size_t>(vertexAt(0.02f, 0.03f));
+  const auto away = static_cast<std::size_t>(vertexAt(0.02f, 0.04f));
+  EXPECT_EQ(g.comb[centre], Eigen::Vector3f::UnitX());
+  EXPECT_TRUE(g.comb[side].isApprox(brushFalloff(std::hypot(0.01f, 0.005f), 0.015f) *
+                                    Eigen::Vector3f::UnitX()));
+  EXPECT_EQ(g.comb[away], Eigen::Vector3f::Zero());
+  applyGroomStrokes(
+      grid(), {stroke(BrushTool::Comb, {{0.02f, 0.0f, 0.0f}, {0.02f, 0.04f, 0.0f}}, 0.015f, 0.5f)},
+      g);
+  EXPECT_TRUE(g.comb[centre].isApprox(Eigen::Vector3f(0.5f, 0.5f, 0.0f)));
+  // Mirrored across x = 0 (the grid's edge): the mirrored stroke runs along -X over x <= 0, so the
+  // edge column (x = 0, within the core of both) gets X then -X: nothing left.
+  GroomStroke m =
+      stroke(BrushTool::Comb, {{0.005f, 0.02f, 0.0f}, {0.01f, 0.02f, 0.0f}}, 0.02f, 1.0f);
+  VertexGroom once, both;
+  applyGroomStrokes(grid(), {m}, once);
+  m.mirrorAxis = 0;
+  applyGroomStrokes(grid(), {m}, both);
+  const auto edge = static_cast<std::size_t>(vertexAt(0.0f, 0.02f));
+  EXPECT_EQ(once.comb[edge], Eigen::Vector3f::UnitX());
+  EXPECT_EQ(both.comb[edge], -Eigen::Vector3f::UnitX());
+}
+
 TEST(GroomStrokes, JsonRoundTripAndErrorsNameTheField) {
   GroomStroke a = stroke(BrushTool::Length, {{0.1f, -0.2f, 0.3f}, {0.4f, 0.5f, 0.6f}}, 0.06f, 1.5f);
   a.mirrorAxis = 1;
@@ -130,6 +162,10 @@ TEST(GroomStrokes, JsonRoundTripAndErrorsNameTheField) {
   bad(R"({"tool": "length", "points": [[0, 0, 0]], "radius": 1, "strength": 1, "mirror": "w"})",
       {"strokes[0].mirror", "accepted: x, y, z"});
   bad(R"({"tool": "cut", "points": [[0, 0, 0]], "radius": 1})", {"not available yet"});
+  bad(R"({"tool": "comb", "points": [[0, 0, 0], [0, 0, 0]], "radius": 1})",
+      {"strokes[0].points", "two distinct points"});
+  bad(R"({"tool": "comb", "points": [[0, 0, 0], [1, 0, 0]], "radius": 1, "strength": 2})",
+      {"strokes[0].strength"});
   bad(R"({"tool": "smudge", "points": [[0, 0, 0]], "radius": 1})", {"unknown brush 'smudge'"});
   bad(R"({"tool": "length", "points": [[0, 0, 0]], "radius": 1, "strength": 1, "size": 2})",
       {"strokes[0]", "size"});

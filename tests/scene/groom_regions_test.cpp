@@ -201,6 +201,101 @@ TEST(GroomStrokes, FoxLengthStrokeAlongTheBack) {
               ratios.size(), static_cast<double>(median), far);
 }
 
+// Point k of hair h.
+Eigen::Vector3f pointOf(const fur::HairBuffers& b, std::int64_t h, int k) {
+  return Eigen::Map<const Eigen::Vector3f>(b.positions.data() +
+                                           (h * b.layout.pointsPerHair() + k) * 3);
+}
+
+// The grooming issue's comb acceptance on the Fox: a comb stroke along the back from the shoulders
+// to the tail, radius 6 cm, strength 1: at least 80 % of the overcoat hairs rooted within 3 cm of
+// the stroke point along it (tip minus root against the direction of the stroke's nearest
+// segment, at rest); those rooted farther than 15 cm are bit-identical; the roots are the same.
+// The Fox's back hairs already lie toward the tail (the spine's segment directions and gravity),
+// so the same stroke drawn from the tail to the shoulders, against the lay, must turn them.
+TEST(GroomStrokes, FoxCombStrokeAlongTheBackBothWays) {
+  const scene::Model* m = fox();
+  if (!m) GTEST_SKIP() << "shared Fox model absent";
+  std::vector<Eigen::Vector3f> line = {{0.2f, 0, 0.669f},  {0.1f, 0, 0.65f},   {0.0f, 0, 0.643f},
+                                       {-0.1f, 0, 0.649f}, {-0.2f, 0, 0.651f}, {-0.3f, 0, 0.642f},
+                                       {-0.4f, 0, 0.613f}};
+  fur::FurParams p = foxParams();
+  const scene::Fur before = scene::growFur(*m, p, "test");
+  skin::DeformedSkin rest;
+  skin::restSkin(m->skin, rest);
+  fur::FurWorkspace ws;
+  fur::FurFrame a;
+  fur::generateFur(m->skin, before.roots, before.params, rest, fur::FurView{}, ws, a);
+  const fur::HairBuffers& ha = a.coats[0];
+  const int P = ha.layout.pointsPerHair();
+  for (const bool reversed : {false, true}) {
+    SCOPED_TRACE(reversed ? "tail to shoulders" : "shoulders to tail");
+    if (reversed) {
+      std::reverse(line.begin(), line.end());
+      // The README's example strokes file is this stroke.
+      const std::vector<fur::GroomStroke> example =
+          fur::readGroomStrokes(PELAGE_SOURCE_DIR "/docs/examples/fox_comb_forward.json");
+      ASSERT_EQ(example.size(), 1u);
+      EXPECT_EQ(example[0].points, line);
+      EXPECT_EQ(example[0].tool, fur::BrushTool::Comb);
+    }
+    fur::GroomStroke stroke;
+    stroke.tool = fur::BrushTool::Comb;
+    stroke.points = line;
+    stroke.radius = 0.06f;
+    stroke.strength = 1.0f;
+    fur::VertexGroom g = fur::resolveVertexGroom(m->skin, m->body, m->name, p, "test");
+    fur::applyGroomStrokes(m->skin, {stroke}, g);
+    test::TempDir dir;
+    fur::writeGroomFile(dir.file("comb.groom.json"), m->skin, g);
+    fur::FurParams q = p;
+    q.groom = dir.file("comb.groom.json");
+    const scene::Fur after = scene::growFur(*m, q, "test");
+    ASSERT_EQ(after.roots.coats[0].triangle, before.roots.coats[0].triangle);
+    ASSERT_EQ(after.roots.coats[0].tableIndex, before.roots.coats[0].tableIndex);
+    fur::FurFrame b;
+    fur::generateFur(m->skin, after.roots, after.params, rest, fur::FurView{}, ws, b);
+    const fur::HairBuffers& hb = b.coats[0];
+    ASSERT_EQ(ha.drawn, hb.drawn);
+    int near = 0, alongBefore = 0, alongAfter = 0, far = 0;
+    for (std::int64_t h = 0; h < hb.drawn; ++h) {
+      const Eigen::Vector3f r = pointOf(hb, h, 0);
+      float d = 1e9f;
+      Eigen::Vector3f along = Eigen::Vector3f::Zero();
+      for (std::size_t i = 1; i < line.size(); ++i) {
+        const Eigen::Vector3f ab = line[i] - line[i - 1];
+        const float t = std::clamp((r - line[i - 1]).dot(ab) / ab.squaredNorm(), 0.0f, 1.0f);
+        const float di = (line[i - 1] + t * ab - r).norm();
+        if (di < d) d = di, along = ab;
+      }
+      if (d <= 0.03f) {
+        ++near;
+        alongBefore += (pointOf(ha, h, P - 1) - r).dot(along) > 0.0f ? 1 : 0;
+        alongAfter += (pointOf(hb, h, P - 1) - r).dot(along) > 0.0f ? 1 : 0;
+      }
+      if (d > 0.15f) {
+        ++far;
+        const std::size_t n = static_cast<std::size_t>(3 * P), o = static_cast<std::size_t>(h) * n;
+        ASSERT_EQ(0, std::memcmp(ha.positions.data() + o, hb.positions.data() + o, n * 4))
+            << "hair " << h << ", " << d << " m from the stroke";
+        ASSERT_EQ(0, std::memcmp(ha.normals.data() + o, hb.normals.data() + o, n * 4));
+      }
+    }
+    ASSERT_GT(near, 50);
+    EXPECT_GT(far, 10000);
+    const double share = static_cast<double>(alongAfter) / near;
+    EXPECT_GE(share, 0.8);
+    if (reversed) {
+      EXPECT_LT(alongBefore, near / 5) << "the lay runs toward the tail";
+    }
+    std::printf(
+        "comb stroke %s: %d hairs within 3 cm; along the stroke %.1f %% before, %.1f %% "
+        "after; %d hairs beyond 15 cm bit-identical\n",
+        reversed ? "tail to shoulders" : "shoulders to tail", near, 100.0 * alongBefore / near,
+        100.0 * share, far);
+  }
+}
+
 TEST(GroomRegions, ErrorsNameThePresetFileTheRegionAndTheField) {
   const scene::Model* m = fox();
   if (!m) GTEST_SKIP() << "shared Fox model absent";

@@ -1,6 +1,7 @@
 // GPU fur against the CPU fur model: the same roots and deformed skin must give the same drawn
 // hairs, in the same order, with points and shading vectors within 1e-4 relative, for every style,
-// both coats, with culling on and off; and the splitting into bindings must not change anything.
+// both coats, with culling on and off, with a groom's comb on half the body; and the splitting into
+// bindings must not change anything.
 #include "pelage/viewer/gpu_fur.h"
 #include "pelage/viewer/gl_context.h"
 
@@ -15,8 +16,10 @@
 
 #include "gl_fixture.h"
 #include "pelage/fur/preset.h"
+#include "pelage/fur/roots.h"
 #include "pelage/scene/draw_list.h"
 #include "pelage/scene/frame.h"
+#include "pelage/skin/deform.h"
 #include "pelage/viewer/hair_vertex_buffers.h"
 #include "pelage/viewer/renderer.h"
 
@@ -126,7 +129,25 @@ class GpuFurRandom : public test::GlTest {};
 
 TEST_P(GpuFurParity, MatchesTheCpuModel) {
   const scene::Model& model = critter();
-  const scene::Fur fur = scene::growFur(model, paramsFor(GetParam(), 12000));
+  scene::Fur fur = scene::growFur(model, paramsFor(GetParam(), 12000));
+  {
+    // A groom's comb (fur/groom.h) on the front half (x > 0): +X in the tangent plane, amount
+    // 0.8, so the GPU reads packed combs beside uncombed hairs. The roots stay the same.
+    skin::DeformedSkin rest;
+    skin::restSkin(model.skin, rest);
+    fur.groom.vertex.comb.assign(static_cast<std::size_t>(model.skin.numVertices()),
+                                 Eigen::Vector3f::Zero());
+    for (std::size_t v = 0; v < fur.groom.vertex.comb.size(); ++v) {
+      const Eigen::Vector3f& n = rest.normals[v];
+      const Eigen::Vector3f t = Eigen::Vector3f::UnitX() - n.x() * n;
+      if (model.skin.restPositions()[3 * v] > 0.0f && t.norm() > 1e-3f)
+        fur.groom.vertex.comb[v] = 0.8f * t.normalized();
+    }
+    const std::vector<std::int32_t> triangles = fur.roots.coats[0].triangle;
+    fur.roots = fur::growRoots(model.skin, fur.params, fur.groom);
+    ASSERT_EQ(fur.roots.coats[0].triangle, triangles);
+    ASSERT_FALSE(fur.roots.coats[0].comb.empty());
+  }
   ASSERT_GT(fur.roots.coats[0].size(), 5000);
   ASSERT_GT(fur.roots.coats[1].size(), 2500);
   scene::FrameState frame;

@@ -179,15 +179,17 @@ struct GpuFur::Impl {
       const fur::CoatRoots& cr = r.coats[static_cast<std::size_t>(c)];
       Coat& g = coats[static_cast<std::size_t>(c)];
       g.rootCount = cr.size();
-      // Per root (triangle, table index, length-map scale as float bits, 0): one storage block,
-      // as GL guarantees few per compute shader.
+      // Per root (triangle, table index, length-map scale as float bits, packed comb): one
+      // storage block, as GL guarantees few per compute shader.
       const bool hasLengthScale = !cr.lengthScale.empty();
+      const bool hasComb = !cr.comb.empty();
       std::vector<std::int32_t> packed(static_cast<std::size_t>(4 * g.rootCount));
       for (std::int64_t j = 0; j < g.rootCount; ++j) {
         const auto k = static_cast<std::size_t>(j);
         packed[4 * k] = cr.triangle[k];
         packed[4 * k + 1] = cr.tableIndex[k];
         packed[4 * k + 2] = std::bit_cast<std::int32_t>(hasLengthScale ? cr.lengthScale[k] : 1.0f);
+        packed[4 * k + 3] = std::bit_cast<std::int32_t>(hasComb ? cr.comb[k] : 0u);
       }
       g.rootData = makeBuffer(static_cast<GLsizeiptr>(packed.size() * 4), packed.data());
       g.jitter = makeBuffer(static_cast<GLsizeiptr>(cr.jitter.size() * 4), cr.jitter.data());
@@ -270,7 +272,7 @@ void GpuFur::generate(int coat, const fur::HairLayout& layout, bool tangents,
   Impl& m = *impl_;
   PELAGE_CHECK(coat >= 0 && coat < fur::kCoatCount && m.params, "generate before beginFrame");
   Impl::Coat& g = m.coats[static_cast<std::size_t>(coat)];
-  const fur::CoatShape shape = fur::makeCoatShape(*m.params, coat);
+  const fur::CoatShape shape = fur::makeCoatShape(*m.params, *m.roots, coat);
   PELAGE_CHECK(layout == fur::hairLayout(m.params->coats[static_cast<std::size_t>(coat)]),
                "a layout of ", layout.pointsPerHair(), " points for a coat of ", shape.points);
   out.reserve(g.rootCount, layout, m.maxBinding);

@@ -7,7 +7,7 @@ layout(local_size_x = 64) in;
 layout(std430, binding = 1) readonly buffer Triangles { int triangles[]; };          // nT x 3
 layout(std430, binding = 2) readonly buffer TriangleStart { int triangleStart[]; };  // nT + 1
 layout(std430, binding = 3) readonly buffer DrawnStart { int drawnStart[]; };        // nT + 1
-layout(std430, binding = 4) readonly buffer Roots { ivec4 roots[]; };  // window: (triangle, table index, length scale bits, 0)
+layout(std430, binding = 4) readonly buffer Roots { ivec4 roots[]; };  // window: (triangle, table index, length scale bits, packed comb)
 layout(std430, binding = 5) readonly buffer Jitter { vec4 jitter[]; };               // window: (xi, phase)
 layout(std430, binding = 6) readonly buffer Barycentric { vec4 barycentric[]; };     // 2048: (b1, b2, b3, 0)
 layout(std430, binding = 7) readonly buffer Twist { vec2 twist[]; };                 // 2048 x 8: (cos, sin)
@@ -65,7 +65,7 @@ void main() {
                                   vertexArray3(0, v3), lengths[v1], lengths[v2], lengths[v3],
                                   vertexArray3(1, v1), vertexArray3(1, v2), vertexArray3(1, v3),
                                   vertexArray3(2, v1), vertexArray3(2, v2), vertexArray3(2, v3),
-                                  jitter[local], intBitsToFloat(r.z));
+                                  jitter[local], intBitsToFloat(r.z), r.w);
   for (int i = 0; i < POLYLINE_POINTS; ++i) {
     vec2 cs2 = cs.twist != 0 ? twist[r.y * POLYLINE_POINTS + i] : vec2(1.0, 0.0);
     hin.twistCos[i] = cs2.x;

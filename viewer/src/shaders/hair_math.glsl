@@ -55,6 +55,9 @@ struct HairInput {
   float length;
   vec3 xi;
   float phase;
+  vec3 combEdge;  // the groom's comb (cs.comb): the triangle's first edge v2 - v1,
+  float combX;    // and the root's comb in the tangent frame it spans
+  float combY;
   float twistCos[POLYLINE_POINTS];
   float twistSin[POLYLINE_POINTS];
 };
@@ -66,10 +69,11 @@ float barycentricMix(float b1, float b2, float b3, float v1, float v2, float v3)
 
 // Sec. 3.2: one hair's inputs at its root, interpolated from its triangle's three vertices (deformed
 // position p, fur length len, normal n, segment direction sd) with the barycentric entry b, the
-// root's jitter j = (xi, phase) and its length-map scale (hair_math.h: interpolateRoot).
+// root's jitter j = (xi, phase), its length-map scale and its packed comb (hair_math.h:
+// interpolateRoot, unpackComb: two 16-bit signed fractions, x in the low half).
 HairInput interpolateRoot(vec3 b, vec3 p1, vec3 p2, vec3 p3, float len1, float len2, float len3,
                           vec3 n1, vec3 n2, vec3 n3, vec3 sd1, vec3 sd2, vec3 sd3, vec4 j,
-                          float lengthScale) {
+                          float lengthScale, int comb) {
   HairInput hin;
   hin.root = vec3(barycentricMix(b.x, b.y, b.z, p1.x, p2.x, p3.x),
                   barycentricMix(b.x, b.y, b.z, p1.y, p2.y, p3.y),
@@ -83,6 +87,9 @@ HairInput interpolateRoot(vec3 b, vec3 p1, vec3 p2, vec3 p3, float len1, float l
                           barycentricMix(b.x, b.y, b.z, sd1.z, sd2.z, sd3.z));
   hin.xi = j.xyz;
   hin.phase = j.w;
+  hin.combEdge = p2 - p1;
+  hin.combX = float((comb << 16) >> 16) / 32767.0;
+  hin.combY = float(comb >> 16) / 32767.0;
   return hin;
 }
 
@@ -112,6 +119,16 @@ vec3 weightlessDirection(vec3 n, vec3 directionSum, float w) {
   vec3 s = normalizeOr(directionSum, n, 1e-12);
   vec3 blend = n * (1.0 - w) + s * w;
   return hasS ? normalizeOr(blend, n, 1e-12) : n;
+}
+
+// The groom's comb on d (hair_math.h: combedDirection): d' = normalize((1 - a) d + t), t = x u + y v
+// in the root's tangent frame, a = |(x, y)|; d where a = 0.
+vec3 combedDirection(vec3 n, vec3 d, HairInput hin) {
+  vec3 u = normalizeOr(hin.combEdge - n * dot3(hin.combEdge, n), d, 1e-20);
+  vec3 t = u * hin.combX + cross(n, u) * hin.combY;
+  float a2 = hin.combX * hin.combX + hin.combY * hin.combY;
+  vec3 blend = d * (1.0 - sqrt(a2)) + t;
+  return a2 > 0.0 ? normalizeOr(blend, d, 1e-20) : d;
 }
 
 // Sec. 3.5 hair end randomize: d~ = normalize(d + r xi).
@@ -183,6 +200,7 @@ void buildHair(HairInput hin) {
   vec3 root = hin.root;
   vec3 n = skinNormal(hin);
   vec3 d = weightlessDirection(n, hin.directionSum, cs.segmentWeight);
+  if (cs.comb != 0) d = combedDirection(n, d, hin);
   float L = hairLength(hin.length, root);
   vec3 dTilde = perturbedDirection(d, hin.xi);
   vec3 e = droopDirection(dTilde, n);

@@ -95,6 +95,8 @@ struct FurWorkspace {
 
 // The per-coat constants of hair_math.h for coat `coat` of `params`.
 CoatShape makeCoatShape(const FurParams& params, int coat);
+// The same, with what the coat's roots carry (CoatShape::comb: a groom's comb).
+CoatShape makeCoatShape(const FurParams& params, const FurRoots& roots, int coat);
 
 // Fills `table` (2048 x 8 x 2) with the polyline twist (cos, sin) of coat seed `seed` and normal
 // randomize r.

@@ -25,17 +25,24 @@ namespace pelage::fur {
 inline constexpr float kMaxGroomLengthMeters = 10.0f;
 inline constexpr float kMaxGroomDensity = 100.0f;
 inline constexpr float kMaxGroomTint = 10.0f;
+// |comb|^2 at most 1, with room for a float's rounding of a unit vector.
+inline constexpr float kMaxCombLength2 = 1.0f + 1e-5f;
 
 // Per-vertex groom values; each array has one entry per skin vertex, or is empty (neutral).
 //  length: the fur length at the vertex (metres), replacing the skin's (Van Gelder & Wilhelms 1997,
 //    sec. 3.2: a hair's length is interpolated from its triangle's vertex lengths); 0 grows none.
 //  density: multiplies the hairs a triangle gets by the mean of its three vertices' values (>= 0).
 //  tint: multiplies each hair's colour (linear RGB, interpolated at the root).
+//  comb: the combed direction times the comb amount a in [0, 1] (|comb| <= 1), rest pose, in the
+//    skin's tangent plane; a hair's weightless direction d (sec. 3.4) turns toward it:
+//    d' = normalize((1 - a) d + a t), t the comb's direction carried with the skin (roots.h).
+//    Gravity (sec. 3.5) still applies. 0: not combed (d exactly).
 struct VertexGroom {
   std::vector<float> length;
   std::vector<float> density;
   std::vector<Eigen::Vector3f> tint;
-  bool empty() const { return length.empty() && density.empty() && tint.empty(); }
+  std::vector<Eigen::Vector3f> comb;
+  bool empty() const { return length.empty() && density.empty() && tint.empty() && comb.empty(); }
 };
 
 // The groom of one fur: its maps, loaded (empty textures where the preset names none), and its

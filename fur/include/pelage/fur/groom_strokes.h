@@ -11,10 +11,15 @@
 //           as long again);
 //  density: the density scale painted toward `strength`, [0, 100]: d + w (strength - d);
 //  color:   the tint painted toward `color` (linear RGB multipliers, [0, 10] each) with opacity
-//           `strength` [0, 1]: t + w strength (color - t).
+//           `strength` [0, 1]: t + w strength (color - t);
+//  comb:    the comb (groom.h) moved toward the stroke's direction u (its nearest segment's,
+//           projected on the skin's tangent plane at the vertex, unit) by `strength` [0, 1]:
+//           c + w strength (u - c); strength 1 under the brush's core lays the hairs along the
+//           stroke (gravity still applies). Needs two distinct points.
 // "mirror": "x", "y" or "z" applies the stroke a second time with that coordinate negated (the
-// creature's symmetry plane through the origin). Strokes apply in list order. The comb, cut and
-// clump brushes are not there yet: a stroke with one of them is refused by name.
+// creature's symmetry plane through the origin; the mirrored comb runs along the mirrored stroke).
+// Strokes apply in list order. The cut and clump brushes are not there yet: a stroke with one of
+// them is refused by name.
 #pragma once
 
 #include <Eigen/Core>
@@ -28,7 +33,7 @@
 
 namespace pelage::fur {
 
-enum class BrushTool { Length, Density, Color };
+enum class BrushTool { Length, Density, Color, Comb };
 
 struct GroomStroke {
   BrushTool tool = BrushTool::Length;
@@ -43,7 +48,7 @@ inline constexpr std::size_t kMaxGroomStrokes = 100000;
 inline constexpr std::size_t kMaxStrokePoints = 100000;
 inline constexpr float kMaxBrushRadiusMeters = 10.0f;
 
-// "length", "density", "color".
+// "length", "density", "color", "comb".
 const char* brushToolName(BrushTool tool);
 
 // Parses a strokes file's text from `source`; InputError naming the source, the field
@@ -59,7 +64,7 @@ std::string groomStrokesJson(const std::vector<GroomStroke>& strokes);
 float brushFalloff(float distance, float radius);
 
 // Applies `strokes` in order to `groom` on `skin` (rest positions). Arrays the strokes need and
-// `groom` lacks start from the skin's fur lengths, density 1, tint 1.
+// `groom` lacks start from the skin's fur lengths, density 1, tint 1, comb 0.
 void applyGroomStrokes(const skin::SkinMesh& skin, const std::vector<GroomStroke>& strokes,
                        VertexGroom& groom);
 

@@ -152,6 +152,7 @@ inline constexpr int kMaxTubeSides = 32;    // M
 //  lengthMul: global length scale * coat length factor; segmentWeight w (sec. 3.4);
 //  endRandomize r, floppiness f (sec. 3.5); up U, fallbackTangent (unit, perpendicular to U);
 //  twist: polyline normal randomize > 0 (twist table in use);
+//  comb: the coat's roots carry a groom's comb (CoatRoots::comb; combedDirection);
 //  region*: the length region (sec. 3.2), tested at the root;
 //  poly*: the polyline template (sec. 3.7): P(t_i) = R + a_i (W - R) + b_i (E - R), t_i = i / 7,
 //    a(t) = 2 lambda t (1 - t), b(t) = t^2, lambda = 0.5; segment i (ending at i) has direction
@@ -168,6 +169,7 @@ inline constexpr int kMaxTubeSides = 32;    // M
   SCALAR(std::int32_t, int, tubeSides)                                  \
   SCALAR(std::int32_t, int, twist)                                      \
   SCALAR(std::int32_t, int, curl)                                       \
+  SCALAR(std::int32_t, int, comb)                                       \
   SCALAR(RegionShape, int, regionShape)                                 \
   SCALAR(float, float, lengthMul)                                       \
   SCALAR(float, float, segmentWeight)                                   \
@@ -231,6 +233,10 @@ struct HairInput {
   T length;              // b1 len1 + b2 len2 + b3 len3 (m, before scaling)
   Vec3<T> xi;            // unit-ball jitter of the weightless end (per root)
   T phase;               // helix phase in turns (per root)
+  // The groom's comb (read only when CoatShape::comb): the deformed triangle's first edge
+  // v2 - v1, and the root's comb in the tangent frame it spans (unpackComb).
+  Vec3<T> combEdge;
+  T combX, combY;
 };
 
 // The polyline normal twist of one hair (sec. 3.7), per point: cos and sin of the random angle.
@@ -264,13 +270,31 @@ inline T barycentricMix(const T& b1, const T& b2, const T& b3, const T& v1, cons
 // 0 (what the kernels and the GPU read per skin vertex).
 inline constexpr int kVertexRecordFloats = 12;
 
+// A root's comb (CoatRoots::comb): its direction times its amount a <= 1, as coordinates (x, y) in
+// the root's tangent frame u = normalize(e - (e.n) n), v = n x u (e the triangle's first edge v2 -
+// v1, n the interpolated skin normal), each a 16-bit signed fraction (x in the low half):
+// (round(32767 x), round(32767 y)). The frame moves with the skin, so the comb does.
+inline std::uint32_t packComb(float x, float y) {
+  const auto q = [](float f) {
+    const float c = f < -1.0f ? -1.0f : (f > 1.0f ? 1.0f : f);
+    return static_cast<std::uint32_t>(static_cast<std::uint16_t>(
+        static_cast<std::int16_t>(std::lround(static_cast<double>(c) * 32767.0))));
+  };
+  return q(x) | (q(y) << 16);
+}
+inline void unpackComb(std::uint32_t packed, float& x, float& y) {
+  x = static_cast<float>(static_cast<std::int16_t>(packed & 0xffffu)) / 32767.0f;
+  y = static_cast<float>(static_cast<std::int16_t>(packed >> 16)) / 32767.0f;
+}
+
 // Sec. 3.2: one hair's inputs at its root, interpolated from its triangle's three vertex records
 // (kVertexRecordFloats each) with the barycentric entry b = (b1, b2, b3), and the root's jitter
 // j = (xi x, y, z, helix phase); a length map's value at the root multiplies the interpolated
-// length (1 without one: x * 1 = x exactly). The scalar form of every kernel's gather (and of the
-// GPU's interpolateRoot in hair_math.glsl).
+// length (1 without one: x * 1 = x exactly); `comb` is the root's packed comb (0: none). The scalar
+// form of every kernel's gather (and of the GPU's interpolateRoot in hair_math.glsl).
 inline HairInput<float> interpolateRoot(const float* b, const float* v1, const float* v2,
-                                        const float* v3, const float* j, float lengthScale = 1.0f) {
+                                        const float* v3, const float* j, float lengthScale = 1.0f,
+                                        std::uint32_t comb = 0) {
   const auto mix = [&](int k) { return barycentricMix(b[0], b[1], b[2], v1[k], v2[k], v3[k]); };
   HairInput<float> in{};
   in.root = {mix(0), mix(1), mix(2)};
@@ -279,6 +303,8 @@ inline HairInput<float> interpolateRoot(const float* b, const float* v1, const f
   in.directionSum = {mix(8), mix(9), mix(10)};
   in.xi = {j[0], j[1], j[2]};
   in.phase = j[3];
+  in.combEdge = {v2[0] - v1[0], v2[1] - v1[1], v2[2] - v1[2]};
+  unpackComb(comb, in.combX, in.combY);
   return in;
 }
 
@@ -314,6 +340,19 @@ inline Vec3<T> weightlessDirection(const Vec3<T>& n, const Vec3<T>& directionSum
   const Vec3<T> s = normalizeOr(directionSum, n, 1e-12f);
   const Vec3<T> blend = n * T(1.0f - w) + s * T(w);
   return pick(hasS, normalizeOr(blend, n, 1e-12f), n);
+}
+
+// The groom's comb (groom.h) on the weightless direction d of sec. 3.4: the comb t = x u + y v in
+// the root's tangent frame (packComb), of length a = |(x, y)| <= 1, gives d' = normalize((1 - a) d
+// + t): along the comb for a = 1, d exactly for a = 0. Gravity (sec. 3.5) then bends d' as it
+// would d.
+template <class T>
+inline Vec3<T> combedDirection(const Vec3<T>& n, const Vec3<T>& d, const HairInput<T>& in) {
+  const Vec3<T> u = normalizeOr(in.combEdge - n * dot(in.combEdge, n), d, 1e-20f);
+  const Vec3<T> t = u * in.combX + cross(n, u) * in.combY;
+  const T a2 = in.combX * in.combX + in.combY * in.combY;
+  const Vec3<T> blend = d * (T(1.0f) - sqrtOf(a2)) + t;
+  return pick(greater(a2, T(0.0f)), normalizeOr(blend, d, 1e-20f), d);
 }
 
 // Sec. 3.5 "hair end randomize": the weightless ending point W = h + L d moves to W' = W + r L xi;
@@ -425,7 +464,8 @@ template <class T>
 inline void hairFrame(const CoatShape& c, const HairInput<T>& in, HairFrame<T>& f) {
   f.root = in.root;
   f.normal = skinNormal(c, in);
-  const Vec3<T> d = weightlessDirection(f.normal, in.directionSum, c.segmentWeight);
+  Vec3<T> d = weightlessDirection(f.normal, in.directionSum, c.segmentWeight);
+  if (c.comb) d = combedDirection(f.normal, d, in);
   f.length = hairLength(c, in.length, in.root);
   f.dTilde = perturbedDirection(c, d, in.xi);
   f.e = droopDirection(c, f.dTilde, f.normal);

@@ -35,6 +35,9 @@ struct CoatRoots {
   // nRoots: the length map's value at the root (multiplies its interpolated length, sec. 3.2);
   // empty without a length map.
   std::vector<float> lengthScale;
+  // nRoots: the groom's comb at the root (groom.h), interpolated from its triangle's vertices at
+  // rest and packed in the root's tangent frame (hair_math.h packComb); empty without a comb.
+  std::vector<std::uint32_t> comb;
   double expectedHairs = 0.0;  // N_coat, before random rounding
   std::int64_t size() const { return static_cast<std::int64_t>(triangle.size()); }
 };

@@ -225,7 +225,12 @@ std::string strokesExample() {
   fur::GroomStroke d = a;
   d.tool = fur::BrushTool::Comb;
   d.strength = 0.75f;
-  return fur::groomStrokesJson({a, b, c, d});
+  fur::GroomStroke e = b;
+  e.tool = fur::BrushTool::Cut;
+  e.strength = 0.8f;
+  e.cutLength = 0.004f;
+  e.mirrorAxis = 0;
+  return fur::groomStrokesJson({a, b, c, d, e});
 }
 
 std::string meshInput(std::string_view extension, std::string_view fileBytes) {

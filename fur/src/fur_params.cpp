@@ -42,6 +42,9 @@ void checkCoat(const std::string& source, const std::string& name, const CoatPar
   checkRange(source, name + ".width.tip", c.width.tipMm, 0.0, 20.0);
   checkRange(source, name + ".curl.radius", c.curlRadius, 0.0, 0.5);
   checkRange(source, name + ".curl.turns", c.curlTurns, 0.0, 20.0);
+  checkRange(source, name + ".frizz.amplitude", c.frizz.amplitudeMm, 0.0, 100.0);
+  checkRange(source, name + ".frizz.frequency", c.frizz.frequency, 0.1, 64.0);
+  checkRange(source, name + ".frizz.tipWeight", c.frizz.tipWeight, 1.0, 8.0);
   checkColor(source, name + ".ambient", c.material.ambient);
   checkColor(source, name + ".diffuse", c.material.diffuse);
   checkColor(source, name + ".specular", c.material.specular);

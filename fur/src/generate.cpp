@@ -1,6 +1,7 @@
 #include "pelage/fur/generate.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstring>
 
@@ -35,6 +36,8 @@ void FloatBuffer::resize(std::size_t n) {
 CoatShape makeCoatShape(const FurParams& params, const FurRoots& roots, int coat) {
   CoatShape c = makeCoatShape(params, coat);
   c.comb = roots.coats[static_cast<std::size_t>(coat)].comb.empty() ? 0 : 1;
+  const std::uint64_t seed = coatSeed(roots.seed, coat);
+  c.frizzSeed = std::bit_cast<std::int32_t>(static_cast<std::uint32_t>(seed ^ (seed >> 32)));
   return c;
 }
 
@@ -109,6 +112,22 @@ CoatShape makeCoatShape(const FurParams& params, int coat) {
   c.curveC2[K - 1] = 1.0f;
   const int M = std::clamp(cp.tubeSides, 3, kMaxTubeSides);
   c.tubeSides = M;
+  // Frizz (fur_params.h): per strand point, the weight amplitude t^tipWeight, the lattice cell and
+  // the smoothstep blend of t * frequency.
+  if (cp.frizz.amplitudeMm > 0.0f) {
+    const HairLayout layout = hairLayout(cp);
+    c.frizzRing = layout.ringSides;
+    c.frizz = layout.strandPoints;
+    for (int k = 0; k < c.frizz; ++k) {
+      const double t = k / double(c.frizz - 1);
+      const double x = t * static_cast<double>(cp.frizz.frequency);
+      const double cell = std::floor(x), f = x - cell;
+      c.frizzWeight[k] = static_cast<float>(1e-3 * static_cast<double>(cp.frizz.amplitudeMm) *
+                                            std::pow(t, static_cast<double>(cp.frizz.tipWeight)));
+      c.frizzCell[k] = static_cast<float>(cell);
+      c.frizzBlend[k] = static_cast<float>(f * f * (3.0 - 2.0 * f));
+    }
+  }
   for (int j = 0; j < M; ++j) {
     c.ringCos[j] = static_cast<float>(std::cos(2 * kPi * j / M));
     c.ringSin[j] = static_cast<float>(std::sin(2 * kPi * j / M));
@@ -268,10 +287,17 @@ void detail::generateFurWithDynamics(
     const auto aligned = [](const float* p) {
       return reinterpret_cast<std::uintptr_t>(p) % 64 == 0;
     };
-    a.streamStores = emit && (shape.points % 4 == 0 || shape.style == HairStyle::Line) &&
+    // Not with frizz: addFrizz reads the points back at once.
+    a.streamStores = emit && !shape.frizz &&
+                     (shape.points % 4 == 0 || shape.style == HairStyle::Line) &&
                      bytes > kStreamStoreBytes && aligned(a.positions) && aligned(a.normals);
-    parallelForChunks(drawn, kHairsPerTask,
-                      [&](std::int64_t b, std::int64_t e) { detail::runCoatRange(a, b, e); });
+    parallelForChunks(drawn, kHairsPerTask, [&](std::int64_t b, std::int64_t e) {
+      detail::runCoatRange(a, b, e);
+      if (emit && shape.frizz)
+        for (std::int64_t h = b; h < e; ++h)
+          addFrizz(shape, static_cast<std::uint32_t>(a.hairIds[h]),
+                   a.positions + h * shape.points * 3);
+    });
   }
 }
 
@@ -336,6 +362,7 @@ void referenceHair(const skin::SkinMesh& skin, const FurRoots& roots, const FurP
   normals.assign(static_cast<std::size_t>(3 * shape.points), 0.0f);
   VectorSink sink{positions, normals};
   buildHair(shape, in, twist, sink);
+  if (shape.frizz) addFrizz(shape, static_cast<std::uint32_t>(rootIndex), positions.data());
 }
 
 }  // namespace pelage::fur

@@ -19,8 +19,8 @@ namespace {
 
 using Vec3 = Eigen::Vector3f;
 
-constexpr const char* kToolNames[] = {"length", "density", "color", "comb"};
-constexpr const char* kAbsentTools[] = {"cut", "clump"};
+constexpr const char* kToolNames[] = {"length", "density", "color", "comb", "cut"};
+constexpr const char* kAbsentTools[] = {"clump"};
 constexpr const char* kAxes[] = {"x", "y", "z"};
 
 // `f` as the double of its shortest decimal (0.06f -> 0.06), so that a written strokes file reads
@@ -85,6 +85,11 @@ void applyStroke(const skin::SkinMesh& skin, const GroomStroke& s, const std::ve
         if (len > 1e-12f) g.comb[i] += (w * s.strength) * (t / len - g.comb[i]);
         break;
       }
+      case BrushTool::Cut:
+        // std::lerp: exactly the cut length under the brush's core at strength 1, and exactly
+        // the length where it is already shorter.
+        g.length[i] = std::lerp(g.length[i], std::min(g.length[i], s.cutLength), w * s.strength);
+        break;
     }
   });
 }
@@ -100,7 +105,7 @@ std::vector<GroomStroke> strokesFrom(const JsonReader& root) {
   for (std::size_t k = 0; k < list.size(); ++k) {
     const JsonReader j = list.at(k);
     if (!j.isObject()) j.fail("expected a stroke object");
-    j.rejectUnknown({"tool", "points", "radius", "strength", "color", "mirror"});
+    j.rejectUnknown({"tool", "points", "radius", "strength", "color", "length", "mirror"});
     GroomStroke& s = strokes[k];
     const std::string tool = j.string("tool");
     const auto known = std::find(std::begin(kToolNames), std::end(kToolNames), tool);
@@ -108,8 +113,9 @@ std::vector<GroomStroke> strokesFrom(const JsonReader& root) {
       if (std::find(std::begin(kAbsentTools), std::end(kAbsentTools), tool) !=
           std::end(kAbsentTools))
         j.at("tool").fail(str("the '", tool, "' brush is not available yet (accepted: length, ",
-                              "density, color, comb)"));
-      j.at("tool").fail(str("unknown brush '", tool, "' (accepted: length, density, color, comb)"));
+                              "density, color, comb, cut)"));
+      j.at("tool").fail(
+          str("unknown brush '", tool, "' (accepted: length, density, color, comb, cut)"));
     }
     s.tool = static_cast<BrushTool>(known - std::begin(kToolNames));
     const JsonReader points = j.at("points");
@@ -137,6 +143,11 @@ std::vector<GroomStroke> strokesFrom(const JsonReader& root) {
         if (!moves) points.fail("a comb stroke needs at least two distinct points (its direction)");
         break;
       }
+      case BrushTool::Cut:
+        s.strength = static_cast<float>(j.number("strength", 1.0, 0.0, 1.0));
+        s.cutLength =
+            static_cast<float>(j.number("length", 0.0, static_cast<double>(kMaxGroomLengthMeters)));
+        break;
       case BrushTool::Color: {
         s.strength = static_cast<float>(j.number("strength", 1.0, 0.0, 1.0));
         s.color = j.vec3("color");
@@ -148,6 +159,8 @@ std::vector<GroomStroke> strokesFrom(const JsonReader& root) {
     }
     if (s.tool != BrushTool::Color && j.has("color"))
       j.at("color").fail(str("only the color brush takes a colour (this is ", tool, ")"));
+    if (s.tool != BrushTool::Cut && j.has("length"))
+      j.at("length").fail(str("only the cut brush takes a length (this is ", tool, ")"));
     if (j.has("mirror")) {
       const std::string axis = j.string("mirror");
       const auto a = std::find(std::begin(kAxes), std::end(kAxes), axis);
@@ -194,6 +207,7 @@ std::string groomStrokesJson(const std::vector<GroomStroke>& strokes) {
     j["strength"] = decimal(s.strength);
     if (s.tool == BrushTool::Color)
       j["color"] = {decimal(s.color.x()), decimal(s.color.y()), decimal(s.color.z())};
+    if (s.tool == BrushTool::Cut) j["length"] = decimal(s.cutLength);
     if (s.mirrorAxis >= 0) j["mirror"] = kAxes[s.mirrorAxis];
     list.push_back(j);
   }
@@ -211,7 +225,7 @@ void applyGroomStrokes(const skin::SkinMesh& skin, const std::vector<GroomStroke
       restNormals = std::move(rest.normals);
     }
   for (const GroomStroke& s : strokes) {
-    if (s.tool == BrushTool::Length && g.length.empty())
+    if ((s.tool == BrushTool::Length || s.tool == BrushTool::Cut) && g.length.empty())
       g.length.assign(skin.furLengths(), skin.furLengths() + n);
     if (s.tool == BrushTool::Density && g.density.empty()) g.density.assign(n, 1.0f);
     if (s.tool == BrushTool::Color && g.tint.empty()) g.tint.assign(n, Vec3::Ones());

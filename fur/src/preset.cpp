@@ -54,7 +54,7 @@ CoatColor parseCoatColor(const JsonReader& j, const CoatColor& defaults) {
 CoatParams parseCoat(const JsonReader& j, const CoatParams& defaults) {
   j.rejectUnknown({"style", "stiffness", "normalRandomize", "hairEndRandomize",
                    "segmentDirectionWeight", "relativeLength", "ambient", "diffuse", "specular",
-                   "shininess", "curvePoints", "tubeSides", "width", "tubeRadius", "curl",
+                   "shininess", "curvePoints", "tubeSides", "width", "tubeRadius", "curl", "frizz",
                    "color"});
   CoatParams c = defaults;
   if (j.has("style")) c.style = parseStyle(j.string("style"), j.at("style").where());
@@ -86,6 +86,12 @@ CoatParams parseCoat(const JsonReader& j, const CoatParams& defaults) {
     curl->rejectUnknown({"radius", "turns"});
     c.curlRadius = num(*curl, "radius", c.curlRadius, 0.0, 0.5);
     c.curlTurns = num(*curl, "turns", c.curlTurns, 0.0, 20.0);
+  }
+  if (auto frizz = j.find("frizz")) {
+    frizz->rejectUnknown({"amplitude", "frequency", "tipWeight"});
+    c.frizz.amplitudeMm = num(*frizz, "amplitude", c.frizz.amplitudeMm, 0.0, 100.0);
+    c.frizz.frequency = num(*frizz, "frequency", c.frizz.frequency, 0.1, 64.0);
+    c.frizz.tipWeight = num(*frizz, "tipWeight", c.frizz.tipWeight, 1.0, 8.0);
   }
   if (auto col = j.find("color")) c.color = parseCoatColor(*col, c.color);
   return c;
@@ -183,6 +189,9 @@ nlohmann::json coatJson(const CoatParams& c) {
   j["tubeSides"] = c.tubeSides;
   j["width"] = {{"root", c.width.rootMm}, {"tip", c.width.tipMm}};
   j["curl"] = {{"radius", c.curlRadius}, {"turns", c.curlTurns}};
+  j["frizz"] = {{"amplitude", c.frizz.amplitudeMm},
+                {"frequency", c.frizz.frequency},
+                {"tipWeight", c.frizz.tipWeight}};
   const CoatColor& k = c.color;
   j["color"] = {{"source", colorSourceName(k.source)},
                 {"tint", colorJson(k.tint)},

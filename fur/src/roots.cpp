@@ -175,7 +175,7 @@ bool triangleHasFur(const skin::SkinMesh& skin, const float* len, std::int32_t t
 
 namespace {
 // The comb of a root at barycentric b of triangle t: sum b_i comb_i of its vertices, in the root's
-// rest tangent frame (hair_math.h packComb; the same frame combedDirection builds per frame).
+// rest tangent frame (hair_math.h combFrame, packComb).
 std::uint32_t restComb(const skin::SkinMesh& skin, const skin::DeformedSkin& rest,
                        const std::vector<Eigen::Vector3f>& comb, std::int32_t t, const float* b) {
   const std::int32_t* v = skin.triangles.data() + 3 * static_cast<std::int64_t>(t);
@@ -189,10 +189,10 @@ std::uint32_t restComb(const skin::SkinMesh& skin, const skin::DeformedSkin& res
   n.normalize();
   const Eigen::Vector3f e = rest.positions[static_cast<std::size_t>(v[1])] -
                             rest.positions[static_cast<std::size_t>(v[0])];
-  const Eigen::Vector3f tangent = e - e.dot(n) * n;
-  if (tangent.squaredNorm() <= 1e-20f) return 0;
-  const Eigen::Vector3f u = tangent.normalized(), w = n.cross(u);
-  return packComb(c.dot(u), c.dot(w));
+  const auto vec = [](const Eigen::Vector3f& a) { return Vec3<float>{a.x(), a.y(), a.z()}; };
+  const CombFrame<float> frame = combFrame(vec(n), vec(e), Vec3<float>{0.0f, 0.0f, 0.0f});
+  if (dot(frame.u, frame.u) == 0.0f) return 0;  // no tangent plane direction: no comb
+  return packComb(dot(vec(c), frame.u), dot(vec(c), frame.v));
 }
 }  // namespace
 

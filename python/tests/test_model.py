@@ -145,7 +145,8 @@ def test_grooming_strokes_equal_the_command_line(tmp_path, cli):
         {"tool": "length", "points": back, "radius": 0.06, "strength": 1.5},
         {"tool": "color", "points": [dab.tolist()], "radius": 0.05, "strength": 1.0,
          "color": [0.2, 0.2, 0.2], "mirror": "y"},
-        {"tool": "comb", "points": back, "radius": 0.06, "strength": 1.0}]}
+        {"tool": "comb", "points": back, "radius": 0.06, "strength": 1.0},
+        {"tool": "cut", "points": [dab.tolist()], "radius": 0.05, "length": 0.01, "mirror": "y"}]}
     from_python = tmp_path / "python.groom.json"
     fox.write_groom(str(from_python), strokes=strokes)
     # The command line on the same strokes (a file) writes the same bytes.
@@ -158,6 +159,9 @@ def test_grooming_strokes_equal_the_command_line(tmp_path, cli):
     # Far from the strokes the model's own length (one length everywhere on a glTF creature) and
     # tint 1, bit for bit; within half the radius of the back's line, 1.5 times that length.
     far = (rest[:, 0] > 0.3) | (rest[:, 0] < -0.5)  # the line runs from x = 0.2 to -0.4
+    comb_far = far.copy()
+    for centre in (dab, dab * np.array([1, -1, 1])):  # the cut's dabs
+        far &= np.linalg.norm(rest - centre, axis=1) > 0.05
     model_length = groom["length"][far][0]
     assert np.isclose(model_length, 0.0351, rtol=0.01)
     assert np.all(groom["length"][far] == model_length)
@@ -169,12 +173,15 @@ def test_grooming_strokes_equal_the_command_line(tmp_path, cli):
         inside = np.linalg.norm(rest - centre, axis=1) <= 0.025  # half the radius: full
         assert inside.sum() >= 3
         assert np.allclose(groom["tint"][inside], 0.2)
+        # The cut to 1 cm, exactly under the dab's core (strength 1); it only shortens.
+        assert np.all(groom["length"][inside] == np.float32(0.01))
+    assert np.all(groom["length"] <= np.float32(1.5) * model_length)
     assert np.all(groom["tint"][rest[:, 0] < 0.35] == 1.0)
     # The comb: unit, toward the tail (-x), on the line; nothing far from it.
     comb = groom["comb"]
     assert np.allclose(np.linalg.norm(comb[on_line], axis=1), 1.0, atol=1e-5)
     assert np.all(comb[on_line][:, 0] < -0.9)
-    assert np.all(comb[far] == 0.0)
+    assert np.all(comb[comb_far] == 0.0)
     # Combs from numpy: written and read back bit for bit; longer than 1 is refused by index.
     combed = tmp_path / "comb.groom.json"
     fox.write_groom(str(combed), comb=comb)

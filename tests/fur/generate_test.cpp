@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -106,6 +107,100 @@ TEST(Generate, ACombLaysHairsAlongItAndLeavesUncombedHairsAsTheyWere) {
   }
   EXPECT_GT(along, 1000);
   EXPECT_GT(same, 1000);
+}
+
+TEST(Generate, FrizzMatchesTheReferenceOnEveryPathAndKeepsTheRoots) {
+  // Frizz (fur_params.h Frizz) on the sphere, every style: each kernel target and thread count
+  // equals the scalar reference bit for bit; strand point 0 (every point of a tube's first ring)
+  // is where it is without frizz, and every other point moved by at most amplitude t^w per axis.
+  // Amplitude 0 with other frizz fields set gives today's hairs exactly.
+  const skin::SkinMesh s = test::makeSphere(0.1f, 16, 32);
+  skin::DeformedSkin d;
+  skin::restSkin(s, d);
+  for (HairStyle style :
+       {HairStyle::Line, HairStyle::Polyline, HairStyle::Curve, HairStyle::Tube}) {
+    SCOPED_TRACE(styleName(style));
+    FurParams base = test::simpleParams(style, 2000);
+    base.coats[0].segmentDirectionWeight = 0.4f;
+    FurParams plain = base;
+    plain.coats[0].frizz.frequency = 3.5f;
+    plain.coats[0].frizz.tipWeight = 1.5f;
+    FurParams p = plain;
+    p.coats[0].frizz.amplitudeMm = 1.0f;
+    const FurRoots r = growRoots(s, p);
+    const FurFrame without = test::furFrame(s, r, plain, d);
+    EXPECT_TRUE(test::sameHairs(without, test::furFrame(s, r, base, d)))
+        << "amplitude 0: the hairs of no frizz";
+    setThreadCount(1);
+    const FurFrame one = test::furFrame(s, r, p, d);
+    setThreadCount(2);
+    EXPECT_TRUE(test::sameHairs(one, test::furFrame(s, r, p, d)));
+    setThreadCount(0);
+    const HairBuffers &a = without.coats[0], &b = one.coats[0];
+    const int M = b.layout.ringSides, K = b.layout.strandPoints;
+    std::vector<float> pos, nrm;
+    for (std::int64_t h = 0; h < b.drawn; ++h) {
+      for (int k = 0; k < K; ++k) {
+        const float bound = 1e-3f * std::pow(k / float(K - 1), 1.5f) * 1.0001f + 1e-7f;
+        for (int m = 0; m < M; ++m) {
+          const Eigen::Vector3f moved = test::point(b, h, k * M + m) - test::point(a, h, k * M + m);
+          if (k == 0) {
+            ASSERT_EQ(moved, Eigen::Vector3f::Zero()) << "hair " << h;
+          }
+          ASSERT_LE(moved.cwiseAbs().maxCoeff(), bound) << "hair " << h << " point " << k;
+        }
+      }
+      if (h % 3 != 0) continue;
+      referenceHair(s, r, p, d, 0, h, pos, nrm);
+      const std::size_t n = static_cast<std::size_t>(b.layout.pointsPerHair()) * 3;
+      ASSERT_EQ(0, std::memcmp(pos.data(), b.positions.data() + static_cast<std::size_t>(h) * n,
+                               n * sizeof(float)))
+          << "hair " << h;
+    }
+    for (const std::string& target : kernelTargets()) {
+      ASSERT_TRUE(setKernelTarget(target));
+      EXPECT_TRUE(test::sameHairs(one, test::furFrame(s, r, p, d))) << target;
+    }
+    setKernelTarget("auto");
+  }
+}
+
+TEST(Generate, FrizzAtTheTipIsUniformNoiseOfTheAmplitude) {
+  // Lines (two points): the tip's offset is amplitude g, g the lattice vector at t f = 4 exactly
+  // (blend 0), uniform in [-1, 1)^3 per hair: mean 0 and variance amplitude^2 / 3 per axis, axes
+  // uncorrelated, a flat histogram within [-1, 1] (n = 20,000 hairs; bounds at 5 standard errors).
+  const skin::SkinMesh s = test::makeGrid(16, 0.01f, 0.01f);
+  FurParams plain = test::simpleParams(HairStyle::Line, 20000);
+  FurParams p = plain;
+  p.coats[0].frizz = {.amplitudeMm = 2.0f, .frequency = 4.0f, .tipWeight = 3.0f};
+  const test::RestFur rf = test::restFur(s, p);
+  const FurFrame a = test::furFrame(s, rf.roots, plain, rf.rest);
+  const FurFrame b = test::furFrame(s, rf.roots, p, rf.rest);
+  const std::int64_t n = b.coats[0].drawn;
+  ASSERT_GT(n, 19000);
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero(), sq = Eigen::Vector3d::Zero();
+  double xy = 0.0, largest = 0.0;
+  std::array<int, 10> bins{};  // the x offset's histogram over [-1, 1)
+  for (std::int64_t h = 0; h < n; ++h) {
+    const Eigen::Vector3d o =
+        ((test::point(b.coats[0], h, 1) - test::point(a.coats[0], h, 1)) / 2e-3f).cast<double>();
+    sum += o;
+    sq += o.cwiseProduct(o);
+    xy += o.x() * o.y();
+    largest = std::max(largest, o.cwiseAbs().maxCoeff());
+    ++bins[static_cast<std::size_t>(std::clamp(static_cast<int>((o.x() + 1.0) * 5.0), 0, 9))];
+  }
+  const double N = static_cast<double>(n);
+  // Within the amplitude (up to float rounding of the point), and reaching it.
+  EXPECT_LE(largest, 1.0 + 1e-3);
+  EXPECT_GT(largest, 0.99);
+  for (int bin : bins) EXPECT_NEAR(bin / N, 0.1, 5.0 * std::sqrt(0.09 / N));
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_NEAR(sum[k] / N, 0.0, 5.0 * std::sqrt(1.0 / 3.0 / N)) << "axis " << k;
+    // Var of U^2 for U uniform on [-1, 1]: 1/5 - 1/9 = 4/45.
+    EXPECT_NEAR(sq[k] / N, 1.0 / 3.0, 5.0 * std::sqrt(4.0 / 45.0 / N)) << "axis " << k;
+  }
+  EXPECT_NEAR(xy / N, 0.0, 5.0 * std::sqrt(1.0 / 9.0 / N));
 }
 
 TEST(Generate, PackedCombsRoundTripWithinHalfAStep) {

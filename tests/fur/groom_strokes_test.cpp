@@ -67,6 +67,37 @@ TEST(GroomStrokes, LengthAlongALineScalesUnderItAndNothingAway) {
   }
 }
 
+TEST(GroomStrokes, CutTrimsTowardItsLengthAndNeverLengthens) {
+  // The grid's fur is 1 cm. A cut to 4 mm along x = 0.02 (radius 1.5 cm): the column in full, x =
+  // 0.01 and 0.03 at the falloff 20/27, the rest untouched; a second cut to 2 cm changes nothing
+  // (it only shortens); a cut to 0 with strength 0.5 halves the core.
+  GroomStroke cut =
+      stroke(BrushTool::Cut, {{0.02f, 0.0f, 0.0f}, {0.02f, 0.04f, 0.0f}}, 0.015f, 1.0f);
+  cut.cutLength = 0.004f;
+  GroomStroke longer = cut;
+  longer.cutLength = 0.02f;
+  VertexGroom g;
+  applyGroomStrokes(grid(), {cut, longer}, g);
+  ASSERT_EQ(g.length.size(), 25u);
+  for (int v = 0; v < 25; ++v) {
+    const float dx = std::abs(at(v).x() - 0.02f);
+    const float base = grid().furLengths()[v];
+    ASSERT_EQ(base, 0.01f);
+    const float got = g.length[static_cast<std::size_t>(v)];
+    if (dx < 1e-6f)
+      EXPECT_EQ(got, 0.004f) << v;
+    else if (dx < 0.0101f)
+      EXPECT_FLOAT_EQ(got, 0.01f + 20.0f / 27.0f * (0.004f - 0.01f)) << v;
+    else
+      EXPECT_EQ(got, base) << v;
+  }
+  GroomStroke shave = stroke(BrushTool::Cut, {{0.0f, 0.0f, 0.0f}}, 0.005f, 0.5f);
+  VertexGroom h;
+  applyGroomStrokes(grid(), {shave}, h);
+  EXPECT_EQ(h.length[static_cast<std::size_t>(vertexAt(0.0f, 0.0f))], 0.005f);
+  EXPECT_EQ(h.length[static_cast<std::size_t>(vertexAt(0.01f, 0.0f))], 0.01f);
+}
+
 TEST(GroomStrokes, DensityAndColourPaintTowardTheirValues) {
   const int centre = vertexAt(0.02f, 0.02f), corner = vertexAt(0.0f, 0.0f);
   GroomStroke paint = stroke(BrushTool::Color, {{0.02f, 0.02f, 0.0f}}, 0.01f, 0.5f);
@@ -136,16 +167,19 @@ TEST(GroomStrokes, JsonRoundTripAndErrorsNameTheField) {
   a.mirrorAxis = 1;
   GroomStroke b = stroke(BrushTool::Color, {{0.01f, 0.02f, 0.03f}}, 0.5f, 0.25f);
   b.color = {0.3f, 0.2f, 0.1f};
-  const std::vector<GroomStroke> strokes = {a, b};
+  GroomStroke c = stroke(BrushTool::Cut, {{0.01f, 0.02f, 0.03f}}, 0.05f, 0.75f);
+  c.cutLength = 0.015f;
+  const std::vector<GroomStroke> strokes = {a, b, c};
   const std::vector<GroomStroke> back = parseGroomStrokes(groomStrokesJson(strokes), "round trip");
-  ASSERT_EQ(back.size(), 2u);
-  for (std::size_t k = 0; k < 2; ++k) {
+  ASSERT_EQ(back.size(), 3u);
+  for (std::size_t k = 0; k < 3; ++k) {
     EXPECT_EQ(back[k].tool, strokes[k].tool);
     EXPECT_EQ(back[k].points, strokes[k].points);
     EXPECT_EQ(back[k].radius, strokes[k].radius);
     EXPECT_EQ(back[k].strength, strokes[k].strength);
     EXPECT_EQ(back[k].color, strokes[k].color);
     EXPECT_EQ(back[k].mirrorAxis, strokes[k].mirrorAxis);
+    EXPECT_EQ(back[k].cutLength, strokes[k].cutLength);
   }
   const auto bad = [](const std::string& stroke, std::initializer_list<std::string> parts) {
     test::expectInputError([&] { parseGroomStrokes("{\"strokes\": [" + stroke + "]}", "s.json"); },
@@ -161,7 +195,12 @@ TEST(GroomStrokes, JsonRoundTripAndErrorsNameTheField) {
       {"strokes[0].color", "only the color brush"});
   bad(R"({"tool": "length", "points": [[0, 0, 0]], "radius": 1, "strength": 1, "mirror": "w"})",
       {"strokes[0].mirror", "accepted: x, y, z"});
-  bad(R"({"tool": "cut", "points": [[0, 0, 0]], "radius": 1})", {"not available yet"});
+  bad(R"({"tool": "clump", "points": [[0, 0, 0]], "radius": 1})", {"not available yet"});
+  bad(R"({"tool": "cut", "points": [[0, 0, 0]], "radius": 1})", {"strokes[0]", "length"});
+  bad(R"({"tool": "cut", "points": [[0, 0, 0]], "radius": 1, "length": 11})",
+      {"strokes[0].length", "out of range"});
+  bad(R"({"tool": "length", "points": [[0, 0, 0]], "radius": 1, "strength": 1, "length": 1})",
+      {"strokes[0].length", "only the cut brush"});
   bad(R"({"tool": "comb", "points": [[0, 0, 0], [0, 0, 0]], "radius": 1})",
       {"strokes[0].points", "two distinct points"});
   bad(R"({"tool": "comb", "points": [[0, 0, 0], [1, 0, 0]], "radius": 1, "strength": 2})",

@@ -73,12 +73,16 @@ TEST(Preset, RoundTripsThroughJson) {
   p.coats[kUndercoat].style = HairStyle::Tube;
   p.coats[kUndercoat].curlRadius = 0.25f;
   p.coats[kUndercoat].curlTurns = 4.0f;
+  p.coats[kOvercoat].frizz = {.amplitudeMm = 2.5f, .frequency = 7.0f, .tipWeight = 3.0f};
   p.up = Eigen::Vector3f(0, 1, 0);
   const FurParams q = parseFurPreset(furPresetJson(p), "round trip");
   EXPECT_EQ(furPresetJson(q), furPresetJson(p));
   EXPECT_DOUBLE_EQ(q.densityPerM2, 250000);
   EXPECT_EQ(q.coats[kUndercoat].style, HairStyle::Tube);
   EXPECT_FLOAT_EQ(q.coats[kUndercoat].curlTurns, 4.0f);
+  EXPECT_FLOAT_EQ(q.coats[kOvercoat].frizz.amplitudeMm, 2.5f);
+  EXPECT_FLOAT_EQ(q.coats[kOvercoat].frizz.frequency, 7.0f);
+  EXPECT_FLOAT_EQ(q.coats[kOvercoat].frizz.tipWeight, 3.0f);
   test::TempDir dir;
   saveFurPreset(dir.file("mine.json"), p);
   EXPECT_EQ(furPresetJson(loadFurPreset(dir.file("mine.json"))), furPresetJson(p));
@@ -195,6 +199,10 @@ INSTANTIATE_TEST_SUITE_P(
                   "out of range [0, 1]"},
         BadPreset{"ColorShape", R"({"overcoat": {"specular": [0.3, 0.2]}})", "3 numbers"},
         BadPreset{"CurvePoints", R"({"undercoat": {"curvePoints": 100}})", "[2, 64]"},
+        BadPreset{"FrizzAmplitude", R"({"overcoat": {"frizz": {"amplitude": 150}}})",
+                  "overcoat.frizz.amplitude': value 150 is out of range [0, 100]"},
+        BadPreset{"FrizzField", R"({"overcoat": {"frizz": {"amplitude": 1, "freq": 2}}})",
+                  "unknown field 'overcoat.frizz.freq'"},
         BadPreset{"ZeroUp", R"({"up": [0, 0, 0]})", "no direction"},
         BadPreset{
             "RegionBoth",

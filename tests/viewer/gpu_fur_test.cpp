@@ -1,7 +1,7 @@
 // GPU fur against the CPU fur model: the same roots and deformed skin must give the same drawn
 // hairs, in the same order, with points and shading vectors within 1e-4 relative, for every style,
-// both coats, with culling on and off, with a groom's comb on half the body; and the splitting into
-// bindings must not change anything.
+// both coats, with culling on and off, with frizz and with a groom's comb on half the body; and the
+// splitting into bindings must not change anything.
 #include "pelage/viewer/gpu_fur.h"
 #include "pelage/viewer/gl_context.h"
 
@@ -72,6 +72,7 @@ fur::FurParams paramsFor(const StyleCase& sc, double hairs) {
     cp.tubeSides = 5;
     cp.curlRadius = sc.curl;
     cp.curlTurns = sc.curl > 0.0f ? 2.5f : 0.0f;
+    cp.frizz = {.amplitudeMm = c == 0 ? 0.8f : 0.3f, .frequency = 3.3f, .tipWeight = 2.0f};
     // Per-hair colours (fur/colors.h): the GPU copies each drawn hair's root and tip colour.
     cp.color.hueVariation = c == 0 ? 12.0f : 0.0f;
     cp.color.valueVariation = 0.2f;

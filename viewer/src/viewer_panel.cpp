@@ -74,6 +74,13 @@ void coatPanel(const char* title, fur::CoatParams& c, bool undercoat) {
     ImGui::SliderFloat("curl turns", &c.curlTurns, 0.0f, 20.0f);
   }
   if (fur::usesTubeParams(c.style)) ImGui::SliderInt("tube sides (M)", &c.tubeSides, 3, 32);
+  ImGui::SliderFloat("frizz (mm)", &c.frizz.amplitudeMm, 0.0f, 100.0f, "%.2f",
+                     ImGuiSliderFlags_Logarithmic);
+  if (c.frizz.amplitudeMm > 0.0f) {
+    ImGui::SliderFloat("frizz frequency", &c.frizz.frequency, 0.1f, 64.0f, "%.1f",
+                       ImGuiSliderFlags_Logarithmic);
+    ImGui::SliderFloat("frizz tip weight", &c.frizz.tipWeight, 1.0f, 8.0f);
+  }
   ImGui::SliderFloat("root width (mm)", &c.width.rootMm, 0.001f, 20.0f, "%.3f",
                      ImGuiSliderFlags_Logarithmic);
   ImGui::SliderFloat("tip width (mm)", &c.width.tipMm, 0.0f, 20.0f, "%.3f",

@@ -28,10 +28,13 @@ uniform bool uTangents;     // shading = unit tangents (Kajiya-Kay) instead of t
 uniform int uStrandStride;  // 1, or M for tubes
 uniform bool uColors;       // per-hair colours: copy each drawn hair's root and tip colour
 
-int gOut = 0;  // first float of this hair's points in the chunk
+int gOut = 0;    // first float of this hair's points in the chunk
+uint gRoot = 0u;  // the hair's root index in the coat (its frizz seed)
 
 void emitPoint(int i, vec3 p, vec3 n) {
   int o = gOut + 3 * i;
+  // Frizz (hair_math.h addFrizz): strand point i / frizzRing's offset on every point around it.
+  if (cs.frizz != 0) p += frizzOffset(gRoot, i / cs.frizzRing);
   outPositions[o] = p.x;
   outPositions[o + 1] = p.y;
   outPositions[o + 2] = p.z;
@@ -57,6 +60,7 @@ void main() {
   if (slot >= drawnStart[t + 1]) return;  // culled (sec. 3.3)
   if (slot < uChunkFirst || slot >= uChunkFirst + uChunkCount) return;  // another chunk's
   gOut = (slot - uChunkFirst) * cs.points * 3;
+  gRoot = uint(j);
   if (uColors) outColors[slot - uChunkFirst] = rootColors[local];
 
   // Sec. 3.2: interpolate at the root with the table's barycentric coordinates.

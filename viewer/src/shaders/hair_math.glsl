@@ -131,6 +131,32 @@ vec3 combedDirection(vec3 n, vec3 d, HairInput hin) {
   return a2 > 0.0 ? normalizeOr(blend, d, 1e-20) : d;
 }
 
+// Frizz (hair_math.h: frizzHash, frizzValue, frizzOffset): the same integer hash, so the same
+// lattice values bit for bit.
+uint frizzHash(uint x) {
+  x ^= x >> 16;
+  x *= 0x7feb352du;
+  x ^= x >> 15;
+  x *= 0x846ca68bu;
+  x ^= x >> 16;
+  return x;
+}
+float frizzValue(uint seed, uint root, uint cell, uint axis) {
+  uint h = frizzHash(seed + frizzHash(root + 0x9e3779b9u * (3u * cell + axis)));
+  return float(h >> 8) * (2.0 / 16777216.0) - 1.0;
+}
+vec3 frizzOffset(uint root, int k) {
+  uint seed = uint(cs.frizzSeed);
+  uint cell = uint(cs.frizzCell[k]);
+  vec3 o;
+  for (uint axis = 0u; axis < 3u; ++axis) {
+    float g0 = frizzValue(seed, root, cell, axis);
+    float g1 = frizzValue(seed, root, cell + 1u, axis);
+    o[axis] = cs.frizzWeight[k] * (g0 + cs.frizzBlend[k] * (g1 - g0));
+  }
+  return o;
+}
+
 // Sec. 3.5 hair end randomize: d~ = normalize(d + r xi).
 vec3 perturbedDirection(vec3 d, vec3 xi) {
   if (cs.endRandomize == 0.0) return d;

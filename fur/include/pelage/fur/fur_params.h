@@ -67,6 +67,17 @@ struct StrandWidth {
   float metersAt(float t) const { return 1e-3f * (rootMm + (tipMm - rootMm) * t); }
 };
 
+// Frizz (beyond the paper): seeded noise added to each hair's points toward the tip, on top of the
+// paper's shape (fur/hair_math.h frizzOffset). At point k of K (t = k / (K - 1)) the offset is
+// amplitude t^tipWeight times a random vector in [-1, 1]^3 interpolated (smoothstep) between
+// lattice points 1 / frequency of the hair apart, each drawn from the hair's own seed. The root
+// stays.
+struct Frizz {
+  float amplitudeMm = 0.0f;  // [0, 100]: 0 = off (today's hairs exactly)
+  float frequency = 4.0f;    // waves along the hair [0.1, 64]
+  float tipWeight = 2.0f;    // [1, 8]: the exponent of t (higher: only the tips)
+};
+
 // One coat (sec. 3.1): "different material characteristics, stiffness, randomness, and hair style".
 struct CoatParams {
   HairStyle style = HairStyle::Polyline;
@@ -81,6 +92,7 @@ struct CoatParams {
   StrandWidth width;                    // root and tip width (mm); a tube's diameter
   float curlRadius = 0.0f;              // helix radius as a fraction of the length [0, 0.5]
   float curlTurns = 0.0f;               // helix turns along the hair [0, 20]
+  Frizz frizz;                          // noise toward the tips (off)
   CoatColor color;                      // where each hair's colour comes from
 };
 

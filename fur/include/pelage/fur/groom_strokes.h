@@ -15,11 +15,14 @@
 //  comb:    the comb (groom.h) moved toward the stroke's direction u (its nearest segment's,
 //           projected on the skin's tangent plane at the vertex, unit) by `strength` [0, 1]:
 //           c + w strength (u - c); strength 1 under the brush's core lays the hairs along the
-//           stroke (gravity still applies). Needs two distinct points.
+//           stroke (gravity still applies). Needs two distinct points;
+//  cut:     the fur length trimmed toward `length` (metres, [0, 10]) with opacity `strength`
+//           [0, 1]: l + w strength (min(l, length) - l); it only shortens (the clippers). Length 0
+//           shaves: a triangle whose three vertices reach 0 grows no hair.
 // "mirror": "x", "y" or "z" applies the stroke a second time with that coordinate negated (the
 // creature's symmetry plane through the origin; the mirrored comb runs along the mirrored stroke).
-// Strokes apply in list order. The cut and clump brushes are not there yet: a stroke with one of
-// them is refused by name.
+// Strokes apply in list order. The clump brush is not there yet: a stroke naming it is refused by
+// name.
 #pragma once
 
 #include <Eigen/Core>
@@ -33,7 +36,7 @@
 
 namespace pelage::fur {
 
-enum class BrushTool { Length, Density, Color, Comb };
+enum class BrushTool { Length, Density, Color, Comb, Cut };
 
 struct GroomStroke {
   BrushTool tool = BrushTool::Length;
@@ -41,6 +44,7 @@ struct GroomStroke {
   float radius = 0.05f;                     // metres, (0, 10]
   float strength = 1.0f;                    // the tool's range (above)
   Eigen::Vector3f color{1.0f, 1.0f, 1.0f};  // the colour tool's target tint
+  float cutLength = 0.0f;                   // the cut tool's length (metres)
   int mirrorAxis = -1;                      // 0, 1, 2 (x, y, z) or -1: none
 };
 
@@ -48,7 +52,7 @@ inline constexpr std::size_t kMaxGroomStrokes = 100000;
 inline constexpr std::size_t kMaxStrokePoints = 100000;
 inline constexpr float kMaxBrushRadiusMeters = 10.0f;
 
-// "length", "density", "color", "comb".
+// "length", "density", "color", "comb", "cut".
 const char* brushToolName(BrushTool tool);
 
 // Parses a strokes file's text from `source`; InputError naming the source, the field

@@ -153,6 +153,10 @@ inline constexpr int kMaxTubeSides = 32;    // M
 //  endRandomize r, floppiness f (sec. 3.5); up U, fallbackTangent (unit, perpendicular to U);
 //  twist: polyline normal randomize > 0 (twist table in use);
 //  comb: the coat's roots carry a groom's comb (CoatRoots::comb; combedDirection);
+//  frizz*: the frizz (fur_params.h Frizz; addFrizz): frizz = strand points with frizz (0: off),
+//    frizzRing = points per strand point (a tube's M, else 1), frizzSeed = the coat seed's 32 bits;
+//    per strand point k: frizzWeight = amplitude (m) t_k^tipWeight, frizzCell = floor(t_k freq),
+//    frizzBlend = smoothstep of its fraction;
 //  region*: the length region (sec. 3.2), tested at the root;
 //  poly*: the polyline template (sec. 3.7): P(t_i) = R + a_i (W - R) + b_i (E - R), t_i = i / 7,
 //    a(t) = 2 lambda t (1 - t), b(t) = t^2, lambda = 0.5; segment i (ending at i) has direction
@@ -170,6 +174,9 @@ inline constexpr int kMaxTubeSides = 32;    // M
   SCALAR(std::int32_t, int, twist)                                      \
   SCALAR(std::int32_t, int, curl)                                       \
   SCALAR(std::int32_t, int, comb)                                       \
+  SCALAR(std::int32_t, int, frizz)                                      \
+  SCALAR(std::int32_t, int, frizzRing)                                  \
+  SCALAR(std::int32_t, int, frizzSeed)                                  \
   SCALAR(RegionShape, int, regionShape)                                 \
   SCALAR(float, float, lengthMul)                                       \
   SCALAR(float, float, segmentWeight)                                   \
@@ -198,6 +205,9 @@ inline constexpr int kMaxTubeSides = 32;    // M
   ARRAY(float, float, curlCos, ::pelage::fur::kMaxCurvePoints)          \
   ARRAY(float, float, curlSin, ::pelage::fur::kMaxCurvePoints)          \
   ARRAY(float, float, tubeRadius, ::pelage::fur::kMaxCurvePoints)       \
+  ARRAY(float, float, frizzWeight, ::pelage::fur::kMaxCurvePoints)      \
+  ARRAY(float, float, frizzCell, ::pelage::fur::kMaxCurvePoints)        \
+  ARRAY(float, float, frizzBlend, ::pelage::fur::kMaxCurvePoints)       \
   ARRAY(float, float, ringCos, ::pelage::fur::kMaxTubeSides)            \
   ARRAY(float, float, ringSin, ::pelage::fur::kMaxTubeSides)
 
@@ -342,14 +352,28 @@ inline Vec3<T> weightlessDirection(const Vec3<T>& n, const Vec3<T>& directionSum
   return pick(hasS, normalizeOr(blend, n, 1e-12f), n);
 }
 
+// The root's comb frame, the one frame both the rest pose (roots.cpp, packComb) and every frame
+// (combedDirection) build: u = the root triangle's first edge (vertex 1 - vertex 0) projected on
+// the tangent plane of the unit normal n and normalized (`fallback` where that projection
+// vanishes), v = n x u.
+template <class T>
+struct CombFrame {
+  Vec3<T> u, v;
+};
+template <class T>
+inline CombFrame<T> combFrame(const Vec3<T>& n, const Vec3<T>& edge, const Vec3<T>& fallback) {
+  const Vec3<T> u = normalizeOr(edge - n * dot(edge, n), fallback, 1e-20f);
+  return {u, cross(n, u)};
+}
+
 // The groom's comb (groom.h) on the weightless direction d of sec. 3.4: the comb t = x u + y v in
 // the root's tangent frame (packComb), of length a = |(x, y)| <= 1, gives d' = normalize((1 - a) d
 // + t): along the comb for a = 1, d exactly for a = 0. Gravity (sec. 3.5) then bends d' as it
 // would d.
 template <class T>
 inline Vec3<T> combedDirection(const Vec3<T>& n, const Vec3<T>& d, const HairInput<T>& in) {
-  const Vec3<T> u = normalizeOr(in.combEdge - n * dot(in.combEdge, n), d, 1e-20f);
-  const Vec3<T> t = u * in.combX + cross(n, u) * in.combY;
+  const CombFrame<T> frame = combFrame(n, in.combEdge, d);
+  const Vec3<T> t = frame.u * in.combX + frame.v * in.combY;
   const T a2 = in.combX * in.combX + in.combY * in.combY;
   const Vec3<T> blend = d * (T(1.0f) - sqrtOf(a2)) + t;
   return pick(greater(a2, T(0.0f)), normalizeOr(blend, d, 1e-20f), d);
@@ -564,6 +588,49 @@ inline void emitTube(const CoatShape& c, const HairFrame<T>& f, Sink& sink) {
       prev = cur;
       cur = next;
       if (k + 2 < K) next = curvePointAt(c, k + 2, f, t);
+    }
+  }
+}
+
+// Frizz (fur_params.h Frizz), beyond the paper: a 32-bit integer hash (lowbias32), the same in
+// hair_math.glsl, so the CPU and the GPU draw the same random numbers.
+inline std::uint32_t frizzHash(std::uint32_t x) {
+  x ^= x >> 16;
+  x *= 0x7feb352du;
+  x ^= x >> 15;
+  x *= 0x846ca68bu;
+  x ^= x >> 16;
+  return x;
+}
+// Lattice value `cell`, axis `axis` of hair `root` (its index in the coat): uniform in [-1, 1),
+// exact in float (24 bits times 2^-23, minus 1).
+inline float frizzValue(std::uint32_t seed, std::uint32_t root, std::uint32_t cell,
+                        std::uint32_t axis) {
+  const std::uint32_t h = frizzHash(seed + frizzHash(root + 0x9e3779b9u * (3u * cell + axis)));
+  return static_cast<float>(h >> 8) * (2.0f / 16777216.0f) - 1.0f;
+}
+// The frizz offset of strand point k of hair `root`: frizzWeight_k (g_j + frizzBlend_k (g_{j+1} -
+// g_j)), g_j the lattice vector at j = frizzCell_k.
+inline void frizzOffset(const CoatShape& c, std::uint32_t root, int k, float out[3]) {
+  const auto seed = static_cast<std::uint32_t>(c.frizzSeed);
+  const auto cell = static_cast<std::uint32_t>(c.frizzCell[k]);
+  for (std::uint32_t axis = 0; axis < 3; ++axis) {
+    const float g0 = frizzValue(seed, root, cell, axis);
+    const float g1 = frizzValue(seed, root, cell + 1u, axis);
+    out[axis] = c.frizzWeight[k] * (g0 + c.frizzBlend[k] * (g1 - g0));
+  }
+}
+// Adds the frizz to the points of one emitted hair (c.frizz strand points of c.frizzRing points
+// each, xyz), on top of the paper's shape; strand point 0 (the root) has weight 0 and stays.
+inline void addFrizz(const CoatShape& c, std::uint32_t root, float* positions) {
+  for (int k = 0; k < c.frizz; ++k) {
+    float o[3];
+    frizzOffset(c, root, k, o);
+    for (int m = 0; m < c.frizzRing; ++m) {
+      float* p = positions + 3 * (k * c.frizzRing + m);
+      p[0] += o[0];
+      p[1] += o[1];
+      p[2] += o[2];
     }
   }
 }

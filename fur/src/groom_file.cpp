@@ -78,12 +78,18 @@ std::string groomFileJson(const skin::SkinMesh& skin, const VertexGroom& g) {
   j["mesh"] = {{"vertices", skin.numVertices()},
                {"triangles", skin.numTriangles()},
                {"hash", hex64(meshHash(skin))}};
-  // float -> double is exact, and nlohmann writes doubles with round-trip precision.
-  if (!g.length.empty()) j["length"] = g.length;
-  if (!g.density.empty()) j["density"] = g.density;
+  // Each value as its shortest decimal: it reads back as the same float.
+  const auto singles = [](const std::vector<float>& values) {
+    nlohmann::json t = nlohmann::json::array();
+    for (const float v : values) t.push_back(shortestDecimal(v));
+    return t;
+  };
+  if (!g.length.empty()) j["length"] = singles(g.length);
+  if (!g.density.empty()) j["density"] = singles(g.density);
   const auto triples = [](const std::vector<Eigen::Vector3f>& values) {
     nlohmann::json t = nlohmann::json::array();
-    for (const Eigen::Vector3f& c : values) t.push_back({c.x(), c.y(), c.z()});
+    for (const Eigen::Vector3f& c : values)
+      t.push_back({shortestDecimal(c.x()), shortestDecimal(c.y()), shortestDecimal(c.z())});
     return t;
   };
   if (!g.tint.empty()) j["tint"] = triples(g.tint);
@@ -102,7 +108,7 @@ VertexGroom parseGroomFile(const std::string& text, const std::string& source,
   if (!j.isObject()) j.fail("expected a pelage groom file (a JSON object)");
   if (!j.has("format") || !j.at("format").json().is_string() || j.string("format") != kFormat)
     j.fail(str("not a groom file: expected \"format\": \"", kFormat,
-               "\" (groom files come from `pelage info --groom-out` or Python's write_groom)"));
+               "\" (groom files come from pelage's groom output or Python's write_groom)"));
   j.rejectUnknown({"format", "version", "mesh", "length", "density", "tint", "comb"});
   j.integer("version", kGroomFileVersion, kGroomFileVersion);
   const JsonReader mesh = j.at("mesh");

@@ -1,9 +1,7 @@
 #include "pelage/fur/groom_strokes.h"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
-#include <cstdlib>
 #include <limits>
 #include <string>
 
@@ -22,14 +20,6 @@ using Vec3 = Eigen::Vector3f;
 constexpr const char* kToolNames[] = {"length", "density", "color", "comb", "cut"};
 constexpr const char* kAbsentTools[] = {"clump"};
 constexpr const char* kAxes[] = {"x", "y", "z"};
-
-// `f` as the double of its shortest decimal (0.06f -> 0.06), so that a written strokes file reads
-// as it was typed; it parses back to the same float.
-double decimal(float f) {
-  char text[32];
-  const auto r = std::to_chars(text, text + sizeof text, f);
-  return std::strtod(std::string(text, r.ptr).c_str(), nullptr);
-}
 
 // Distance from p to the polyline through `points` (a single point: to it), and the direction
 // (not normalised) of the polyline's nearest segment (0 for a single point).
@@ -201,13 +191,14 @@ std::string groomStrokesJson(const std::vector<GroomStroke>& strokes) {
     j["tool"] = brushToolName(s.tool);
     nlohmann::json points = nlohmann::json::array();
     for (const Vec3& p : s.points)
-      points.push_back({decimal(p.x()), decimal(p.y()), decimal(p.z())});
+      points.push_back({shortestDecimal(p.x()), shortestDecimal(p.y()), shortestDecimal(p.z())});
     j["points"] = points;
-    j["radius"] = decimal(s.radius);
-    j["strength"] = decimal(s.strength);
+    j["radius"] = shortestDecimal(s.radius);
+    j["strength"] = shortestDecimal(s.strength);
     if (s.tool == BrushTool::Color)
-      j["color"] = {decimal(s.color.x()), decimal(s.color.y()), decimal(s.color.z())};
-    if (s.tool == BrushTool::Cut) j["length"] = decimal(s.cutLength);
+      j["color"] = {shortestDecimal(s.color.x()), shortestDecimal(s.color.y()),
+                    shortestDecimal(s.color.z())};
+    if (s.tool == BrushTool::Cut) j["length"] = shortestDecimal(s.cutLength);
     if (s.mirrorAxis >= 0) j["mirror"] = kAxes[s.mirrorAxis];
     list.push_back(j);
   }

@@ -1,14 +1,13 @@
 // The Python package's conversions (convert.h).
 #include "convert.h"
 
-#include <charconv>
 #include <cmath>
 #include <cstdint>
-#include <cstdlib>
 #include <mutex>
 
 #include "pelage/fur/fur_params.h"
 #include "pelage/scene/playback.h"
+#include "pelage/util/json_reader.h"
 
 namespace pelage::python {
 
@@ -83,9 +82,7 @@ nlohmann::json toJson(const py::handle& value) {
 double shortestDouble(double d) {
   const auto f = static_cast<float>(d);
   if (!std::isfinite(d) || static_cast<double>(f) != d) return d;
-  char text[32];
-  const auto r = std::to_chars(text, text + sizeof text, f);
-  return std::strtod(std::string(text, r.ptr).c_str(), nullptr);
+  return shortestDecimal(f);
 }
 
 py::object fromJson(const nlohmann::json& j) {

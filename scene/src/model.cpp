@@ -86,7 +86,7 @@ Model loadModel(const std::string& spec, const LoadOptions& options) {
   if (!gltf && !mesh && options.subdivide > 0)
     inputError(spec.empty() ? std::string(kDefaultModel) : spec,
                ": subdivision applies to glTF models and static meshes only (creatures built "
-               "from shapes take --triangles)");
+               "from shapes take a triangle count)");
   if (!gltf && !mesh && options.unitScale != 0.0f)
     inputError(spec, ": a unit scale applies to glTF models and static meshes only");
   if (gltf) return fromGltf(spec, options);

@@ -3,6 +3,12 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <string>
+
 #include "pelage/util/error.h"
 #include "test_support.h"
 
@@ -55,6 +61,29 @@ TEST(JsonReader, RejectsNonFiniteAndWrongShapes) {
   EXPECT_THAT(errorOf([&] { r.number("big", -1e30, 1e30); }), HasSubstr("out of range"));
   EXPECT_THAT(errorOf([&] { r.vec3("v"); }), HasSubstr("array of 3 numbers"));
   EXPECT_THAT(errorOf([&] { r.integer("i", 0, 10); }), HasSubstr("expected an integer"));
+}
+
+TEST(ShortestDecimal, WritesFloatsAsTypedAndReadsThemBackExactly) {
+  EXPECT_EQ(nlohmann::json(shortestDecimal(0.06f)).dump(), "0.06");
+  EXPECT_EQ(nlohmann::json(shortestDecimal(0.3f)).dump(), "0.3");
+  EXPECT_EQ(nlohmann::json(shortestDecimal(-1.5e-7f)).dump(), "-1.5e-07");
+  EXPECT_EQ(nlohmann::json(static_cast<double>(0.06f)).dump(), "0.05999999865889549");
+  EXPECT_TRUE(std::isinf(shortestDecimal(std::numeric_limits<float>::infinity())));
+  EXPECT_TRUE(std::isnan(shortestDecimal(std::numeric_limits<float>::quiet_NaN())));
+  // Random bit patterns (every finite float alike, subnormals and extremes included): through the
+  // JSON text and back to float, bit for bit.
+  std::uint64_t state = 12345;
+  int checked = 0;
+  for (int i = 0; i < 200000; ++i) {
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    const auto f = std::bit_cast<float>(static_cast<std::uint32_t>(state >> 32));
+    if (!std::isfinite(f)) continue;
+    const std::string text = nlohmann::json(shortestDecimal(f)).dump();
+    const auto back = static_cast<float>(nlohmann::json::parse(text).get<double>());
+    ASSERT_EQ(std::bit_cast<std::uint32_t>(back), std::bit_cast<std::uint32_t>(f)) << text;
+    ++checked;
+  }
+  EXPECT_GT(checked, 190000);
 }
 
 }  // namespace

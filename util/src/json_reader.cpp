@@ -1,6 +1,8 @@
 #include "pelage/util/json_reader.h"
 
+#include <charconv>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -13,6 +15,14 @@ std::string typeName(const nlohmann::json& j) {
   return j.type_name();
 }
 }  // namespace
+
+double shortestDecimal(float f) {
+  if (!std::isfinite(f)) return static_cast<double>(f);
+  char text[32];
+  const auto r = std::to_chars(text, text + sizeof text - 1, f);
+  *r.ptr = '\0';
+  return std::strtod(text, nullptr);
+}
 
 JsonReader::JsonReader(const nlohmann::json& value, std::string file, std::string path)
     : value_(&value), file_(std::move(file)), path_(std::move(path)) {}

@@ -69,4 +69,9 @@ class JsonReader {
   std::string path_;
 };
 
+// The number to write for `f` in a JSON file: the double of f's shortest decimal (0.06f -> 0.06,
+// not 0.05999999865889549), so that a written file reads as it was typed and is about half as long;
+// read back and converted to float it is f again. Not-finite values pass through.
+double shortestDecimal(float f);
+
 }  // namespace pelage

@@ -45,6 +45,10 @@ void checkCoat(const std::string& source, const std::string& name, const CoatPar
   checkRange(source, name + ".frizz.amplitude", c.frizz.amplitudeMm, 0.0, 100.0);
   checkRange(source, name + ".frizz.frequency", c.frizz.frequency, 0.1, 64.0);
   checkRange(source, name + ".frizz.tipWeight", c.frizz.tipWeight, 1.0, 8.0);
+  checkRange(source, name + ".clump.density", c.clump.density, 0.0, 100.0);
+  checkRange(source, name + ".clump.strength", c.clump.strength, 0.0, 1.0);
+  checkRange(source, name + ".clump.shape", c.clump.shape, 0.1, 10.0);
+  checkRange(source, name + ".clump.radius", c.clump.radiusMm, 0.1, 1000.0);
   checkColor(source, name + ".ambient", c.material.ambient);
   checkColor(source, name + ".diffuse", c.material.diffuse);
   checkColor(source, name + ".specular", c.material.specular);

@@ -213,6 +213,94 @@ void ensureTwist(const FurParams& params, int coat, std::uint64_t seed, FurWorks
   ws.twistSeed[c] = seed;
 }
 
+// Writes a hair's points (P x 3) to a flat array; the normals are not needed.
+struct PointSink {
+  float* positions;
+  void operator()(int i, const Vec3<float>& p, const Vec3<float>&) {
+    positions[3 * i] = p.x;
+    positions[3 * i + 1] = p.y;
+    positions[3 * i + 2] = p.z;
+  }
+};
+
+// The polyline twist of the hair using table entry `entry` (sec. 3.7), from a coat's twist table.
+HairTwist<float> twistOf(const std::vector<float>& table, int entry) {
+  HairTwist<float> twist{};
+  for (int i = 0; i < kPolylinePoints; ++i) {
+    twist.cosAngle[i] = table[static_cast<std::size_t>(16 * entry + 2 * i)];
+    twist.sinAngle[i] = table[static_cast<std::size_t>(16 * entry + 2 * i + 1)];
+  }
+  return twist;
+}
+
+// Clumping (fur_params.h Clump): the weight s_k = strength t_k^shape of strand point k of K.
+std::array<float, kMaxCurvePoints> clumpWeights(const Clump& clump, int K) {
+  std::array<float, kMaxCurvePoints> w{};
+  for (int k = 0; k < K; ++k)
+    w[static_cast<std::size_t>(k)] =
+        static_cast<float>(static_cast<double>(clump.strength) *
+                           std::pow(k / double(K - 1), static_cast<double>(clump.shape)));
+  return w;
+}
+
+// A hair's strand points (K x 3) from its points (K x M x 3): the points themselves (M = 1), or
+// each ring's centre, the mean of its M points in order.
+void strandPointsOf(const float* points, int K, int M, float* out) {
+  for (int k = 0; k < K; ++k)
+    for (int a = 0; a < 3; ++a) {
+      float sum = 0.0f;
+      for (int m = 0; m < M; ++m) sum += points[3 * (k * M + m) + a];
+      out[3 * k + a] = M == 1 ? sum : sum / static_cast<float>(M);
+    }
+}
+
+// Moves a hair's points (K x M x 3) toward its clump centre's strand points `centre` (K x 3):
+// every point of ring k by s_k (C_k - S_k), S_k the hair's own strand point (strandPointsOf).
+void addClump(const std::array<float, kMaxCurvePoints>& w, int K, int M, const float* centre,
+              float* points) {
+  float own[3 * kMaxCurvePoints];
+  strandPointsOf(points, K, M, own);
+  for (int k = 1; k < K; ++k) {  // s_0 = 0: the root stays
+    const float wk = w[static_cast<std::size_t>(k)];
+    const float o[3] = {wk * (centre[3 * k] - own[3 * k]),
+                        wk * (centre[3 * k + 1] - own[3 * k + 1]),
+                        wk * (centre[3 * k + 2] - own[3 * k + 2])};
+    for (int m = 0; m < M; ++m)
+      for (int a = 0; a < 3; ++a) points[3 * (k * M + m) + a] += o[a];
+  }
+}
+
+// This frame's strand points of every clump centre of coat `coat` (unclumped, no frizz) into
+// ws.clumpCentres, from the packed vertex records: the scalar path, as referenceHair computes them.
+void computeClumpCentres(const skin::SkinMesh& skin, const FurRoots& roots, int coat,
+                         const CoatShape& shape, const HairLayout& layout, FurWorkspace& ws) {
+  const auto ci = static_cast<std::size_t>(coat);
+  const CoatRoots& cr = roots.coats[ci];
+  const int K = layout.strandPoints, M = layout.ringSides;
+  std::vector<float>& out = ws.clumpCentres[ci];
+  out.resize(cr.clumpCentres.size() * static_cast<std::size_t>(3 * K));
+  parallelForChunks(
+      static_cast<std::int64_t>(cr.clumpCentres.size()), 256, [&](std::int64_t b, std::int64_t e) {
+        std::vector<float> points(static_cast<std::size_t>(3 * shape.points));
+        for (std::int64_t s = b; s < e; ++s) {
+          const auto r = static_cast<std::size_t>(cr.clumpCentres[static_cast<std::size_t>(s)]);
+          const std::int32_t* tv =
+              skin.triangles.data() + 3 * static_cast<std::int64_t>(cr.triangle[r]);
+          const float* rec = ws.vertexRecords.data();
+          const HairInput<float> in = interpolateRoot(
+              roots.barycentric.data() + 4 * cr.tableIndex[r], rec + tv[0] * kVertexRecordFloats,
+              rec + tv[1] * kVertexRecordFloats, rec + tv[2] * kVertexRecordFloats,
+              cr.jitter.data() + 4 * r, cr.lengthScale.empty() ? 1.0f : cr.lengthScale[r],
+              cr.comb.empty() ? 0u : cr.comb[r]);
+          const HairTwist<float> twist =
+              shape.twist ? twistOf(ws.twist[ci], cr.tableIndex[r]) : HairTwist<float>{};
+          PointSink sink{points.data()};
+          buildHair(shape, in, twist, sink);
+          strandPointsOf(points.data(), K, M, out.data() + s * 3 * K);
+        }
+      });
+}
+
 }  // namespace
 
 void generateFur(const skin::SkinMesh& skin, const FurRoots& roots, const FurParams& params,
@@ -287,12 +375,30 @@ void detail::generateFurWithDynamics(
     const auto aligned = [](const float* p) {
       return reinterpret_cast<std::uintptr_t>(p) % 64 == 0;
     };
-    // Not with frizz: addFrizz reads the points back at once.
-    a.streamStores = emit && !shape.frizz &&
+    const Clump& clump = params.coats[ci].clump;
+    // Not with dynamics (not there yet: scene::Playback refuses the two together).
+    const bool clumps = emit && clump.on() && !cr.clumpSlot.empty() && !dynamics[ci];
+    std::array<float, kMaxCurvePoints> clumpW{};
+    if (clumps) {
+      computeClumpCentres(skin, roots, c, shape, hb.layout, ws);
+      clumpW = clumpWeights(clump, hb.layout.strandPoints);
+    }
+    // Not with frizz or clumps: they read the points back at once.
+    a.streamStores = emit && !shape.frizz && !clumps &&
                      (shape.points % 4 == 0 || shape.style == HairStyle::Line) &&
                      bytes > kStreamStoreBytes && aligned(a.positions) && aligned(a.normals);
     parallelForChunks(drawn, kHairsPerTask, [&](std::int64_t b, std::int64_t e) {
       detail::runCoatRange(a, b, e);
+      if (clumps)
+        for (std::int64_t h = b; h < e; ++h) {
+          const auto r = static_cast<std::size_t>(a.hairIds[h]);
+          const std::int32_t slot = cr.clumpSlot[r];
+          if (slot < 0 || cr.clumpCentres[static_cast<std::size_t>(slot)] == a.hairIds[h]) continue;
+          const int K = hb.layout.strandPoints;
+          addClump(clumpW, K, hb.layout.ringSides,
+                   ws.clumpCentres[ci].data() + static_cast<std::size_t>(slot) * 3 * K,
+                   a.positions + h * shape.points * 3);
+        }
       if (emit && shape.frizz)
         for (std::int64_t h = b; h < e; ++h)
           addFrizz(shape, static_cast<std::uint32_t>(a.hairIds[h]),
@@ -347,21 +453,32 @@ void referenceHair(const skin::SkinMesh& skin, const FurRoots& roots, const FurP
   const auto ci = static_cast<std::size_t>(coat);
   const CoatRoots& cr = roots.coats[ci];
   const CoatShape shape = makeCoatShape(params, roots, coat);
-  const HairInput<float> in = rootInput(skin, roots, deformed, coat, rootIndex);
-  const auto r = static_cast<std::size_t>(rootIndex);
-  HairTwist<float> twist{};
-  if (shape.twist) {
-    std::vector<float> table;
+  std::vector<float> table;
+  if (shape.twist)
     makeTwistTable(coatSeed(roots.seed, coat), params.coats[ci].normalRandomize, table);
-    for (int i = 0; i < kPolylinePoints; ++i) {
-      twist.cosAngle[i] = table[static_cast<std::size_t>(16 * cr.tableIndex[r] + 2 * i)];
-      twist.sinAngle[i] = table[static_cast<std::size_t>(16 * cr.tableIndex[r] + 2 * i + 1)];
-    }
+  const auto paperHair = [&](std::int64_t root, std::vector<float>& p, std::vector<float>& n) {
+    const HairInput<float> in = rootInput(skin, roots, deformed, coat, root);
+    const HairTwist<float> twist =
+        shape.twist ? twistOf(table, cr.tableIndex[static_cast<std::size_t>(root)])
+                    : HairTwist<float>{};
+    p.assign(static_cast<std::size_t>(3 * shape.points), 0.0f);
+    n.assign(static_cast<std::size_t>(3 * shape.points), 0.0f);
+    VectorSink sink{p, n};
+    buildHair(shape, in, twist, sink);
+  };
+  paperHair(rootIndex, positions, normals);
+  // Clumping: toward the centre hair's strand points, computed the same way.
+  const Clump& clump = params.coats[ci].clump;
+  const std::int32_t slot =
+      cr.clumpSlot.empty() ? -1 : cr.clumpSlot[static_cast<std::size_t>(rootIndex)];
+  if (clump.on() && slot >= 0 && cr.clumpCentres[static_cast<std::size_t>(slot)] != rootIndex) {
+    const HairLayout layout = hairLayout(params.coats[ci]);
+    const int K = layout.strandPoints;
+    std::vector<float> p, n, centre(static_cast<std::size_t>(3 * K));
+    paperHair(cr.clumpCentres[static_cast<std::size_t>(slot)], p, n);
+    strandPointsOf(p.data(), K, layout.ringSides, centre.data());
+    addClump(clumpWeights(clump, K), K, layout.ringSides, centre.data(), positions.data());
   }
-  positions.assign(static_cast<std::size_t>(3 * shape.points), 0.0f);
-  normals.assign(static_cast<std::size_t>(3 * shape.points), 0.0f);
-  VectorSink sink{positions, normals};
-  buildHair(shape, in, twist, sink);
   if (shape.frizz) addFrizz(shape, static_cast<std::uint32_t>(rootIndex), positions.data());
 }
 

@@ -55,7 +55,7 @@ CoatParams parseCoat(const JsonReader& j, const CoatParams& defaults) {
   j.rejectUnknown({"style", "stiffness", "normalRandomize", "hairEndRandomize",
                    "segmentDirectionWeight", "relativeLength", "ambient", "diffuse", "specular",
                    "shininess", "curvePoints", "tubeSides", "width", "tubeRadius", "curl", "frizz",
-                   "color"});
+                   "clump", "color"});
   CoatParams c = defaults;
   if (j.has("style")) c.style = parseStyle(j.string("style"), j.at("style").where());
   c.stiffness = num(j, "stiffness", c.stiffness, 0.0, 1.0);
@@ -92,6 +92,13 @@ CoatParams parseCoat(const JsonReader& j, const CoatParams& defaults) {
     c.frizz.amplitudeMm = num(*frizz, "amplitude", c.frizz.amplitudeMm, 0.0, 100.0);
     c.frizz.frequency = num(*frizz, "frequency", c.frizz.frequency, 0.1, 64.0);
     c.frizz.tipWeight = num(*frizz, "tipWeight", c.frizz.tipWeight, 1.0, 8.0);
+  }
+  if (auto clump = j.find("clump")) {
+    clump->rejectUnknown({"density", "strength", "shape", "radius"});
+    c.clump.density = num(*clump, "density", c.clump.density, 0.0, 100.0);
+    c.clump.strength = num(*clump, "strength", c.clump.strength, 0.0, 1.0);
+    c.clump.shape = num(*clump, "shape", c.clump.shape, 0.1, 10.0);
+    c.clump.radiusMm = num(*clump, "radius", c.clump.radiusMm, 0.1, 1000.0);
   }
   if (auto col = j.find("color")) c.color = parseCoatColor(*col, c.color);
   return c;
@@ -192,6 +199,10 @@ nlohmann::json coatJson(const CoatParams& c) {
   j["frizz"] = {{"amplitude", c.frizz.amplitudeMm},
                 {"frequency", c.frizz.frequency},
                 {"tipWeight", c.frizz.tipWeight}};
+  j["clump"] = {{"density", c.clump.density},
+                {"strength", c.clump.strength},
+                {"shape", c.clump.shape},
+                {"radius", c.clump.radiusMm}};
   const CoatColor& k = c.color;
   j["color"] = {{"source", colorSourceName(k.source)},
                 {"tint", colorJson(k.tint)},

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <unordered_map>
 
 #include "pelage/fur/hair_layout.h"
 #include "pelage/fur/hair_math.h"
@@ -196,6 +197,82 @@ std::uint32_t restComb(const skin::SkinMesh& skin, const skin::DeformedSkin& res
 }
 }  // namespace
 
+Eigen::Vector3f restRootPosition(const skin::SkinMesh& skin, const std::vector<float>& barycentric,
+                                 const CoatRoots& cr, std::int64_t k) {
+  const auto ks = static_cast<std::size_t>(k);
+  const std::int32_t* v = skin.triangles.data() + 3 * static_cast<std::int64_t>(cr.triangle[ks]);
+  const float* b = barycentric.data() + 4 * cr.tableIndex[ks];
+  const float* rest = skin.restPositions();
+  Eigen::Vector3f p = Eigen::Vector3f::Zero();
+  for (int i = 0; i < 3; ++i) p += b[i] * Eigen::Map<const Eigen::Vector3f>(rest + 3 * v[i]);
+  return p;
+}
+
+void assignClumps(const skin::SkinMesh& skin, const std::vector<float>& barycentric,
+                  std::uint64_t coatSeed, const Clump& clump, CoatRoots& cr) {
+  cr.clumpCentres.clear();
+  cr.clumpSlot.clear();
+  const std::int64_t n = cr.size();
+  if (!clump.on() || n == 0) return;
+  const double side = 0.01 / std::sqrt(static_cast<double>(clump.density));
+  std::vector<Eigen::Vector3f> at(static_cast<std::size_t>(n));
+  std::vector<std::uint64_t> cell(static_cast<std::size_t>(n));
+  // Cube (i, j, k) packed as 21 bits each (wrapping only 2^20 cubes away, kilometres off).
+  const auto key = [](std::int64_t i, std::int64_t j, std::int64_t k) {
+    constexpr std::uint64_t m = (1u << 21) - 1;
+    return (static_cast<std::uint64_t>(i) & m) << 42 | (static_cast<std::uint64_t>(j) & m) << 21 |
+           (static_cast<std::uint64_t>(k) & m);
+  };
+  const auto cube = [&](const Eigen::Vector3f& p) {
+    const auto index = [&](float x) {
+      return static_cast<std::int64_t>(std::floor(static_cast<double>(x) / side));
+    };
+    return Eigen::Vector3<std::int64_t>(index(p.x()), index(p.y()), index(p.z()));
+  };
+  parallelFor(n, 4096, [&](std::int64_t k) {
+    const auto ks = static_cast<std::size_t>(k);
+    at[ks] = restRootPosition(skin, barycentric, cr, k);
+    const Eigen::Vector3<std::int64_t> c = cube(at[ks]);
+    cell[ks] = key(c.x(), c.y(), c.z());
+  });
+  // The centre of each cube: the least (priority, index).
+  std::unordered_map<std::uint64_t, std::int32_t> centreOf;
+  centreOf.reserve(static_cast<std::size_t>(n / 8 + 16));
+  for (std::int64_t k = 0; k < n; ++k) {
+    const auto [it, added] =
+        centreOf.try_emplace(cell[static_cast<std::size_t>(k)], static_cast<std::int32_t>(k));
+    if (!added && uniform01(coatSeed, kStreamClump, static_cast<std::uint64_t>(k)) <
+                      uniform01(coatSeed, kStreamClump, static_cast<std::uint64_t>(it->second)))
+      it->second = static_cast<std::int32_t>(k);
+  }
+  std::vector<std::int32_t> slotOf(static_cast<std::size_t>(n), -1);
+  for (const auto& [c, root] : centreOf) cr.clumpCentres.push_back(root);
+  std::sort(cr.clumpCentres.begin(), cr.clumpCentres.end());
+  for (std::size_t s = 0; s < cr.clumpCentres.size(); ++s)
+    slotOf[static_cast<std::size_t>(cr.clumpCentres[s])] = static_cast<std::int32_t>(s);
+  const float radius2 = 1e-6f * clump.radiusMm * clump.radiusMm;
+  cr.clumpSlot.assign(static_cast<std::size_t>(n), -1);
+  parallelFor(n, 4096, [&](std::int64_t k) {
+    const auto ks = static_cast<std::size_t>(k);
+    const Eigen::Vector3<std::int64_t> c = cube(at[ks]);
+    float best = std::numeric_limits<float>::infinity();
+    std::int32_t bestRoot = -1;
+    for (std::int64_t dx = -1; dx <= 1; ++dx)
+      for (std::int64_t dy = -1; dy <= 1; ++dy)
+        for (std::int64_t dz = -1; dz <= 1; ++dz) {
+          const auto it = centreOf.find(key(c.x() + dx, c.y() + dy, c.z() + dz));
+          if (it == centreOf.end()) continue;
+          const float d2 = (at[static_cast<std::size_t>(it->second)] - at[ks]).squaredNorm();
+          if (d2 < best || (d2 == best && it->second < bestRoot)) {
+            best = d2;
+            bestRoot = it->second;
+          }
+        }
+    if (bestRoot >= 0 && best <= radius2)
+      cr.clumpSlot[ks] = slotOf[static_cast<std::size_t>(bestRoot)];
+  });
+}
+
 FurRoots growRoots(const skin::SkinMesh& skin, const FurParams& params, const Groom& groom) {
   const std::int32_t nT = skin.numTriangles();
   PELAGE_CHECK(groom.vertex.comb.empty() ||
@@ -355,6 +432,8 @@ FurRoots growRoots(const skin::SkinMesh& skin, const FurParams& params, const Gr
         }
       }
     });
+    assignClumps(skin, roots.barycentric, seed, params.coats[static_cast<std::size_t>(c)].clump,
+                 cr);
   }
   return roots;
 }

@@ -22,6 +22,28 @@ def _flat(hairs):
     return p, n
 
 
+def test_clumped_and_frizzed_hairs_equal_the_command_line(monkey, cli, tmp_path):
+    # Clumping and frizz (README: Clumping, Frizz) reach Python's arrays and the PLY export alike;
+    # the roots stay where the plain coat has them, and the tips gather.
+    clump = {"density": 1.0, "strength": 0.6, "radius": 10}
+    fur = monkey.fur("default", hairs=HAIRS, overcoat={"clump": clump, "frizz": {"amplitude": 1}})
+    hairs = fur.hairs(clip="walk", time=0.5)
+    out = tmp_path / "hair.ply"
+    cli("hair", "--hairs", HAIRS, "--fur-set", "overcoat.clump.density=1",
+        "overcoat.clump.strength=0.6", "overcoat.clump.radius=10", "overcoat.frizz.amplitude=1",
+        "--clip", "walk", "--time", 0.5, "--out", out)
+    ply = read_hair_ply(out)
+    points, _ = _flat(hairs)
+    np.testing.assert_array_equal(bits(points), bits(np.stack([ply["x"], ply["y"], ply["z"]], 1)))
+    plain = monkey.fur("default", hairs=HAIRS).hairs(clip="walk", time=0.5)
+    np.testing.assert_array_equal(bits(hairs.points[:, 0]), bits(plain.points[:, 0]))
+    assert fur.params["overcoat"]["clump"]["density"] == 1.0
+    over = hairs.coat == 0
+    moved = np.linalg.norm(hairs.points[over, -1] - plain.points[over, -1], axis=1)
+    assert np.mean(moved > 1e-4) > 0.8  # most overcoat tips moved
+    np.testing.assert_array_equal(bits(hairs.points[~over]), bits(plain.points[~over]))
+
+
 @pytest.mark.parametrize("style", ["polyline", "tube"])
 def test_hairs_equal_the_command_line(monkey, cli, tmp_path, style):
     fur = monkey.fur("default", hairs=HAIRS, overcoat={"stiffness": 0.6, "style": style},

@@ -44,11 +44,25 @@ void recolorFur(const Model& model, Fur& fur, fur::FurParams params, const std::
   fur.colorGeneration = nextGeneration();
 }
 
+namespace {
+// The clump assignment (fur::assignClumps) depends on each coat's clump density and radius, and
+// on whether it clumps at all.
+bool clumpRootsDiffer(const fur::FurParams& a, const fur::FurParams& b) {
+  for (int c = 0; c < fur::kCoatCount; ++c) {
+    const fur::Clump& x = a.coats[static_cast<std::size_t>(c)].clump;
+    const fur::Clump& y = b.coats[static_cast<std::size_t>(c)].clump;
+    if (x.on() != y.on() || (x.on() && (x.density != y.density || x.radiusMm != y.radiusMm)))
+      return true;
+  }
+  return false;
+}
+}  // namespace
+
 bool rootsDiffer(const fur::FurParams& a, const fur::FurParams& b) {
   return a.hairs != b.hairs || a.densityPerM2 != b.densityPerM2 || a.coverage != b.coverage ||
          a.undercoatShare != b.undercoatShare || a.seed != b.seed ||
          a.maps.density != b.maps.density || a.maps.length != b.maps.length ||
-         a.regions != b.regions || a.groom != b.groom;
+         a.regions != b.regions || a.groom != b.groom || clumpRootsDiffer(a, b);
 }
 
 bool colorsDiffer(const fur::FurParams& a, const fur::FurParams& b) {

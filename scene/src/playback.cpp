@@ -42,6 +42,10 @@ void validatePlaybackOptions(const Model& model, const PlaybackOptions& o) {
 Playback::Playback(const Model& model, const Fur& fur, PlaybackOptions options)
     : model_(&model), fur_(&fur), options_(std::move(options)) {
   validatePlaybackOptions(model, options_);
+  if (options_.dynamics && fur::clumps(fur.params))
+    fieldError("dynamics",
+               "on with clumping (a coat's clump) is not there yet: set the coats' "
+               "clump density to 0, or dynamics off");
   stillPose_ =
       options_.stillPose.local.empty() ? anatomy::restPose(model.body) : options_.stillPose;
   stepSeconds_ = 1.0 / options_.clock.fps;
@@ -51,8 +55,10 @@ Playback::Playback(const Model& model, const Fur& fur, PlaybackOptions options)
 }
 
 HairSource Playback::hairSource() const {
-  return options_.hairSource == HairSource::Cpu || options_.dynamics ? HairSource::Cpu
-                                                                     : HairSource::Gpu;
+  // Dynamics and clumping run on the CPU only (the GPU shader has neither yet).
+  return options_.hairSource == HairSource::Cpu || options_.dynamics || fur::clumps(fur_->params)
+             ? HairSource::Cpu
+             : HairSource::Gpu;
 }
 
 void Playback::setFur(const Fur& fur) {

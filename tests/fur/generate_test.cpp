@@ -165,6 +165,93 @@ TEST(Generate, FrizzMatchesTheReferenceOnEveryPathAndKeepsTheRoots) {
   }
 }
 
+// A hair's strand point k (a tube's ring centre, the mean of its M points in order).
+Eigen::Vector3f strandPoint(const HairBuffers& b, std::int64_t h, int k) {
+  const int M = b.layout.ringSides;
+  Eigen::Vector3f sum = Eigen::Vector3f::Zero();
+  for (int m = 0; m < M; ++m) sum += test::point(b, h, k * M + m);
+  return M == 1 ? sum : Eigen::Vector3f(sum / static_cast<float>(M));
+}
+
+TEST(Generate, ClumpedHairsGatherByTheStrengthAndMatchTheReferenceOnEveryPath) {
+  // Clumping (fur_params.h Clump) on the sphere, every style: each clumped hair's strand point k
+  // lies (1 - s_k) of the way it did from its centre hair's, s_k = strength t^shape, so the tips'
+  // mean distance to their centres' tips falls by exactly the strength; the roots, the centres
+  // and the hairs in no clump stay bit for bit. Each kernel target and thread count equals the
+  // scalar reference bit for bit, and a culled frame draws the same clumped hairs.
+  const skin::SkinMesh s = test::makeSphere(0.1f, 16, 32);
+  skin::DeformedSkin d;
+  skin::restSkin(s, d);
+  for (HairStyle style :
+       {HairStyle::Line, HairStyle::Polyline, HairStyle::Curve, HairStyle::Tube}) {
+    SCOPED_TRACE(styleName(style));
+    FurParams plain = test::simpleParams(style, 3000);
+    plain.coats[0].segmentDirectionWeight = 0.4f;
+    plain.coats[0].clump = {.density = 0.2f, .strength = 0.0f, .shape = 1.5f, .radiusMm = 25.0f};
+    FurParams p = plain;
+    p.coats[0].clump.strength = 0.6f;
+    const FurRoots r = growRoots(s, p);
+    const CoatRoots& cr = r.coats[0];
+    ASSERT_EQ(cr.clumpSlot.size(), static_cast<std::size_t>(cr.size()));
+    const FurFrame without = test::furFrame(s, r, plain, d);  // strength 0: off
+    setThreadCount(1);
+    const FurFrame one = test::furFrame(s, r, p, d);
+    setThreadCount(2);
+    EXPECT_TRUE(test::sameHairs(one, test::furFrame(s, r, p, d)));
+    setThreadCount(0);
+    const HairBuffers &a = without.coats[0], &b = one.coats[0];
+    const int K = b.layout.strandPoints, P = b.layout.pointsPerHair();
+    double before = 0.0, after = 0.0;
+    std::int64_t clumped = 0;
+    std::vector<float> pos, nrm;
+    for (std::int64_t h = 0; h < b.drawn; ++h) {
+      const std::int32_t slot = cr.clumpSlot[static_cast<std::size_t>(h)];
+      const std::int64_t c = slot < 0 ? h : cr.clumpCentres[static_cast<std::size_t>(slot)];
+      if (c == h) {
+        for (int i = 0; i < P; ++i) ASSERT_EQ(test::point(b, h, i), test::point(a, h, i)) << h;
+        continue;
+      }
+      ++clumped;
+      for (int m = 0; m < b.layout.ringSides; ++m)
+        ASSERT_EQ(test::point(b, h, m), test::point(a, h, m)) << "root of hair " << h;
+      for (int k = 1; k < K; ++k) {
+        const float sk = 0.6f * std::pow(k / float(K - 1), 1.5f);
+        const Eigen::Vector3f C = strandPoint(a, c, k);
+        const Eigen::Vector3f expected = C + (1.0f - sk) * (strandPoint(a, h, k) - C);
+        ASSERT_LE((strandPoint(b, h, k) - expected).norm(), 2e-6f) << "hair " << h << " k " << k;
+      }
+      before += (strandPoint(a, h, K - 1) - strandPoint(a, c, K - 1)).norm();
+      after += (strandPoint(b, h, K - 1) - strandPoint(a, c, K - 1)).norm();
+      if (h % 3 != 0) continue;
+      referenceHair(s, r, p, d, 0, h, pos, nrm);
+      const std::size_t n = static_cast<std::size_t>(P) * 3;
+      ASSERT_EQ(0, std::memcmp(pos.data(), b.positions.data() + static_cast<std::size_t>(h) * n,
+                               n * sizeof(float)))
+          << "hair " << h;
+    }
+    EXPECT_GT(clumped, b.drawn * 8 / 10);
+    EXPECT_NEAR(after / before, 1.0 - 0.6, 1e-4);
+    for (const std::string& target : kernelTargets()) {
+      ASSERT_TRUE(setKernelTarget(target));
+      EXPECT_TRUE(test::sameHairs(one, test::furFrame(s, r, p, d))) << target;
+    }
+    setKernelTarget("auto");
+    // Culling draws a prefix of each triangle's roots; a drawn hair keeps its clump even where its
+    // centre is not drawn.
+    FurView far;
+    far.culling = true;
+    far.referenceDistance = 0.1f;
+    far.viewDistance = 0.3f;
+    const FurFrame culled = test::furFrame(s, r, p, d, far);
+    const HairBuffers& cb = culled.coats[0];
+    ASSERT_LT(cb.drawn, b.drawn);
+    for (std::int64_t i = 0; i < cb.drawn; ++i) {
+      const std::int64_t h = cb.hairIds[static_cast<std::size_t>(i)];
+      for (int k = 0; k < P; ++k) ASSERT_EQ(test::point(cb, i, k), test::point(b, h, k)) << h;
+    }
+  }
+}
+
 TEST(Generate, FrizzAtTheTipIsUniformNoiseOfTheAmplitude) {
   // Lines (two points): the tip's offset is amplitude g, g the lattice vector at t f = 4 exactly
   // (blend 0), uniform in [-1, 1)^3 per hair: mean 0 and variance amplitude^2 / 3 per axis, axes

@@ -74,6 +74,7 @@ TEST(Preset, RoundTripsThroughJson) {
   p.coats[kUndercoat].curlRadius = 0.25f;
   p.coats[kUndercoat].curlTurns = 4.0f;
   p.coats[kOvercoat].frizz = {.amplitudeMm = 2.5f, .frequency = 7.0f, .tipWeight = 3.0f};
+  p.coats[kOvercoat].clump = {.density = 0.5f, .strength = 0.7f, .shape = 2.0f, .radiusMm = 8.0f};
   p.up = Eigen::Vector3f(0, 1, 0);
   const FurParams q = parseFurPreset(furPresetJson(p), "round trip");
   EXPECT_EQ(furPresetJson(q), furPresetJson(p));
@@ -83,6 +84,8 @@ TEST(Preset, RoundTripsThroughJson) {
   EXPECT_FLOAT_EQ(q.coats[kOvercoat].frizz.amplitudeMm, 2.5f);
   EXPECT_FLOAT_EQ(q.coats[kOvercoat].frizz.frequency, 7.0f);
   EXPECT_FLOAT_EQ(q.coats[kOvercoat].frizz.tipWeight, 3.0f);
+  EXPECT_FLOAT_EQ(q.coats[kOvercoat].clump.density, 0.5f);
+  EXPECT_FLOAT_EQ(q.coats[kOvercoat].clump.radiusMm, 8.0f);
   test::TempDir dir;
   saveFurPreset(dir.file("mine.json"), p);
   EXPECT_EQ(furPresetJson(loadFurPreset(dir.file("mine.json"))), furPresetJson(p));
@@ -201,6 +204,8 @@ INSTANTIATE_TEST_SUITE_P(
         BadPreset{"CurvePoints", R"({"undercoat": {"curvePoints": 100}})", "[2, 64]"},
         BadPreset{"FrizzAmplitude", R"({"overcoat": {"frizz": {"amplitude": 150}}})",
                   "overcoat.frizz.amplitude': value 150 is out of range [0, 100]"},
+        BadPreset{"ClumpDensity", R"({"undercoat": {"clump": {"density": -1}}})",
+                  "undercoat.clump.density': value -1 is out of range [0, 100]"},
         BadPreset{"FrizzField", R"({"overcoat": {"frizz": {"amplitude": 1, "freq": 2}}})",
                   "unknown field 'overcoat.frizz.freq'"},
         BadPreset{"ZeroUp", R"({"up": [0, 0, 0]})", "no direction"},

@@ -3,7 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <numeric>
 
@@ -11,6 +13,7 @@
 #include "pelage/fur/roots.h"
 #include "pelage/util/error.h"
 #include "pelage/util/parallel.h"
+#include "pelage/util/random.h"
 
 namespace pelage::fur {
 namespace {
@@ -198,6 +201,77 @@ TEST(Roots, SameSeedSameRootsAnyThreadCount) {
   }
   p.seed = 2;
   EXPECT_NE(growRoots(s, p).coats[0].triangleStart, a.coats[0].triangleStart);
+}
+
+TEST(Roots, ClumpsAreTheLeastPriorityRootOfEachCubeAndRootsJoinTheNearestWithinTheRadius) {
+  // 30 x 30 cm of skin at 1 clump per cm^2 (1 cm cubes), 20,000 roots: every cube the grid covers
+  // has a centre; each root's clump checked by brute force (the nearest centre among the 27
+  // cubes around its own, ties to the lower index, within the radius); the same whatever the
+  // thread count.
+  const skin::SkinMesh s = makeGrid(30, 0.01f, 0.01f);
+  for (const float radiusMm : {25.0f, 4.0f}) {
+    SCOPED_TRACE(radiusMm);
+    FurParams p = test::simpleParams(HairStyle::Line, 20000);
+    p.coats[0].clump = {.density = 1.0f, .strength = 0.5f, .shape = 1.0f, .radiusMm = radiusMm};
+    setThreadCount(1);
+    const FurRoots r = growRoots(s, p);
+    setThreadCount(2);
+    const FurRoots r2 = growRoots(s, p);
+    setThreadCount(0);
+    const CoatRoots& cr = r.coats[0];
+    EXPECT_EQ(cr.clumpCentres, r2.coats[0].clumpCentres);
+    EXPECT_EQ(cr.clumpSlot, r2.coats[0].clumpSlot);
+    EXPECT_TRUE(r.coats[1].clumpSlot.empty()) << "the undercoat does not clump";
+    ASSERT_GE(cr.clumpCentres.size(), 900u);
+    ASSERT_LE(cr.clumpCentres.size(), 961u);
+    const std::uint64_t seed = coatSeed(p.seed, 0);
+    const auto cubeOf = [](const Eigen::Vector3f& x) {
+      return std::array<long, 3>{static_cast<long>(std::floor(static_cast<double>(x.x()) / 0.01)),
+                                 static_cast<long>(std::floor(static_cast<double>(x.y()) / 0.01)),
+                                 static_cast<long>(std::floor(static_cast<double>(x.z()) / 0.01))};
+    };
+    std::map<std::array<long, 3>, std::int64_t> least;  // cube -> root of least priority
+    for (std::int64_t k = 0; k < cr.size(); ++k) {
+      const auto cube = cubeOf(restRootPosition(s, r.barycentric, cr, k));
+      const auto it = least.find(cube);
+      const auto u = [&](std::int64_t i) {
+        return uniform01(seed, kStreamClump, static_cast<std::uint64_t>(i));
+      };
+      if (it == least.end() || u(k) < u(it->second)) least[cube] = k;
+    }
+    std::vector<std::int32_t> centres;
+    for (const auto& [cube, k] : least) centres.push_back(static_cast<std::int32_t>(k));
+    std::sort(centres.begin(), centres.end());
+    ASSERT_EQ(cr.clumpCentres, centres);
+    std::int64_t joined = 0;
+    for (std::int64_t k = 0; k < cr.size(); ++k) {
+      const Eigen::Vector3f x = restRootPosition(s, r.barycentric, cr, k);
+      const auto cube = cubeOf(x);
+      float best = std::numeric_limits<float>::infinity();
+      std::int32_t expected = -1;
+      for (std::size_t slot = 0; slot < centres.size(); ++slot) {
+        const Eigen::Vector3f c = restRootPosition(s, r.barycentric, cr, centres[slot]);
+        const auto cc = cubeOf(c);
+        if (std::abs(cc[0] - cube[0]) > 1 || std::abs(cc[1] - cube[1]) > 1 ||
+            std::abs(cc[2] - cube[2]) > 1)
+          continue;
+        const float d2 = (c - x).squaredNorm();
+        if (d2 < best) best = d2, expected = static_cast<std::int32_t>(slot);
+      }
+      if (best > 1e-6f * radiusMm * radiusMm) expected = -1;
+      ASSERT_EQ(cr.clumpSlot[static_cast<std::size_t>(k)], expected) << "root " << k;
+      joined += expected >= 0;
+    }
+    // A 25 mm radius reaches every root's nearest centre; 4 mm leaves some out.
+    if (radiusMm > 20.0f)
+      EXPECT_EQ(joined, cr.size());
+    else
+      EXPECT_LT(joined, cr.size());
+  }
+  FurParams off = test::simpleParams(HairStyle::Line, 2000);
+  off.coats[0].clump.density = 1.0f;
+  off.coats[0].clump.strength = 0.0f;
+  EXPECT_TRUE(growRoots(s, off).coats[0].clumpCentres.empty()) << "strength 0 is off";
 }
 
 }  // namespace

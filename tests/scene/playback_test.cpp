@@ -1,7 +1,8 @@
 // The frame owner (scene/playback.h), tested directly: a clip's frame and the still pose pose the
 // skin the frame functions give, a frame reached out of order with dynamics equals a whole run's
 // bit for bit (the pre-roll), the GPU source counts the hairs the CPU draws, a playback's limits
-// name their fields, and a stop asked for ends a frame before it is posed.
+// name their fields, a fur that clumps is computed on the CPU (and refused with dynamics), and a
+// stop asked for ends a frame before it is posed.
 #include "pelage/scene/playback.h"
 
 #include <gtest/gtest.h>
@@ -135,6 +136,39 @@ TEST(Playback, LimitsNameTheirFields) {
   o.clock.fps = 30.0;
   o.clock.startSeconds = -1.0;
   EXPECT_THROW(Playback(wagCritter(), wagFur(), o), InputError);
+}
+
+TEST(Playback, ClumpingRunsOnTheCpuAndIsRefusedWithDynamics) {
+  // The GPU shader has no clumping yet: a fur that clumps is computed on the CPU whatever the
+  // hair source asked; with dynamics (not there yet either) the playback refuses, naming the field.
+  fur::FurParams p = wagFur().params;
+  p.coats[0].clump = {.density = 2.0f, .strength = 0.8f, .shape = 1.0f, .radiusMm = 10.0f};
+  const Fur clumped = growFur(wagCritter(), p, "test");
+  ASSERT_FALSE(clumped.roots.coats[0].clumpCentres.empty());
+  PlaybackOptions o;
+  o.clip = 0;
+  o.hairSource = HairSource::Gpu;
+  EXPECT_EQ(Playback(wagCritter(), wagFur(), o).hairSource(), HairSource::Gpu);
+  Playback gpuAsked(wagCritter(), clumped, o);
+  EXPECT_EQ(gpuAsked.hairSource(), HairSource::Cpu);
+  // Its hairs are the clumped ones: they differ from the unclumped fur's.
+  o.hairSource = HairSource::Cpu;
+  Playback plain(wagCritter(), wagFur(), o);
+  for (Playback* pb : {&plain, &gpuAsked}) {
+    pb->poseFrame(3);
+    pb->evaluateFur(fur::FurView{});
+  }
+  ASSERT_TRUE(gpuAsked.state().cpuFur);
+  ASSERT_EQ(plain.state().fur.drawn(), gpuAsked.state().fur.drawn());
+  EXPECT_FALSE(sameHairs(plain.state().fur, gpuAsked.state().fur));
+  o.dynamics = true;
+  try {
+    Playback refused(wagCritter(), clumped, o);
+    FAIL() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.field(), "dynamics");
+    EXPECT_NE(std::string(e.what()).find("clump"), std::string::npos) << e.what();
+  }
 }
 
 void stopNow() {

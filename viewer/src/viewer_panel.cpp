@@ -81,6 +81,15 @@ void coatPanel(const char* title, fur::CoatParams& c, bool undercoat) {
                        ImGuiSliderFlags_Logarithmic);
     ImGui::SliderFloat("frizz tip weight", &c.frizz.tipWeight, 1.0f, 8.0f);
   }
+  ImGui::SliderFloat("clumps per cm^2", &c.clump.density, 0.0f, 100.0f, "%.2f",
+                     ImGuiSliderFlags_Logarithmic);
+  if (c.clump.density > 0.0f) {
+    ImGui::SliderFloat("clump strength", &c.clump.strength, 0.0f, 1.0f);
+    ImGui::SliderFloat("clump shape", &c.clump.shape, 0.1f, 10.0f, "%.2f",
+                       ImGuiSliderFlags_Logarithmic);
+    ImGui::SliderFloat("clump radius (mm)", &c.clump.radiusMm, 0.1f, 1000.0f, "%.1f",
+                       ImGuiSliderFlags_Logarithmic);
+  }
   ImGui::SliderFloat("root width (mm)", &c.width.rootMm, 0.001f, 20.0f, "%.3f",
                      ImGuiSliderFlags_Logarithmic);
   ImGui::SliderFloat("tip width (mm)", &c.width.tipMm, 0.0f, 20.0f, "%.3f",

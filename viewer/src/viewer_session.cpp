@@ -157,6 +157,11 @@ void ViewerSession::applyEdits() {
     candidate.seed = grown.seed;
     candidate.maps.density = grown.maps.density;
     candidate.maps.length = grown.maps.length;
+    for (std::size_t c = 0; c < candidate.coats.size(); ++c) {  // the clumps the roots carry
+      candidate.coats[c].clump.density = grown.coats[c].clump.density;
+      candidate.coats[c].clump.radiusMm = grown.coats[c].clump.radiusMm;
+      if (!grown.coats[c].clump.on()) candidate.coats[c].clump.strength = 0.0f;
+    }
   }
   // Colour edits recolour the roots in place (no new roots); a source the creature lacks or an
   // unreadable colour map is reported and the colours stay as they were.

@@ -78,6 +78,19 @@ struct Frizz {
   float tipWeight = 2.0f;    // [1, 8]: the exponent of t (higher: only the tips)
 };
 
+// Clumping (beyond the paper): the coat's roots gather into clumps, about `density` per cm^2 of
+// skin, each around a centre hair chosen from the roots (roots.h CoatRoots::clumpSlot); point k
+// of a hair in a clump moves toward the same point of its centre hair by s(t) = strength t^shape
+// (t = k / (K - 1): the root stays, the tip moves by `strength` of the way), on top of the paper's
+// shape. A root joins the nearest centre within `radius`. Density 0 or strength 0: off.
+struct Clump {
+  float density = 0.0f;    // clumps per cm^2 [0, 100]: 0 = off (today's hairs exactly)
+  float strength = 0.5f;   // [0, 1]: the share of the way to the centre hair at the tip
+  float shape = 1.0f;      // [0.1, 10]: the exponent of t (higher: only the tips gather)
+  float radiusMm = 10.0f;  // [0.1, 1000]: how far from a centre its clump reaches (mm)
+  bool on() const { return density > 0.0f && strength > 0.0f; }
+};
+
 // One coat (sec. 3.1): "different material characteristics, stiffness, randomness, and hair style".
 struct CoatParams {
   HairStyle style = HairStyle::Polyline;
@@ -93,6 +106,7 @@ struct CoatParams {
   float curlRadius = 0.0f;              // helix radius as a fraction of the length [0, 0.5]
   float curlTurns = 0.0f;               // helix turns along the hair [0, 20]
   Frizz frizz;                          // noise toward the tips (off)
+  Clump clump;                          // gathering into clumps (off)
   CoatColor color;                      // where each hair's colour comes from
 };
 
@@ -169,6 +183,13 @@ struct FurParams {
     coverage = 0.0;
   }
 };
+
+// Whether some coat of `p` clumps (Clump::on).
+inline bool clumps(const FurParams& p) {
+  for (const CoatParams& c : p.coats)
+    if (c.clump.on()) return true;
+  return false;
+}
 
 // The largest hair count accepted: 20 million (40 times the paper's 500,000).
 inline constexpr double kMaxHairs = 2e7;

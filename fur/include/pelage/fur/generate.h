@@ -91,6 +91,9 @@ struct FurWorkspace {
   std::array<std::vector<float>, kCoatCount> twist;
   std::array<float, kCoatCount> twistAmount{-1.0f, -1.0f};
   std::array<std::uint64_t, kCoatCount> twistSeed{0, 0};
+  // Clumping: per coat, this frame's strand points (K x 3) of each clump centre hair
+  // (CoatRoots::clumpCentres order), unclumped and without frizz.
+  std::array<std::vector<float>, kCoatCount> clumpCentres;
 };
 
 // The per-coat constants of hair_math.h for coat `coat` of `params`.

@@ -3,6 +3,8 @@
 // share and seed; read-only during playback.
 #pragma once
 
+#include <Eigen/Core>
+
 #include <array>
 #include <cstdint>
 #include <string>
@@ -38,6 +40,11 @@ struct CoatRoots {
   // nRoots: the groom's comb at the root (groom.h), interpolated from its triangle's vertices at
   // rest and packed in the root's tangent frame (hair_math.h packComb); empty without a comb.
   std::vector<std::uint32_t> comb;
+  // Clumping (fur_params.h Clump; assignClumps): the clump centres as root indices, ascending, and
+  // per root the index into clumpCentres of its clump's centre (-1: in no clump; a centre is in
+  // its own). Both empty when the coat does not clump.
+  std::vector<std::int32_t> clumpCentres;
+  std::vector<std::int32_t> clumpSlot;
   double expectedHairs = 0.0;  // N_coat, before random rounding
   std::int64_t size() const { return static_cast<std::int64_t>(triangle.size()); }
 };
@@ -92,6 +99,17 @@ void checkHairBudget(const FurParams& params, double furredArea);
 // triangle's three vertex densities. Calls checkHairBudget first.
 FurRoots growRoots(const skin::SkinMesh& skin, const FurParams& params, const Groom& groom = {});
 
+// Clumping (fur_params.h Clump), at rest: space is cut into cubes of side a = 1 cm /
+// sqrt(density); in each cube holding roots, the root of least priority u_k = uniform01(coatSeed,
+// kStreamClump, k) (ties: the lower index) is a clump centre, so there are about `density` clumps
+// per cm^2 of skin; each root joins the nearest centre (ties: the lower index) among those of its
+// own cube and the 26 around it, if within the radius. Fills cr.clumpCentres and cr.clumpSlot
+// (cleared when the coat does not clump). Called by growRoots; deterministic, thread-independent.
+void assignClumps(const skin::SkinMesh& skin, const std::vector<float>& barycentric,
+                  std::uint64_t coatSeed, const Clump& clump, CoatRoots& cr);
+// A root's rest position: its table entry's barycentric point on its triangle in the rest pose.
+Eigen::Vector3f restRootPosition(const skin::SkinMesh& skin, const std::vector<float>& barycentric,
+                                 const CoatRoots& cr, std::int64_t k);
 // Rest-pose area of each triangle (m^2), nT.
 std::vector<double> triangleAreas(const skin::SkinMesh& skin);
 

@@ -40,6 +40,7 @@ enum RandomStream : std::uint64_t {
   kStreamCoatSplit = 6,
   kStreamColor = 7,    // per-hair colour variation
   kStreamDensity = 8,  // density-map placement of roots inside a triangle
+  kStreamClump = 9,    // clump centres (the root of least priority in each cell)
   kStreamUser = 1000,
 };
 

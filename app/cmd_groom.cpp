@@ -56,11 +56,12 @@ void addGroomCommand(CLI::App& app) {
     };
     std::printf(
         "%s: %zu stroke(s) on %s (%d vertices): length changed at %lld vertices, density "
-        "at %lld, tint at %lld, comb at %lld\n",
+        "at %lld, tint at %lld, comb at %lld, clump at %lld\n",
         out->c_str(), list.size(), m.name.c_str(), m.skin.numVertices(),
         changed(groom.length, before.length, 0.0f), changed(groom.density, before.density, 1.0f),
         changed(groom.tint, before.tint, Eigen::Vector3f(Eigen::Vector3f::Ones())),
-        changed(groom.comb, before.comb, Eigen::Vector3f(Eigen::Vector3f::Zero())));
+        changed(groom.comb, before.comb, Eigen::Vector3f(Eigen::Vector3f::Zero())),
+        changed(groom.clump, before.clump, 1.0f));
   });
 }
 

@@ -216,7 +216,7 @@ void FurOptions::add(CLI::App& cmd) {
                                "keep their share of it (default: the preset's, 0.4 to 0.02)");
   cmd.add_option(
       "--groom", groom,
-      "Groom file of per-vertex values (length, density, tint, comb) for this model's mesh, "
+      "Groom file of per-vertex values (length, density, tint, comb, clump) for this model's mesh, "
       "from Python's Model.write_groom or `pelage info --groom-out` (default: the "
       "preset's 'groom', else none)");
   cmd.add_option("--fur-set", settings,

@@ -202,6 +202,7 @@ std::string groomExample() {
     g.density.push_back(v % 3 == 0 ? 0.0f : 1.0f / 3.0f * static_cast<float>(v));
     g.tint.emplace_back(0.1f * static_cast<float>(v % 7), 1.0f, 0.7f);
     g.comb.emplace_back(0.125f * static_cast<float>(v % 5), -0.5f, 0.0f);
+    g.clump.push_back(0.25f * static_cast<float>(v % 5));
   }
   return fur::groomFileJson(groomMesh(), g);
 }
@@ -230,7 +231,10 @@ std::string strokesExample() {
   e.strength = 0.8f;
   e.cutLength = 0.004f;
   e.mirrorAxis = 0;
-  return fur::groomStrokesJson({a, b, c, d, e});
+  fur::GroomStroke f = b;
+  f.tool = fur::BrushTool::Clump;
+  f.strength = 0.3f;
+  return fur::groomStrokesJson({a, b, c, d, e, f});
 }
 
 std::string meshInput(std::string_view extension, std::string_view fileBytes) {

@@ -255,13 +255,14 @@ void strandPointsOf(const float* points, int K, int M, float* out) {
 }
 
 // Moves a hair's points (K x M x 3) toward its clump centre's strand points `centre` (K x 3):
-// every point of ring k by s_k (C_k - S_k), S_k the hair's own strand point (strandPointsOf).
-void addClump(const std::array<float, kMaxCurvePoints>& w, int K, int M, const float* centre,
-              float* points) {
+// every point of ring k by scale s_k (C_k - S_k), S_k the hair's own strand point (strandPointsOf),
+// scale the groom's clump scale at the root (1 without).
+void addClump(const std::array<float, kMaxCurvePoints>& w, float scale, int K, int M,
+              const float* centre, float* points) {
   float own[3 * kMaxCurvePoints];
   strandPointsOf(points, K, M, own);
   for (int k = 1; k < K; ++k) {  // s_0 = 0: the root stays
-    const float wk = w[static_cast<std::size_t>(k)];
+    const float wk = w[static_cast<std::size_t>(k)] * scale;
     const float o[3] = {wk * (centre[3 * k] - own[3 * k]),
                         wk * (centre[3 * k + 1] - own[3 * k + 1]),
                         wk * (centre[3 * k + 2] - own[3 * k + 2])};
@@ -395,7 +396,7 @@ void detail::generateFurWithDynamics(
           const std::int32_t slot = cr.clumpSlot[r];
           if (slot < 0 || cr.clumpCentres[static_cast<std::size_t>(slot)] == a.hairIds[h]) continue;
           const int K = hb.layout.strandPoints;
-          addClump(clumpW, K, hb.layout.ringSides,
+          addClump(clumpW, cr.clumpScale.empty() ? 1.0f : cr.clumpScale[r], K, hb.layout.ringSides,
                    ws.clumpCentres[ci].data() + static_cast<std::size_t>(slot) * 3 * K,
                    a.positions + h * shape.points * 3);
         }
@@ -477,7 +478,9 @@ void referenceHair(const skin::SkinMesh& skin, const FurRoots& roots, const FurP
     std::vector<float> p, n, centre(static_cast<std::size_t>(3 * K));
     paperHair(cr.clumpCentres[static_cast<std::size_t>(slot)], p, n);
     strandPointsOf(p.data(), K, layout.ringSides, centre.data());
-    addClump(clumpWeights(clump, K), K, layout.ringSides, centre.data(), positions.data());
+    const float scale =
+        cr.clumpScale.empty() ? 1.0f : cr.clumpScale[static_cast<std::size_t>(rootIndex)];
+    addClump(clumpWeights(clump, K), scale, K, layout.ringSides, centre.data(), positions.data());
   }
   if (shape.frizz) addFrizz(shape, static_cast<std::uint32_t>(rootIndex), positions.data());
 }

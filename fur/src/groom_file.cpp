@@ -70,7 +70,8 @@ std::string groomFileJson(const skin::SkinMesh& skin, const VertexGroom& g) {
   PELAGE_CHECK((g.length.empty() || g.length.size() == nV) &&
                    (g.density.empty() || g.density.size() == nV) &&
                    (g.tint.empty() || g.tint.size() == nV) &&
-                   (g.comb.empty() || g.comb.size() == nV),
+                   (g.comb.empty() || g.comb.size() == nV) &&
+                   (g.clump.empty() || g.clump.size() == nV),
                "groom arrays sized for another mesh");
   nlohmann::json j;
   j["format"] = kFormat;
@@ -94,6 +95,7 @@ std::string groomFileJson(const skin::SkinMesh& skin, const VertexGroom& g) {
   };
   if (!g.tint.empty()) j["tint"] = triples(g.tint);
   if (!g.comb.empty()) j["comb"] = triples(g.comb);
+  if (!g.clump.empty()) j["clump"] = singles(g.clump);
   return j.dump() + "\n";
 }
 
@@ -109,7 +111,7 @@ VertexGroom parseGroomFile(const std::string& text, const std::string& source,
   if (!j.has("format") || !j.at("format").json().is_string() || j.string("format") != kFormat)
     j.fail(str("not a groom file: expected \"format\": \"", kFormat,
                "\" (groom files come from pelage's groom output or Python's write_groom)"));
-  j.rejectUnknown({"format", "version", "mesh", "length", "density", "tint", "comb"});
+  j.rejectUnknown({"format", "version", "mesh", "length", "density", "tint", "comb", "clump"});
   j.integer("version", kGroomFileVersion, kGroomFileVersion);
   const JsonReader mesh = j.at("mesh");
   mesh.rejectUnknown({"vertices", "triangles", "hash"});
@@ -128,6 +130,7 @@ VertexGroom parseGroomFile(const std::string& text, const std::string& source,
     g.length = readValues(j, "length", n, 1, 0.0, static_cast<double>(kMaxGroomLengthMeters));
   if (j.has("density"))
     g.density = readValues(j, "density", n, 1, 0.0, static_cast<double>(kMaxGroomDensity));
+  if (j.has("clump")) g.clump = readValues(j, "clump", n, 1, 0.0, 1.0);
   const auto readTriples = [&](const char* field, double lo, double hi) {
     const std::vector<float> t = readValues(j, field, n, 3, lo, hi);
     std::vector<Eigen::Vector3f> out(n);

@@ -17,8 +17,7 @@ namespace {
 
 using Vec3 = Eigen::Vector3f;
 
-constexpr const char* kToolNames[] = {"length", "density", "color", "comb", "cut"};
-constexpr const char* kAbsentTools[] = {"clump"};
+constexpr const char* kToolNames[] = {"length", "density", "color", "comb", "cut", "clump"};
 constexpr const char* kAxes[] = {"x", "y", "z"};
 
 // Distance from p to the polyline through `points` (a single point: to it), and the direction
@@ -75,6 +74,9 @@ void applyStroke(const skin::SkinMesh& skin, const GroomStroke& s, const std::ve
         if (len > 1e-12f) g.comb[i] += (w * s.strength) * (t / len - g.comb[i]);
         break;
       }
+      case BrushTool::Clump:
+        g.clump[i] = std::lerp(g.clump[i], s.strength, w);  // exactly `strength` in the core
+        break;
       case BrushTool::Cut:
         // std::lerp: exactly the cut length under the brush's core at strength 1, and exactly
         // the length where it is already shorter.
@@ -99,14 +101,9 @@ std::vector<GroomStroke> strokesFrom(const JsonReader& root) {
     GroomStroke& s = strokes[k];
     const std::string tool = j.string("tool");
     const auto known = std::find(std::begin(kToolNames), std::end(kToolNames), tool);
-    if (known == std::end(kToolNames)) {
-      if (std::find(std::begin(kAbsentTools), std::end(kAbsentTools), tool) !=
-          std::end(kAbsentTools))
-        j.at("tool").fail(str("the '", tool, "' brush is not available yet (accepted: length, ",
-                              "density, color, comb, cut)"));
+    if (known == std::end(kToolNames))
       j.at("tool").fail(
-          str("unknown brush '", tool, "' (accepted: length, density, color, comb, cut)"));
-    }
+          str("unknown brush '", tool, "' (accepted: length, density, color, comb, cut, clump)"));
     s.tool = static_cast<BrushTool>(known - std::begin(kToolNames));
     const JsonReader points = j.at("points");
     if (points.size() < 1 || points.size() > kMaxStrokePoints)
@@ -133,6 +130,9 @@ std::vector<GroomStroke> strokesFrom(const JsonReader& root) {
         if (!moves) points.fail("a comb stroke needs at least two distinct points (its direction)");
         break;
       }
+      case BrushTool::Clump:
+        s.strength = static_cast<float>(j.number("strength", 0.0, 1.0));
+        break;
       case BrushTool::Cut:
         s.strength = static_cast<float>(j.number("strength", 1.0, 0.0, 1.0));
         s.cutLength =
@@ -221,6 +221,7 @@ void applyGroomStrokes(const skin::SkinMesh& skin, const std::vector<GroomStroke
     if (s.tool == BrushTool::Density && g.density.empty()) g.density.assign(n, 1.0f);
     if (s.tool == BrushTool::Color && g.tint.empty()) g.tint.assign(n, Vec3::Ones());
     if (s.tool == BrushTool::Comb && g.comb.empty()) g.comb.assign(n, Vec3::Zero());
+    if (s.tool == BrushTool::Clump && g.clump.empty()) g.clump.assign(n, 1.0f);
     applyStroke(skin, s, s.points, restNormals, g);
     if (s.mirrorAxis >= 0) {
       std::vector<Vec3> mirrored = s.points;

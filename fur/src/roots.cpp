@@ -279,6 +279,10 @@ FurRoots growRoots(const skin::SkinMesh& skin, const FurParams& params, const Gr
                    groom.vertex.comb.size() == static_cast<std::size_t>(skin.numVertices()),
                "groom comb has ", groom.vertex.comb.size(), " values for ", skin.numVertices(),
                " vertices");
+  PELAGE_CHECK(groom.vertex.clump.empty() ||
+                   groom.vertex.clump.size() == static_cast<std::size_t>(skin.numVertices()),
+               "groom clump has ", groom.vertex.clump.size(), " values for ", skin.numVertices(),
+               " vertices");
   skin::DeformedSkin rest;  // rest normals, for the comb's tangent frames
   if (!groom.vertex.comb.empty()) skin::restSkin(skin, rest);
   const std::vector<double> area = triangleAreas(skin);
@@ -391,6 +395,9 @@ FurRoots growRoots(const skin::SkinMesh& skin, const FurParams& params, const Gr
       cr.lengthScale.resize(n);
     }
     if (!groom.vertex.comb.empty()) cr.comb.resize(n);
+    const bool clumpScaled =
+        !groom.vertex.clump.empty() && params.coats[static_cast<std::size_t>(c)].clump.on();
+    if (clumpScaled) cr.clumpScale.resize(n);
     parallelForChunks(nT, 4096, [&](std::int64_t tb, std::int64_t te) {
       for (std::int64_t t = tb; t < te; ++t) {
         const std::int64_t first = cr.triangleStart[static_cast<std::size_t>(t)];
@@ -410,6 +417,14 @@ FurRoots growRoots(const skin::SkinMesh& skin, const FurParams& params, const Gr
             const float* b = roots.barycentric.data() + 4 * cr.tableIndex[ks];
             cr.lengthScale[ks] =
                 groom.length.sample(skin.uvAt(static_cast<std::int32_t>(t), b)).x();
+          }
+          if (clumpScaled) {
+            const float* b = roots.barycentric.data() + 4 * cr.tableIndex[ks];
+            const std::int32_t* v = skin.triangles.data() + 3 * t;
+            const auto at = [&](int i) {
+              return groom.vertex.clump[static_cast<std::size_t>(v[i])];
+            };
+            cr.clumpScale[ks] = b[0] * at(0) + b[1] * at(1) + b[2] * at(2);
           }
           if (!cr.comb.empty())
             cr.comb[ks] = restComb(skin, rest, groom.vertex.comb, static_cast<std::int32_t>(t),

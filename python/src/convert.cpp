@@ -172,7 +172,8 @@ Dynamics dynamicsFrom(const py::object& d) {
 }
 
 fur::VertexGroom vertexGroomFrom(int vertices, const py::object& length, const py::object& density,
-                                 const py::object& tint, const py::object& comb) {
+                                 const py::object& tint, const py::object& comb,
+                                 const py::object& clump) {
   const auto nV = static_cast<py::ssize_t>(vertices);
   const auto column = [&](const py::object& o, const char* name) {
     std::vector<float> out;
@@ -199,6 +200,7 @@ fur::VertexGroom vertexGroomFrom(int vertices, const py::object& length, const p
   g.density = column(density, "density");
   g.tint = triples(tint, "tint", "RGB");
   g.comb = triples(comb, "comb", "direction times amount");
+  g.clump = column(clump, "clump");
   return g;
 }
 
@@ -215,6 +217,8 @@ py::dict groomDict(const fur::VertexGroom& g) {
   };
   if (!g.tint.empty()) d["tint"] = triples(g.tint);
   if (!g.comb.empty()) d["comb"] = triples(g.comb);
+  if (!g.clump.empty())
+    d["clump"] = py::array_t<float>({static_cast<py::ssize_t>(g.clump.size())}, g.clump.data());
   return d;
 }
 

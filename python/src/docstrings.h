@@ -44,6 +44,8 @@ Args:
     comb: None, or shape (vertices, 3): the combed direction times the comb amount (length at
         most 1; rest pose, in the skin's tangent plane): the hairs' weightless direction turns
         toward it by the amount (1: lies along it; gravity still applies), 0: not combed.
+    clump: None, or shape (vertices,): multiplies the coats' clump strength [0, 1] (0: out of
+        its clump); only where a coat clumps.
     strokes: None, or grooming strokes applied on top of the arrays (those they need and that
         are absent start from the model's lengths, density 1, tint 1, no comb): a strokes file's
         path, or its JSON as a dict, {"strokes": [{"tool": "length" | "density" | "color" | "comb",

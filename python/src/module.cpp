@@ -116,9 +116,9 @@ fur::FurParams furParams(const std::string& preset, const py::kwargs& fields) {
 // JSON as a dict) into a groom file, checked by its reader before anything is written.
 void writeGroom(const PyModel& m, const std::string& path, const py::object& length,
                 const py::object& density, const py::object& tint, const py::object& comb,
-                const py::object& strokes) {
+                const py::object& clump, const py::object& strokes) {
   const skin::SkinMesh& skin = m.model->skin;
-  fur::VertexGroom g = vertexGroomFrom(skin.numVertices(), length, density, tint, comb);
+  fur::VertexGroom g = vertexGroomFrom(skin.numVertices(), length, density, tint, comb, clump);
   if (!strokes.is_none())
     fur::applyGroomStrokes(skin,
                            py::isinstance<py::str>(strokes)
@@ -569,7 +569,8 @@ PYBIND11_MODULE(_pelage, m) {
           py::arg("preset") = "default", doc::kGrowFurDoc)
       .def("write_groom", &writeGroom, py::arg("path"), py::arg("length") = py::none(),
            py::arg("density") = py::none(), py::arg("tint") = py::none(),
-           py::arg("comb") = py::none(), py::arg("strokes") = py::none(), doc::kWriteGroomDoc)
+           py::arg("comb") = py::none(), py::arg("clump") = py::none(),
+           py::arg("strokes") = py::none(), doc::kWriteGroomDoc)
       .def("__repr__", [](const PyModel& s) {
         return "<pelage.Model " + s.model->name + ": " + std::to_string(s.model->body.size()) +
                " segments, " + std::to_string(s.model->skin.numTriangles()) + " triangles, " +
@@ -586,7 +587,8 @@ PYBIND11_MODULE(_pelage, m) {
       .def_property_readonly(
           "groom", [](const PyFur& f) { return groomDict(f.fur->groom.vertex); },
           "The per-vertex groom the hairs grew from (dict of numpy arrays: "
-          "'length' (nV,) metres, 'density' (nV,), 'tint' (nV, 3), 'comb' (nV, 3); only those "
+          "'length' (nV,) metres, 'density' (nV,), 'tint' (nV, 3), 'comb' (nV, 3), 'clump' (nV,); "
+          "only those "
           "a groom file or the regions set).")
       .def_property_readonly(
           "roots", [](const PyFur& f) { return f.fur->roots.total(); },

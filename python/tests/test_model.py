@@ -146,7 +146,8 @@ def test_grooming_strokes_equal_the_command_line(tmp_path, cli):
         {"tool": "color", "points": [dab.tolist()], "radius": 0.05, "strength": 1.0,
          "color": [0.2, 0.2, 0.2], "mirror": "y"},
         {"tool": "comb", "points": back, "radius": 0.06, "strength": 1.0},
-        {"tool": "cut", "points": [dab.tolist()], "radius": 0.05, "length": 0.01, "mirror": "y"}]}
+        {"tool": "cut", "points": [dab.tolist()], "radius": 0.05, "length": 0.01, "mirror": "y"},
+        {"tool": "clump", "points": [dab.tolist()], "radius": 0.05, "strength": 0.2}]}
     from_python = tmp_path / "python.groom.json"
     fox.write_groom(str(from_python), strokes=strokes)
     # The command line on the same strokes (a file) writes the same bytes.
@@ -176,6 +177,16 @@ def test_grooming_strokes_equal_the_command_line(tmp_path, cli):
         # The cut to 1 cm, exactly under the dab's core (strength 1); it only shortens.
         assert np.all(groom["length"][inside] == np.float32(0.01))
     assert np.all(groom["length"] <= np.float32(1.5) * model_length)
+    # The clump scale painted toward 0.2 under the (unmirrored) dab's core; 1 far from it.
+    core = np.linalg.norm(rest - dab, axis=1) <= 0.025
+    assert np.all(groom["clump"][core] == np.float32(0.2))
+    assert np.all(groom["clump"][far] == 1.0)
+    clumped = tmp_path / "clump.groom.json"
+    fox.write_groom(str(clumped), clump=groom["clump"])
+    assert np.array_equal(bits(fox.fur(hairs=100, groom=str(clumped)).groom["clump"]),
+                          bits(groom["clump"]))
+    with pytest.raises(ValueError, match=r"clump\[0\].*\[0, 1\]"):
+        fox.write_groom(str(tmp_path / "bad.json"), clump=np.full(len(rest), 2.0))
     assert np.all(groom["tint"][rest[:, 0] < 0.35] == 1.0)
     # The comb: unit, toward the tail (-x), on the line; nothing far from it.
     comb = groom["comb"]

@@ -252,6 +252,57 @@ TEST(Generate, ClumpedHairsGatherByTheStrengthAndMatchTheReferenceOnEveryPath) {
   }
 }
 
+TEST(Generate, AGroomsClumpScaleMultipliesTheStrengthPerHair) {
+  // The groom's per-vertex clump scale (groom.h), interpolated at each root: a hair's strand
+  // points lie (1 - scale s_k) of the way from its centre's; scale 0 leaves it as unclumped, bit
+  // for bit; the kernel equals the reference.
+  const skin::SkinMesh s = test::makeSphere(0.1f, 16, 32);
+  skin::DeformedSkin d;
+  skin::restSkin(s, d);
+  FurParams p = test::simpleParams(HairStyle::Polyline, 3000);
+  p.coats[0].clump = {.density = 0.2f, .strength = 0.6f, .shape = 1.0f, .radiusMm = 25.0f};
+  FurParams plain = p;
+  plain.coats[0].clump.strength = 0.0f;
+  Groom groom;
+  const float* rest = s.restPositions();
+  for (int v = 0; v < s.numVertices(); ++v)  // 0 on the lower half, rising to 1 at the top
+    groom.vertex.clump.push_back(std::clamp(rest[3 * v + 2] / 0.1f, 0.0f, 1.0f));
+  const FurRoots r = growRoots(s, p, groom);
+  const CoatRoots& cr = r.coats[0];
+  ASSERT_EQ(cr.clumpScale.size(), static_cast<std::size_t>(cr.size()));
+  const FurFrame a = test::furFrame(s, r, plain, d), b = test::furFrame(s, r, p, d);
+  const HairBuffers &ha = a.coats[0], &hb = b.coats[0];
+  const int K = hb.layout.strandPoints;
+  std::int64_t still = 0, pulled = 0;
+  std::vector<float> pos, nrm;
+  for (std::int64_t h = 0; h < hb.drawn; ++h) {
+    const std::int32_t slot = cr.clumpSlot[static_cast<std::size_t>(h)];
+    const std::int64_t c = slot < 0 ? h : cr.clumpCentres[static_cast<std::size_t>(slot)];
+    const float scale = cr.clumpScale[static_cast<std::size_t>(h)];
+    if (c == h) continue;
+    if (scale == 0.0f) {
+      ++still;
+      for (int k = 0; k < K; ++k) ASSERT_EQ(test::point(hb, h, k), test::point(ha, h, k)) << h;
+      continue;
+    }
+    pulled += scale > 0.5f;
+    for (int k = 1; k < K; ++k) {
+      const float sk = 0.6f * (k / float(K - 1)) * scale;
+      const Eigen::Vector3f C = test::point(ha, c, k);
+      const Eigen::Vector3f expected = C + (1.0f - sk) * (test::point(ha, h, k) - C);
+      ASSERT_LE((test::point(hb, h, k) - expected).norm(), 2e-6f) << "hair " << h << " k " << k;
+    }
+    if (h % 4 != 0) continue;
+    referenceHair(s, r, p, d, 0, h, pos, nrm);
+    const std::size_t n = static_cast<std::size_t>(hb.layout.pointsPerHair()) * 3;
+    ASSERT_EQ(0, std::memcmp(pos.data(), hb.positions.data() + static_cast<std::size_t>(h) * n,
+                             n * sizeof(float)))
+        << "hair " << h;
+  }
+  EXPECT_GT(still, hb.drawn / 4);
+  EXPECT_GT(pulled, hb.drawn / 10);
+}
+
 TEST(Generate, FrizzAtTheTipIsUniformNoiseOfTheAmplitude) {
   // Lines (two points): the tip's offset is amplitude g, g the lattice vector at t f = 4 exactly
   // (blend 0), uniform in [-1, 1)^3 per hair: mean 0 and variance amplitude^2 / 3 per axis, axes

@@ -98,6 +98,21 @@ TEST(GroomStrokes, CutTrimsTowardItsLengthAndNeverLengthens) {
   EXPECT_EQ(h.length[static_cast<std::size_t>(vertexAt(0.01f, 0.0f))], 0.01f);
 }
 
+TEST(GroomStrokes, ClumpPaintsTheClumpScaleTowardItsStrength) {
+  // A dab of radius 1 cm at the centre, strength 0.25: the centre (in the core) exactly 0.25, the
+  // four neighbours 1 cm away (the edge) untouched at 1, the rest 1.
+  const int centre = vertexAt(0.02f, 0.02f);
+  VertexGroom g;
+  applyGroomStrokes(grid(), {stroke(BrushTool::Clump, {{0.02f, 0.02f, 0.0f}}, 0.01f, 0.25f)}, g);
+  ASSERT_EQ(g.clump.size(), 25u);
+  EXPECT_TRUE(g.length.empty());
+  for (int v = 0; v < 25; ++v)
+    EXPECT_EQ(g.clump[static_cast<std::size_t>(v)], v == centre ? 0.25f : 1.0f) << v;
+  // Half-way out (smoothstep 1/2 at 7.5 mm from a dab 7.5 mm left of the centre): 1 + 0.5 (0 - 1).
+  applyGroomStrokes(grid(), {stroke(BrushTool::Clump, {{0.0125f, 0.02f, 0.0f}}, 0.01f, 0.0f)}, g);
+  EXPECT_NEAR(g.clump[static_cast<std::size_t>(centre)], 0.25f * 0.5f, 1e-6f);
+}
+
 TEST(GroomStrokes, DensityAndColourPaintTowardTheirValues) {
   const int centre = vertexAt(0.02f, 0.02f), corner = vertexAt(0.0f, 0.0f);
   GroomStroke paint = stroke(BrushTool::Color, {{0.02f, 0.02f, 0.0f}}, 0.01f, 0.5f);
@@ -195,7 +210,8 @@ TEST(GroomStrokes, JsonRoundTripAndErrorsNameTheField) {
       {"strokes[0].color", "only the color brush"});
   bad(R"({"tool": "length", "points": [[0, 0, 0]], "radius": 1, "strength": 1, "mirror": "w"})",
       {"strokes[0].mirror", "accepted: x, y, z"});
-  bad(R"({"tool": "clump", "points": [[0, 0, 0]], "radius": 1})", {"not available yet"});
+  bad(R"({"tool": "clump", "points": [[0, 0, 0]], "radius": 1, "strength": 1.5})",
+      {"strokes[0].strength", "out of range"});
   bad(R"({"tool": "cut", "points": [[0, 0, 0]], "radius": 1})", {"strokes[0]", "length"});
   bad(R"({"tool": "cut", "points": [[0, 0, 0]], "radius": 1, "length": 11})",
       {"strokes[0].length", "out of range"});

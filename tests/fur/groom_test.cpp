@@ -94,6 +94,7 @@ TEST(Groom, FileRoundTripsBitIdenticallyAndRefusesAnotherMesh) {
     v.length.push_back(u(rng) * 0.1f);
     v.density.push_back(u(rng) * 3.0f);
     v.tint.emplace_back(u(rng), u(rng) * 10.0f, 1.0f / 3.0f);
+    v.clump.push_back(u(rng));
   }
   const std::string file = testing::TempDir() + "grid.groom.json";
   writeGroomFile(file, g.skin, v);
@@ -102,6 +103,7 @@ TEST(Groom, FileRoundTripsBitIdenticallyAndRefusesAnotherMesh) {
   EXPECT_EQ(std::memcmp(back.length.data(), v.length.data(), 25 * sizeof(float)), 0);
   EXPECT_EQ(std::memcmp(back.density.data(), v.density.data(), 25 * sizeof(float)), 0);
   EXPECT_EQ(std::memcmp(back.tint.data(), v.tint.data(), 25 * sizeof(Eigen::Vector3f)), 0);
+  EXPECT_EQ(std::memcmp(back.clump.data(), v.clump.data(), 25 * sizeof(float)), 0);
   EXPECT_EQ(groomFileJson(g.skin, back), test::readText(file));
   // The same counts but another shape: the hash tells them apart.
   const skin::SkinMesh moved = test::makeGrid(4, 0.011f, 0.01f);
@@ -127,6 +129,12 @@ TEST(Groom, FileValuesAreChecked) {
   text = good;
   text.replace(text.find("\"density\""), 9, "\"densty\"");
   test::expectInputError([&] { parseGroomFile(text, "f.json", g.skin, "grid"); }, {"densty"});
+  VertexGroom c;
+  c.clump.assign(25, 0.5f);
+  text = groomFileJson(g.skin, c);
+  text.replace(text.find("[0.5,"), 5, "[1.5,");
+  test::expectInputError([&] { parseGroomFile(text, "f.json", g.skin, "grid"); },
+                         {"f.json", "clump[0]", "[0, 1]"});
   test::expectInputError([&] { parseGroomFile("{}", "f.json", g.skin, "grid"); },
                          {"f.json", "not a groom file"});
   test::expectInputError([&] { parseGroomFile("[1,", "f.json", g.skin, "grid"); }, {"f.json"});

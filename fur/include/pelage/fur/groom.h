@@ -37,12 +37,18 @@ inline constexpr float kMaxCombLength2 = 1.0f + 1e-5f;
 //    skin's tangent plane; a hair's weightless direction d (sec. 3.4) turns toward it:
 //    d' = normalize((1 - a) d + a t), t the comb's direction carried with the skin (roots.h).
 //    Gravity (sec. 3.5) still applies. 0: not combed (d exactly).
+//  clump: multiplies each coat's clump strength (fur_params.h Clump) at the vertex, [0, 1]
+//    (interpolated at the root at rest); 0: that hair stays out of its clump. Only where the coat
+//    clumps.
 struct VertexGroom {
   std::vector<float> length;
   std::vector<float> density;
   std::vector<Eigen::Vector3f> tint;
   std::vector<Eigen::Vector3f> comb;
-  bool empty() const { return length.empty() && density.empty() && tint.empty() && comb.empty(); }
+  std::vector<float> clump;
+  bool empty() const {
+    return length.empty() && density.empty() && tint.empty() && comb.empty() && clump.empty();
+  }
 };
 
 // The groom of one fur: its maps, loaded (empty textures where the preset names none), and its

@@ -18,11 +18,12 @@
 //           stroke (gravity still applies). Needs two distinct points;
 //  cut:     the fur length trimmed toward `length` (metres, [0, 10]) with opacity `strength`
 //           [0, 1]: l + w strength (min(l, length) - l); it only shortens (the clippers). Length 0
-//           shaves: a triangle whose three vertices reach 0 grows no hair.
+//           shaves: a triangle whose three vertices reach 0 grows no hair;
+//  clump:   the clump scale (groom.h) painted toward `strength` [0, 1]: c + w (strength - c);
+//           it multiplies each coat's clump strength (only where a coat clumps: fur_params.h).
 // "mirror": "x", "y" or "z" applies the stroke a second time with that coordinate negated (the
 // creature's symmetry plane through the origin; the mirrored comb runs along the mirrored stroke).
-// Strokes apply in list order. The clump brush is not there yet: a stroke naming it is refused by
-// name.
+// Strokes apply in list order.
 #pragma once
 
 #include <Eigen/Core>
@@ -36,7 +37,7 @@
 
 namespace pelage::fur {
 
-enum class BrushTool { Length, Density, Color, Comb, Cut };
+enum class BrushTool { Length, Density, Color, Comb, Cut, Clump };
 
 struct GroomStroke {
   BrushTool tool = BrushTool::Length;
@@ -52,7 +53,7 @@ inline constexpr std::size_t kMaxGroomStrokes = 100000;
 inline constexpr std::size_t kMaxStrokePoints = 100000;
 inline constexpr float kMaxBrushRadiusMeters = 10.0f;
 
-// "length", "density", "color", "comb", "cut".
+// "length", "density", "color", "comb", "cut", "clump".
 const char* brushToolName(BrushTool tool);
 
 // Parses a strokes file's text from `source`; InputError naming the source, the field
@@ -68,7 +69,7 @@ std::string groomStrokesJson(const std::vector<GroomStroke>& strokes);
 float brushFalloff(float distance, float radius);
 
 // Applies `strokes` in order to `groom` on `skin` (rest positions). Arrays the strokes need and
-// `groom` lacks start from the skin's fur lengths, density 1, tint 1, comb 0.
+// `groom` lacks start from the skin's fur lengths, density 1, tint 1, comb 0, clump 1.
 void applyGroomStrokes(const skin::SkinMesh& skin, const std::vector<GroomStroke>& strokes,
                        VertexGroom& groom);
 

@@ -45,6 +45,9 @@ struct CoatRoots {
   // its own). Both empty when the coat does not clump.
   std::vector<std::int32_t> clumpCentres;
   std::vector<std::int32_t> clumpSlot;
+  // nRoots: the groom's clump scale at the root (groom.h; sum b_i clump_i of its triangle's
+  // vertices), multiplying the coat's clump strength; empty without one or without clumping.
+  std::vector<float> clumpScale;
   double expectedHairs = 0.0;  // N_coat, before random rounding
   std::int64_t size() const { return static_cast<std::int64_t>(triangle.size()); }
 };

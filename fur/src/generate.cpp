@@ -272,9 +272,10 @@ void addClump(const std::array<float, kMaxCurvePoints>& w, float scale, int K, i
 }
 
 // This frame's strand points of every clump centre of coat `coat` (unclumped, no frizz) into
-// ws.clumpCentres, from the packed vertex records: the scalar path, as referenceHair computes them.
-void computeClumpCentres(const skin::SkinMesh& skin, const FurRoots& roots, int coat,
-                         const CoatShape& shape, const HairLayout& layout, FurWorkspace& ws) {
+// ws.clumpCentres: each centre hair as referenceHair computes it (rootInput, buildHair).
+void computeClumpCentres(const skin::SkinMesh& skin, const FurRoots& roots,
+                         const skin::DeformedSkin& deformed, int coat, const CoatShape& shape,
+                         const HairLayout& layout, FurWorkspace& ws) {
   const auto ci = static_cast<std::size_t>(coat);
   const CoatRoots& cr = roots.coats[ci];
   const int K = layout.strandPoints, M = layout.ringSides;
@@ -284,19 +285,12 @@ void computeClumpCentres(const skin::SkinMesh& skin, const FurRoots& roots, int 
       static_cast<std::int64_t>(cr.clumpCentres.size()), 256, [&](std::int64_t b, std::int64_t e) {
         std::vector<float> points(static_cast<std::size_t>(3 * shape.points));
         for (std::int64_t s = b; s < e; ++s) {
-          const auto r = static_cast<std::size_t>(cr.clumpCentres[static_cast<std::size_t>(s)]);
-          const std::int32_t* tv =
-              skin.triangles.data() + 3 * static_cast<std::int64_t>(cr.triangle[r]);
-          const float* rec = ws.vertexRecords.data();
-          const HairInput<float> in = interpolateRoot(
-              roots.barycentric.data() + 4 * cr.tableIndex[r], rec + tv[0] * kVertexRecordFloats,
-              rec + tv[1] * kVertexRecordFloats, rec + tv[2] * kVertexRecordFloats,
-              cr.jitter.data() + 4 * r, cr.lengthScale.empty() ? 1.0f : cr.lengthScale[r],
-              cr.comb.empty() ? 0u : cr.comb[r]);
+          const std::int32_t root = cr.clumpCentres[static_cast<std::size_t>(s)];
           const HairTwist<float> twist =
-              shape.twist ? twistOf(ws.twist[ci], cr.tableIndex[r]) : HairTwist<float>{};
+              shape.twist ? twistOf(ws.twist[ci], cr.tableIndex[static_cast<std::size_t>(root)])
+                          : HairTwist<float>{};
           PointSink sink{points.data()};
-          buildHair(shape, in, twist, sink);
+          buildHair(shape, rootInput(skin, roots, deformed, coat, root), twist, sink);
           strandPointsOf(points.data(), K, M, out.data() + s * 3 * K);
         }
       });
@@ -381,7 +375,7 @@ void detail::generateFurWithDynamics(
     const bool clumps = emit && clump.on() && !cr.clumpSlot.empty() && !dynamics[ci];
     std::array<float, kMaxCurvePoints> clumpW{};
     if (clumps) {
-      computeClumpCentres(skin, roots, c, shape, hb.layout, ws);
+      computeClumpCentres(skin, roots, deformed, c, shape, hb.layout, ws);
       clumpW = clumpWeights(clump, hb.layout.strandPoints);
     }
     // Not with frizz or clumps: they read the points back at once.

@@ -10,6 +10,7 @@
 #include "options.h"
 #include "pelage/fur/groom.h"
 #include "pelage/fur/groom_strokes.h"
+#include "pelage/scene/groom_editor.h"
 #include "pelage/util/error.h"
 #include "pelage/util/path.h"
 
@@ -40,10 +41,7 @@ void addGroomCommand(CLI::App& app) {
     const fur::FurParams params = furArgs->resolve();
     const std::vector<fur::GroomStroke> list = fur::readGroomStrokes(*strokes);
     const scene::Model m = model->load();
-    fur::VertexGroom groom =
-        fur::resolveVertexGroom(m.skin, m.body, m.name, params, "fur '" + params.name + "'");
-    if (groom.length.empty())
-      groom.length.assign(m.skin.furLengths(), m.skin.furLengths() + m.skin.numVertices());
+    fur::VertexGroom groom = scene::startingGroom(m, params, "fur '" + params.name + "'");
     const fur::VertexGroom before = groom;
     fur::applyGroomStrokes(m.skin, list, groom);
     fur::writeGroomFile(*out, m.skin, groom);

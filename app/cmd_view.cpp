@@ -5,6 +5,7 @@
 
 #include "commands.h"
 #include "options.h"
+#include "pelage/fur/groom_strokes.h"
 #include "pelage/util/error.h"
 #include "pelage/viewer/viewer_app.h"
 
@@ -28,6 +29,10 @@ void addViewCommand(CLI::App& app) {
   furArgs->add(*cmd);
   view->add(*cmd);
   dyn->add(*cmd, false);
+  auto strokes = std::make_shared<std::string>();
+  cmd->add_option("--strokes", *strokes,
+                  "Strokes file (as `pelage groom` reads) replayed into the panel's brushing "
+                  "session at the start, undoable; the brushes continue from it");
   cmd->add_option("--screenshot", o->screenshot,
                   "Write the last frame to this .png or .jpg and exit (a window: its back buffer, "
                   "UI included; --headless: the scene)");
@@ -45,8 +50,9 @@ void addViewCommand(CLI::App& app) {
                   "Timed frames per count [1, 100000] (default 20)");
   cmd->add_flag("--debug-gl", o->debugGl, "OpenGL debug output to stderr; GL errors fail the run");
   common->add(*cmd, false);
-  cmd->callback([cmd, model, pose, furArgs, dyn, view, o, benchHairs] {
+  cmd->callback([cmd, model, pose, furArgs, dyn, view, o, benchHairs, strokes] {
     view->validate();
+    if (!strokes->empty()) o->strokes = fur::readGroomStrokes(*strokes);
     // The benchmark's reference resolution is 1080p (issue 5) unless a size is given.
     if (o->benchmark && cmd->count("--size") == 0) {
       o->width = 1920;

@@ -115,37 +115,35 @@ std::vector<GroomStroke> strokesFrom(const JsonReader& root) {
     }
     s.radius =
         static_cast<float>(j.number("radius", 1e-6, static_cast<double>(kMaxBrushRadiusMeters)));
+    const StrengthRange range = brushStrengthRange(s.tool);
+    // Length, density and clump strokes say their strength; the others default to full.
+    const bool defaults =
+        s.tool == BrushTool::Comb || s.tool == BrushTool::Cut || s.tool == BrushTool::Color;
+    s.strength =
+        static_cast<float>(defaults ? j.number("strength", 1.0, static_cast<double>(range.lo),
+                                               static_cast<double>(range.hi))
+                                    : j.number("strength", static_cast<double>(range.lo),
+                                               static_cast<double>(range.hi)));
     switch (s.tool) {
-      case BrushTool::Length:
-        s.strength = static_cast<float>(j.number("strength", 1e-6, 10.0));
-        break;
-      case BrushTool::Density:
-        s.strength =
-            static_cast<float>(j.number("strength", 0.0, static_cast<double>(kMaxGroomDensity)));
-        break;
       case BrushTool::Comb: {
-        s.strength = static_cast<float>(j.number("strength", 1.0, 0.0, 1.0));
         bool moves = false;
         for (const Vec3& p : s.points) moves = moves || p != s.points[0];
         if (!moves) points.fail("a comb stroke needs at least two distinct points (its direction)");
         break;
       }
-      case BrushTool::Clump:
-        s.strength = static_cast<float>(j.number("strength", 0.0, 1.0));
-        break;
       case BrushTool::Cut:
-        s.strength = static_cast<float>(j.number("strength", 1.0, 0.0, 1.0));
         s.cutLength =
             static_cast<float>(j.number("length", 0.0, static_cast<double>(kMaxGroomLengthMeters)));
         break;
       case BrushTool::Color: {
-        s.strength = static_cast<float>(j.number("strength", 1.0, 0.0, 1.0));
         s.color = j.vec3("color");
         for (int c = 0; c < 3; ++c)
           if (!(s.color[c] >= 0.0f && s.color[c] <= kMaxGroomTint))
             j.at("color").fail(str("component ", c, " = ", s.color[c], " is out of range [0, 10]"));
         break;
       }
+      default:
+        break;
     }
     if (s.tool != BrushTool::Color && j.has("color"))
       j.at("color").fail(str("only the color brush takes a colour (this is ", tool, ")"));
@@ -166,6 +164,43 @@ std::vector<GroomStroke> strokesFrom(const JsonReader& root) {
 
 const char* brushToolName(BrushTool tool) {
   return kToolNames[static_cast<int>(tool)];
+}
+
+StrengthRange brushStrengthRange(BrushTool tool) {
+  switch (tool) {
+    case BrushTool::Length:
+      return {1e-6f, 10.0f};
+    case BrushTool::Density:
+      return {0.0f, kMaxGroomDensity};
+    default:
+      return {0.0f, 1.0f};
+  }
+}
+
+void validateGroomStroke(const GroomStroke& s, const std::string& source, bool needPoints) {
+  const std::string at = source + ": ";
+  if (needPoints && (s.points.empty() || s.points.size() > kMaxStrokePoints))
+    inputError(at, "points: ", s.points.size(), " points; accepted: 1 to ", kMaxStrokePoints);
+  for (std::size_t i = 0; i < s.points.size(); ++i)
+    if (!s.points[i].allFinite())
+      inputError(at, "points[", i, "]: expected finite coordinates (metres)");
+  if (needPoints && s.tool == BrushTool::Comb &&
+      std::all_of(s.points.begin(), s.points.end(),
+                  [&](const Vec3& p) { return p == s.points[0]; }))
+    inputError(at, "points: a comb stroke needs at least two distinct points (its direction)");
+  if (!(s.radius >= 1e-6f && s.radius <= kMaxBrushRadiusMeters))
+    inputError(at, "radius = ", s.radius, " m is out of range (0, ", kMaxBrushRadiusMeters, "]");
+  const StrengthRange r = brushStrengthRange(s.tool);
+  if (!(s.strength >= r.lo && s.strength <= r.hi))
+    inputError(at, "strength = ", s.strength, " is out of range [", r.lo, ", ", r.hi, "] for the ",
+               brushToolName(s.tool), " brush");
+  if (s.tool == BrushTool::Cut && !(s.cutLength >= 0.0f && s.cutLength <= kMaxGroomLengthMeters))
+    inputError(at, "length = ", s.cutLength, " m is out of range [0, ", kMaxGroomLengthMeters, "]");
+  for (int c = 0; c < 3 && s.tool == BrushTool::Color; ++c)
+    if (!(s.color[c] >= 0.0f && s.color[c] <= kMaxGroomTint))
+      inputError(at, "color: component ", c, " = ", s.color[c], " is out of range [0, 10]");
+  if (s.mirrorAxis < -1 || s.mirrorAxis > 2)
+    inputError(at, "mirror: axis ", s.mirrorAxis, " (accepted: x, y, z or none)");
 }
 
 float brushFalloff(float distance, float radius) {

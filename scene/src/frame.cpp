@@ -16,11 +16,15 @@ std::uint64_t nextGeneration() {
 }
 }  // namespace
 
-Fur growFur(const Model& model, fur::FurParams params, const std::string& source) {
+namespace {
+Fur growOn(const Model& model, fur::FurParams params, const fur::VertexGroom* vertex,
+           const std::string& source) {
   fur::validateFurParams(params, source);
   Fur f;
   f.groom = fur::loadGroomMaps(params.maps, model.skin, model.name);
-  f.groom.vertex = fur::resolveVertexGroom(model.skin, model.body, model.name, params, source);
+  f.groom.vertex =
+      vertex ? *vertex
+             : fur::resolveVertexGroom(model.skin, model.body, model.name, params, source);
   params = fur::fitCoverageToBudget(model.skin, std::move(params),
                                     fur::groomedLengths(model.skin, f.groom.vertex));
   f.roots = fur::growRoots(model.skin, params, f.groom);
@@ -29,6 +33,16 @@ Fur growFur(const Model& model, fur::FurParams params, const std::string& source
   f.generation = nextGeneration();
   f.colorGeneration = nextGeneration();
   return f;
+}
+}  // namespace
+
+Fur growFur(const Model& model, fur::FurParams params, const std::string& source) {
+  return growOn(model, std::move(params), nullptr, source);
+}
+
+Fur growFur(const Model& model, fur::FurParams params, fur::VertexGroom vertex,
+            const std::string& source) {
+  return growOn(model, std::move(params), &vertex, source);
 }
 
 void recolorFur(const Model& model, Fur& fur, fur::FurParams params, const std::string& source) {

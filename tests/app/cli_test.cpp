@@ -156,6 +156,11 @@ INSTANTIATE_TEST_SUITE_P(
                 "field 'strokes[0].points': a comb stroke needs at least two distinct points"},
         BadCase{"GroomOutNotJson", "", "groom <tet> --strokes {} --out <dir>/g.ply",
                 "a groom file is JSON"},
+        // The viewer's brushing session starts from a strokes file only when it reads.
+        BadCase{"ViewStrokesRadius",
+                R"({"strokes": [{"tool": "length", "points": [[0, 0, 0]], "radius": 0,
+                                 "strength": 2}]})",
+                "view <tet> --headless --strokes {} --screenshot <dir>/v.png", "strokes[0].radius"},
         // Input quoted in a message is cut to a few dozen characters, with its length.
         BadCase{"LongFramesQuoted", "",
                 "render <tet> --out <dir>/f --frames 1:" + std::string(5000, '9') + "x",

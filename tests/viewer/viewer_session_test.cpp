@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <thread>
 
@@ -315,6 +316,99 @@ TEST_F(ViewerSessionTest, TheViewerDrawsTheFrameRenderDraws) {
   EXPECT_GT(old, 4.0 * std::max(same, 0.25)) << "same " << same << ", old " << old;
   std::printf("viewer vs render, Fox: mean difference %.3f codes (with the old skin: %.2f)\n", same,
               old);
+}
+
+// The brushes as the panel and the mouse drive them (ViewerSession::brushAt / endBrush / undo /
+// files): a stroke lands on the skin under the cursor, the fur regrows with the new groom while the
+// old one draws, undo gives back the first groom bit for bit, and the saved strokes replayed by
+// `pelage groom` write the very groom file the viewer saved.
+TEST_F(ViewerSessionTest, BrushesGroomTheSkinUnderTheCursorUndoAndSaveFilesThatReplay) {
+  const auto same = [](const std::vector<float>& a, const std::vector<float>& b) {
+    return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](float x, float y) {
+             return std::memcmp(&x, &y, sizeof x) == 0;
+           });
+  };
+  const auto waitForGroom = [](ViewerSession& s) {
+    for (int i = 0; i < 500 && !s.groomShown(); ++i) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+      s.frame(0.0, 96, 64);
+    }
+    return s.groomShown();
+  };
+  ViewerOptions o = smallOptions();
+  o.selfShadowing = false;
+  o.fur.culling.enabled = false;  // every hair, but for the brush preview
+  ViewerSession s(o, test::sceneCritter());
+  s.brushPreviewHairs = 1000;
+  s.frame(0.0, 96, 64);
+  EXPECT_FALSE(s.previewing());
+  EXPECT_EQ(s.hairsDrawn(), s.fur().roots.total());
+  const std::vector<float> start = s.groomEditor().groom().length;
+  EXPECT_FALSE(s.brushAt(0.5f, 0.5f));  // the corner looks past the critter
+  EXPECT_FALSE(s.brushing());
+  s.brush.stroke.tool = fur::BrushTool::Length;
+  s.brush.stroke.strength = 2.0f;
+  s.brush.radius = 0.03f;
+  s.brush.stroke.mirrorAxis = 1;
+  ASSERT_TRUE(s.brushAt(48.0f, 32.0f));
+  EXPECT_TRUE(s.brushing());
+  // While brushing, the preview draws about 1,000 of the 4,000 hairs.
+  s.frame(0.0, 96, 64);
+  EXPECT_TRUE(s.previewing());
+  EXPECT_GT(s.hairsDrawn(), 700);
+  EXPECT_LT(s.hairsDrawn(), 1300);
+  EXPECT_TRUE(s.brushAt(52.0f, 33.0f));
+  s.endBrush();
+  ASSERT_EQ(s.groomEditor().strokes().size(), 1u);
+  const fur::GroomStroke stroke = s.groomEditor().strokes()[0];
+  EXPECT_EQ(stroke.mirrorAxis, 1);
+  EXPECT_FLOAT_EQ(stroke.radius, 0.03f);
+  const std::vector<float>& brushed = s.groomEditor().groom().length;
+  int longer = 0;
+  for (std::size_t v = 0; v < start.size(); ++v) {
+    EXPECT_GE(brushed[v], start[v]);
+    longer += brushed[v] > start[v];
+  }
+  EXPECT_GT(longer, 0);
+  ASSERT_TRUE(waitForGroom(s));
+  EXPECT_TRUE(same(s.fur().groom.vertex.length, brushed));
+  s.frame(0.0, 96, 64);
+  EXPECT_FALSE(s.previewing());  // the stroke's fur has grown: every hair again
+  EXPECT_EQ(s.hairsDrawn(), s.fur().roots.total());
+
+  // The files: the viewer's groom, and its strokes replayed by `pelage groom` on the same fur.
+  test::TempDir dir;
+  s.saveGroom(dir.file("critter.groom.json"));
+  s.saveStrokes(dir.file("critter.strokes.json"));
+  EXPECT_NE(s.message.find("1 strokes"), std::string::npos) << s.message;
+  const test::RunResult r = test::runPelage(
+      "groom " PELAGE_SOURCE_DIR "/tests/scene/critter.json --fur default --strokes " +
+      dir.file("critter.strokes.json") + " --out " + dir.file("replayed.groom.json"));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_EQ(test::readText(dir.file("replayed.groom.json")),
+            test::readText(dir.file("critter.groom.json")));
+
+  // Undo: the first groom bit for bit, on the fur too; redo: the stroke again.
+  s.undoStroke();
+  EXPECT_TRUE(same(s.groomEditor().groom().length, start));
+  ASSERT_TRUE(waitForGroom(s));
+  EXPECT_TRUE(same(s.fur().groom.vertex.length, start));
+  s.redoStroke();
+  EXPECT_TRUE(same(s.groomEditor().groom().length, brushed));
+
+  // Loading a groom file starts over from it; a missing one is reported by name.
+  s.undoStroke();
+  s.loadGroom(dir.file("critter.groom.json"));
+  EXPECT_TRUE(same(s.groomEditor().groom().length, brushed));
+  EXPECT_TRUE(s.groomEditor().strokes().empty());
+  EXPECT_FALSE(s.groomEditor().canUndo());
+  s.loadGroom(dir.file("missing.groom.json"));
+  EXPECT_NE(s.message.find("missing.groom.json"), std::string::npos) << s.message;
+  // A bad brush is reported, never applied.
+  s.brush.stroke.strength = 0.0f;  // a length factor must be > 0
+  EXPECT_TRUE(s.brushAt(48.0f, 32.0f));
+  EXPECT_NE(s.editError.find("strength"), std::string::npos) << s.editError;
+  EXPECT_FALSE(s.brushing());
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <thread>
 
 #include "pelage/fur/preset.h"
@@ -66,18 +67,38 @@ Image readBackBuffer(int width, int height) {
 // Mouse and keyboard camera controls (when the UI does not want the input):
 // left drag orbits, right or middle drag pans, the wheel zooms; arrows orbit, +/- (or PgUp/PgDn)
 // zoom, W/A/S/D pan, space plays/pauses, F toggles follow, 1-5 pick the camera presets, Esc quits.
+// In brush mode the left button brushes the skin under the cursor (with Alt it orbits; a circle
+// shows the brush), Ctrl+Z undoes a stroke, Ctrl+Y or Ctrl+Shift+Z redoes it.
 class Controls {
  public:
-  void update(GLFWwindow* w, detail::ViewerSession& s, int height, double dt) {
+  // `viewX`: where the 3D view starts in the framebuffer (right of the panel).
+  void update(GLFWwindow* w, detail::ViewerSession& s, int viewX, int height, double dt) {
     const ImGuiIO& io = ImGui::GetIO();
+    // The cursor in the view's pixels (the framebuffer's, which a HiDPI screen scales).
+    const float px = io.MousePos.x * io.DisplayFramebufferScale.x - static_cast<float>(viewX);
+    const float py = io.MousePos.y * io.DisplayFramebufferScale.y;
+    const bool brushing = s.brushMode && !io.KeyAlt;
+    if (s.brushing() && (!io.MouseDown[0] || !brushing)) s.endBrush();
     if (!io.WantCaptureMouse) {
       const float dx = io.MouseDelta.x, dy = io.MouseDelta.y;
-      if (io.MouseDown[0]) s.orbitBy(-dx * 0.4f, dy * 0.4f);
+      if (brushing && io.MouseDown[0] && (s.brushing() || io.MouseClicked[0])) s.brushAt(px, py);
+      if (brushing && !io.MouseDown[0]) {
+        // The brush's circle on the skin under the cursor.
+        if (const std::optional<scene::SkinHit> hit = s.skinAt(px, py))
+          ImGui::GetForegroundDrawList()->AddCircle(
+              io.MousePos,
+              s.metersToPixels(*hit, s.brushRadiusAt(*hit)) / io.DisplayFramebufferScale.y,
+              IM_COL32(255, 220, 80, 220), 48, 1.5f);
+      }
+      if (io.MouseDown[0] && !brushing) s.orbitBy(-dx * 0.4f, dy * 0.4f);
       if (io.MouseDown[1] || io.MouseDown[2])
         s.panBy(dx / static_cast<float>(height), dy / static_cast<float>(height));
       if (io.MouseWheel != 0.0f) s.zoomBy(std::pow(0.9f, io.MouseWheel));
     }
     if (io.WantCaptureKeyboard) return;
+    if (io.KeyCtrl && pressed(w, GLFW_KEY_Z)) io.KeyShift ? s.redoStroke() : s.undoStroke();
+    if (io.KeyCtrl && pressed(w, GLFW_KEY_Y)) s.redoStroke();
+    if (io.KeyCtrl) return;  // Ctrl+key is a shortcut, not a camera move
     const auto step = static_cast<float>(dt);
     auto down = [&](int key) { return glfwGetKey(w, key) == GLFW_PRESS; };
     if (down(GLFW_KEY_LEFT)) s.orbitBy(-90.0f * step, 0.0f);
@@ -153,11 +174,11 @@ int runWindow(const ViewerOptions& o, scene::Model model) {
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
     ImGui::NewFrame();
-    controls.update(window.handle(), session, fbh, dt);
     // The 3D view takes the part of the window right of the panel (all of it when that is narrow).
     const int panelRight = static_cast<int>(detail::drawPanel(session, panel));
     const int viewX = fbw - panelRight >= std::max(160, fbw / 3) ? panelRight : 0;
     const int viewW = fbw - viewX;
+    controls.update(window.handle(), session, viewX, fbh, dt);
 
     session.frame(dt, viewW, fbh);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);

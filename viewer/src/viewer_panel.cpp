@@ -3,12 +3,18 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
+#include <functional>
 #include <iterator>
 #include <string>
+#include <utility>
+#include <vector>
 
+#include "pelage/fur/groom_strokes.h"
 #include "pelage/fur/preset.h"
 
 namespace pelage::viewer::detail {
@@ -217,6 +223,108 @@ void presetPanel(ViewerSession& s, PanelState& st) {
   if (!s.message.empty()) ImGui::TextWrapped("%s", s.message.c_str());
 }
 
+// A file name from the creature's name: letters, digits, '-' and '_' kept, others '_'.
+std::string fileStem(const std::string& name) {
+  std::string stem;
+  for (const char ch : name)
+    stem += std::isalnum(static_cast<unsigned char>(ch)) || ch == '-' || ch == '_' ? ch : '_';
+  return stem.empty() ? std::string("creature") : stem;
+}
+
+// The groom files in the working directory (to load without typing a path), newest first.
+std::vector<std::string> groomFilesHere() {
+  std::vector<std::pair<std::filesystem::file_time_type, std::string>> found;
+  std::error_code ec;
+  for (const auto& e : std::filesystem::directory_iterator(".", ec)) {
+    const std::string name = e.path().filename().string();
+    if (name.size() > 11 && name.compare(name.size() - 11, 11, ".groom.json") == 0)
+      found.emplace_back(e.last_write_time(ec), name);
+    if (found.size() >= 64) break;
+  }
+  std::sort(found.begin(), found.end(), std::greater<>());
+  std::vector<std::string> names;
+  for (auto& f : found) names.push_back(std::move(f.second));
+  return names;
+}
+
+// Brushes (issue 28): tool, radius, strength, mirror; undo/redo; groom and strokes files.
+void groomPanel(ViewerSession& s, PanelState& st) {
+  ImGui::SetNextItemOpen(s.brushMode, ImGuiCond_Once);  // open when started with strokes
+  if (!ImGui::CollapsingHeader("Groom (brushes)")) return;
+  if (st.groomPath[0] == '\0')
+    std::snprintf(st.groomPath.data(), st.groomPath.size(), "%s.groom.json",
+                  fileStem(s.model().name).c_str());
+  if (st.strokesPath[0] == '\0')
+    std::snprintf(st.strokesPath.data(), st.strokesPath.size(), "%s.strokes.json",
+                  fileStem(s.model().name).c_str());
+  ImGui::Checkbox("brush with the left button (Alt: orbit)", &s.brushMode);
+  ViewerSession::Brush& b = s.brush;
+  const char* tools[] = {"length", "density", "color", "comb", "cut", "clump"};
+  int tool = static_cast<int>(b.stroke.tool);
+  if (ImGui::Combo("tool", &tool, tools, 6)) {
+    b.stroke.tool = static_cast<fur::BrushTool>(tool);
+    const fur::StrengthRange r = fur::brushStrengthRange(b.stroke.tool);
+    b.stroke.strength =
+        std::clamp(b.stroke.tool == fur::BrushTool::Length ? 1.5f : 1.0f, r.lo, r.hi);
+  }
+  int unit = b.screenRadius ? 1 : 0;
+  const char* units[] = {"cm on the skin", "pixels on the screen"};
+  if (ImGui::Combo("radius in", &unit, units, 2)) {
+    b.screenRadius = unit == 1;
+    b.radius = b.screenRadius ? 40.0f : 0.03f;
+  }
+  if (b.screenRadius) {
+    ImGui::SliderFloat("radius (px)", &b.radius, 2.0f, 400.0f, "%.0f",
+                       ImGuiSliderFlags_Logarithmic);
+  } else {
+    float cm = 100.0f * b.radius;
+    if (ImGui::SliderFloat("radius (cm)", &cm, 0.1f, 100.0f, "%.1f", ImGuiSliderFlags_Logarithmic))
+      b.radius = 0.01f * cm;
+  }
+  const fur::StrengthRange r = fur::brushStrengthRange(b.stroke.tool);
+  const char* strengthLabel = b.stroke.tool == fur::BrushTool::Length    ? "length factor"
+                              : b.stroke.tool == fur::BrushTool::Density ? "density"
+                              : b.stroke.tool == fur::BrushTool::Clump   ? "clump strength"
+                                                                         : "strength";
+  ImGui::SliderFloat(strengthLabel, &b.stroke.strength, std::max(r.lo, 0.01f), r.hi, "%.2f",
+                     r.hi > 1.0f ? ImGuiSliderFlags_Logarithmic : 0);
+  if (b.stroke.tool == fur::BrushTool::Color) color("tint", b.stroke.color);
+  if (b.stroke.tool == fur::BrushTool::Cut) {
+    float mm = 1000.0f * b.stroke.cutLength;
+    if (ImGui::SliderFloat("cut to (mm)", &mm, 0.0f, 200.0f, "%.1f"))
+      b.stroke.cutLength = 0.001f * mm;
+  }
+  int mirror = b.stroke.mirrorAxis + 1;
+  const char* axes[] = {"none", "x", "y", "z"};
+  if (ImGui::Combo("mirror across", &mirror, axes, 4)) b.stroke.mirrorAxis = mirror - 1;
+  const scene::GroomEditor& g = s.groomEditor();
+  ImGui::BeginDisabled(!g.canUndo());
+  if (ImGui::Button("undo (Ctrl+Z)")) s.undoStroke();
+  ImGui::EndDisabled();
+  ImGui::SameLine();
+  ImGui::BeginDisabled(!g.canRedo());
+  if (ImGui::Button("redo (Ctrl+Y)")) s.redoStroke();
+  ImGui::EndDisabled();
+  ImGui::SameLine();
+  ImGui::Text("%zu strokes%s", g.strokes().size(), s.groomShown() ? "" : ", growing...");
+  ImGui::InputText("groom file", st.groomPath.data(), st.groomPath.size());
+  if (ImGui::Button("save groom")) s.saveGroom(st.groomPath.data());
+  ImGui::SameLine();
+  if (ImGui::Button("load groom")) s.loadGroom(st.groomPath.data());
+  ImGui::SameLine();
+  if (ImGui::BeginCombo("##here", "groom files here", ImGuiComboFlags_NoPreview)) {
+    for (const std::string& name : groomFilesHere())
+      if (ImGui::Selectable(name.c_str())) {
+        std::snprintf(st.groomPath.data(), st.groomPath.size(), "%s", name.c_str());
+        s.loadGroom(name);
+      }
+    ImGui::EndCombo();
+  }
+  ImGui::InputText("strokes file", st.strokesPath.data(), st.strokesPath.size());
+  if (ImGui::Button("save strokes")) s.saveStrokes(st.strokesPath.data());
+  if (!s.message.empty()) ImGui::TextWrapped("%s", s.message.c_str());
+}
+
 void viewPanel(ViewerSession& s) {
   if (!ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) return;
   // Playback: clip selector (cross-fades), play/pause, scrub, speed, loop.
@@ -313,6 +421,7 @@ float drawPanel(ViewerSession& s, PanelState& st) {
   float right = 0.0f;
   if (ImGui::Begin("pelage")) {
     ImGui::PushItemWidth(ImGui::GetWindowWidth() * 0.55f);
+    groomPanel(s, st);  // first: open when the viewer starts with strokes
     viewPanel(s);
     furPanel(s);
     dynamicsPanel(s);

@@ -13,6 +13,8 @@ namespace pelage::viewer::detail {
 struct PanelState {
   std::array<char, 512> presetPath{};  // the preset file to save or load
   int builtinPreset = 0;
+  std::array<char, 512> groomPath{};  // the groom file to save or load (default: MODEL.groom.json)
+  std::array<char, 512> strokesPath{};  // the strokes file to save (default: MODEL.strokes.json)
 };
 
 // Draws the panel and the status line (between ImGui::NewFrame and ImGui::Render); edits `session`.

@@ -5,7 +5,10 @@
 
 #include "pelage/anatomy/pose_file.h"
 #include "pelage/animation/clip.h"
+#include "pelage/fur/groom.h"
+#include "pelage/fur/groom_strokes.h"
 #include "pelage/fur/preset.h"
+#include "pelage/util/atomic_file.h"
 #include "pelage/util/error.h"
 #include "pelage/viewer/gl_context.h"
 
@@ -22,7 +25,9 @@ fur::FurParams initialParams(const ViewerOptions& o) {
 }  // namespace
 
 ViewerSession::ViewerSession(const ViewerOptions& options, scene::Model model)
-    : edit(initialParams(options)), model_(std::move(model)) {
+    : edit(initialParams(options)),
+      model_(std::move(model)),
+      groomEditor_(model_, scene::startingGroom(model_, edit, "fur '" + edit.name + "'")) {
   if (!(options.time >= 0.0 && options.time <= 1e6))
     fieldError("time", options.time, " is out of range [0, 1000000] s");
   stillPose_ = options.stillPose.local.empty() ? anatomy::restPose(model_.body) : options.stillPose;
@@ -33,7 +38,16 @@ ViewerSession::ViewerSession(const ViewerOptions& options, scene::Model model)
                " of ", clips);
   clip_ = clips > 0 ? options.clip : -1;
   time_ = options.time;
-  fur_ = scene::growFur(model_, edit, "fur '" + edit.name + "'");
+  for (std::size_t i = 0; i < options.strokes.size(); ++i)
+    groomEditor_.applyStroke(options.strokes[i], "strokes[" + std::to_string(i) + "]");
+  if (!options.strokes.empty()) {
+    groomEdited_ = true;
+    brushMode = true;
+    fur_ = scene::growFur(model_, edit, groomEditor_.groom(), "fur '" + edit.name + "'");
+  } else {
+    fur_ = scene::growFur(model_, edit, "fur '" + edit.name + "'");
+  }
+  grownRevision_ = groomEditor_.revision();
   follow = options.follow;
   hairSource = options.hairSource;
   shading = options.shading;
@@ -135,6 +149,7 @@ void ViewerSession::applyEdits() {
   if (pending_.valid() && pending_.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
     try {
       fur_ = pending_.get();
+      grownRevision_ = pendingRevision_;
     } catch (const InputError& e) {
       editError = e.what();  // e.g. a hair count over the memory budget
       edit.hairs = fur_.params.hairs;
@@ -142,12 +157,22 @@ void ViewerSession::applyEdits() {
       edit.coverage = fur_.params.coverage;
     }
   }
-  if (scene::rootsDiffer(fur_.params, candidate)) {
-    if (!pending_.valid()) {
+  const bool newRoots = scene::rootsDiffer(fur_.params, candidate);
+  if ((newRoots || grownRevision_ != groomEditor_.revision()) && !pending_.valid()) {
+    // The latest brushed groom grows with the panel's parameters; strokes drawn meanwhile wait
+    // for the next regrowth (the fur catches up as soon as this one lands).
+    pendingRevision_ = groomEditor_.revision();
+    if (groomEdited_) {
+      pending_ = std::async(std::launch::async, [this, candidate, g = groomEditor_.groom()] {
+        return scene::growFur(model_, candidate, g, "fur panel");
+      });
+    } else {
       pending_ = std::async(std::launch::async, [this, candidate] {
         return scene::growFur(model_, candidate, "fur panel");
       });
     }
+  }
+  if (newRoots) {
     // Until the new roots arrive, everything but the root parameters applies to the old ones.
     const fur::FurParams& grown = fur_.params;
     candidate.hairs = grown.hairs;
@@ -279,6 +304,28 @@ void ViewerSession::frame(double dtSeconds, int width, int height) {
   }
   scene::Camera cam = scene::orbitCamera(orbit, std::max(width, 1), std::max(height, 1));
   scene::fitClipPlanes(cam, framing_);
+  lastCamera_ = cam;  // picking: the viewport's pixels
+  // The brush preview, while a stroke is drawn or its fur grows: the frame at half the size
+  // (the window scales it up) and culling (sec. 3.3) with the reference distance shortened so that
+  // c is at least the total over the preview's hairs (the next frame's applyEdits restores it). A
+  // software rasteriser's frame time is bound by the coat's fragments, which culling keeps (each
+  // drawn hair widens), so the smaller image is what makes it keep up.
+  previewing_ = brushPreviewHairs > 0.0 && (groomEditor_.drawing() || !groomShown());
+  if (previewing_) {
+    cam.width = std::max(cam.width / 2, 1);
+    cam.height = std::max(cam.height / 2, 1);
+    const double total = static_cast<double>(fur_.roots.total());
+    const fur::FurView view =
+        fur::makeFurView(fur_.params, playback_->state().skin, scene::viewCamera(cam));
+    const float ratio = fur::pixelsPerMeter(view.referenceDistance, view.referenceFovYDegrees,
+                                            view.referenceHeight) /
+                        fur::pixelsPerMeter(view.viewDistance, view.fovYDegrees, view.imageHeight);
+    const auto target = static_cast<float>(total / brushPreviewHairs);
+    if (total > brushPreviewHairs && (!fur_.params.culling.enabled || ratio < target)) {
+      fur_.params.culling.enabled = true;
+      fur_.params.culling.referenceDistance = view.referenceDistance * ratio / target;
+    }
+  }
   if (drawFur) playback_->evaluateFur(cam);
   scene::Light light;
   light.direction = scene::lightDirection(lightAzimuth, lightElevation);
@@ -296,6 +343,79 @@ void ViewerSession::frame(double dtSeconds, int width, int height) {
   const RenderStats stats = renderer_->render(*list_);
   hairsDrawn_ = stats.hairsDrawn;
   advance(dtSeconds);  // the first frame shows the start time exactly
+}
+
+std::optional<scene::SkinHit> ViewerSession::skinAt(float x, float y) const {
+  if (playback_->state().skin.positions.empty()) return std::nullopt;  // before the first frame
+  return scene::pickSkin(model_, playback_->state(), lastCamera_, x, y);
+}
+
+float ViewerSession::brushRadiusAt(const scene::SkinHit& hit) const {
+  return brush.screenRadius ? scene::pixelsToMeters(lastCamera_, brush.radius, hit.distance)
+                            : brush.radius;
+}
+
+float ViewerSession::metersToPixels(const scene::SkinHit& hit, float meters) const {
+  return meters / scene::pixelsToMeters(lastCamera_, 1.0f, hit.distance);
+}
+
+bool ViewerSession::brushAt(float x, float y) {
+  const std::optional<scene::SkinHit> hit = skinAt(x, y);
+  if (!hit) return false;
+  if (!groomEditor_.drawing()) {
+    // The radius is fixed at the stroke's first point (a screen radius: at its depth).
+    fur::GroomStroke s = brush.stroke;
+    s.radius = std::min(brushRadiusAt(*hit), fur::kMaxBrushRadiusMeters);
+    try {
+      groomEditor_.beginStroke(s, "brush");
+    } catch (const InputError& e) {
+      editError = e.what();
+      return true;
+    }
+    strokeRadius_ = s.radius;
+  }
+  if (groomEditor_.addPoint(hit->rest, 0.25f * strokeRadius_)) groomEdited_ = true;
+  return true;
+}
+
+void ViewerSession::endBrush() {
+  groomEditor_.endStroke();
+}
+
+void ViewerSession::undoStroke() {
+  groomEditor_.undo();
+}
+
+void ViewerSession::redoStroke() {
+  groomEditor_.redo();
+}
+
+void ViewerSession::saveGroom(const std::string& path) {
+  try {
+    fur::writeGroomFile(path, model_.skin, groomEditor_.groom());
+    message = "saved " + path + " (" + std::to_string(groomEditor_.strokes().size()) + " strokes)";
+  } catch (const InputError& e) {
+    message = e.what();
+  }
+}
+
+void ViewerSession::saveStrokes(const std::string& path) {
+  try {
+    writeFileAtomically(path, fur::groomStrokesJson(groomEditor_.strokes()));
+    message = "saved " + path + " (" + std::to_string(groomEditor_.strokes().size()) + " strokes)";
+  } catch (const InputError& e) {
+    message = e.what();
+  }
+}
+
+void ViewerSession::loadGroom(const std::string& path) {
+  try {
+    groomEditor_.reset(fur::readGroomFile(path, model_.skin, model_.name));
+    groomEdited_ = true;
+    message = "loaded " + path;
+  } catch (const InputError& e) {
+    message = e.what();
+  }
 }
 
 }  // namespace pelage::viewer::detail

@@ -14,6 +14,7 @@
 #include "pelage/scene/draw_list.h"
 #include "pelage/scene/dynamic_fur.h"
 #include "pelage/scene/frame.h"
+#include "pelage/scene/groom_editor.h"
 #include "pelage/scene/playback.h"
 #include "pelage/viewer/renderer.h"
 #include "pelage/viewer/viewer_app.h"
@@ -83,6 +84,48 @@ class ViewerSession {
   void loadPreset(const std::string& nameOrPath);
   void savePreset(const std::string& path);
 
+  // ---- Grooming (issue 28): brushes on the skin under the cursor ------------------------------
+  // The brush the panel sets: the stroke's tool, strength, colour, cut length and mirror (its
+  // points come from the cursor), and its radius in metres on the skin or in pixels on the screen.
+  struct Brush {
+    fur::GroomStroke stroke = [] {
+      fur::GroomStroke s;
+      s.strength = 1.5f;  // the length brush's: half as long again
+      return s;
+    }();
+    float radius = 0.03f;
+    bool screenRadius = false;
+  };
+  Brush brush;
+  bool brushMode = false;  // the left mouse button brushes instead of orbiting
+  // While a stroke is drawn or its fur grows, the frame is drawn at half the size with at most
+  // this many hairs (sec. 3.3's culling, each drawn hair widened to cover for those left out), so
+  // a software rasteriser keeps up with the cursor; 0: no preview.
+  double brushPreviewHairs = 60000;
+  bool previewing() const { return previewing_; }
+  // Starts or continues a stroke at pixel (x, y) of the last frame's viewport (from its top-left):
+  // the skin under it, recorded at rest, points kept a quarter of the radius apart. The fur regrows
+  // with the new groom on a worker thread while the old one draws. Returns whether the cursor is on
+  // the skin; an invalid brush is reported in `editError`.
+  bool brushAt(float x, float y);
+  void endBrush();
+  bool brushing() const { return groomEditor_.drawing(); }
+  // The skin under pixel (x, y) of the last frame, and the brush's radius there in metres.
+  std::optional<scene::SkinHit> skinAt(float x, float y) const;
+  float brushRadiusAt(const scene::SkinHit& hit) const;
+  // The pixels that `meters` span at `hit` (the cursor's circle).
+  float metersToPixels(const scene::SkinHit& hit, float meters) const;
+  void undoStroke();
+  void redoStroke();
+  const scene::GroomEditor& groomEditor() const { return groomEditor_; }
+  // The groom the fur shows has grown (no regrowth pending).
+  bool groomShown() const { return grownRevision_ == groomEditor_.revision() && !pending_.valid(); }
+  // Groom files (fur/groom.h) and strokes files (fur/groom_strokes.h); the result in `message`.
+  // Loading a groom starts the strokes and the history over from it.
+  void saveGroom(const std::string& path);
+  void loadGroom(const std::string& path);
+  void saveStrokes(const std::string& path);
+
   // ---- What the UI shows ---------------------------------------------------------------------
   const scene::Model& model() const { return model_; }
   const scene::Fur& fur() const { return fur_; }
@@ -113,6 +156,13 @@ class ViewerSession {
   Eigen::Vector3f pivot_ = Eigen::Vector3f::Zero();
   scene::Fur fur_;
   std::future<scene::Fur> pending_;
+  scene::GroomEditor groomEditor_;
+  bool groomEdited_ = false;                   // the editor's groom replaces the preset's
+  std::uint64_t grownRevision_ = 0;            // the editor revision fur_ was grown with
+  std::uint64_t pendingRevision_ = 0;          // the one pending_ grows
+  scene::Camera lastCamera_;                   // the last frame's camera (picking)
+  float strokeRadius_ = 0.0f;                  // metres, of the stroke being drawn
+  bool previewing_ = false;                    // the last frame drew the brush preview
   std::unique_ptr<scene::Playback> playback_;  // the frame owner, playing model_ and fur_
   const scene::DrawList* list_ = nullptr;
   std::unique_ptr<Renderer> renderer_;

@@ -56,6 +56,18 @@ inline constexpr float kMaxBrushRadiusMeters = 10.0f;
 // "length", "density", "color", "comb", "cut", "clump".
 const char* brushToolName(BrushTool tool);
 
+// The strengths a tool accepts, [lo, hi] (length: (0, 10], lo the smallest accepted).
+struct StrengthRange {
+  float lo = 0.0f, hi = 1.0f;
+};
+StrengthRange brushStrengthRange(BrushTool tool);
+
+// Checks a stroke built in code (the viewer's brushes) as parseGroomStrokes checks a file's:
+// InputError naming `source`, the field and the accepted range. A stroke being drawn may lack its
+// points (`needPoints` false); a finished one needs them (a comb: two distinct).
+void validateGroomStroke(const GroomStroke& stroke, const std::string& source,
+                         bool needPoints = true);
+
 // Parses a strokes file's text from `source`; InputError naming the source, the field
 // (strokes[2].radius) and the accepted range.
 std::vector<GroomStroke> parseGroomStrokes(const std::string& text, const std::string& source);

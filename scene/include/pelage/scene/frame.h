@@ -40,6 +40,10 @@ struct Fur {
 // resolves the regions on the creature (fur/groom.h), grows the roots and colours them.
 Fur growFur(const Model& model, fur::FurParams params,
             const std::string& source = "fur parameters");
+// The same on a given per-vertex groom (a brushing session's: groom_editor.h) in place of the one
+// params' groom file and regions resolve to.
+Fur growFur(const Model& model, fur::FurParams params, fur::VertexGroom vertex,
+            const std::string& source);
 
 // New hair colours for `params`, whose only changes from fur.params are in the coats' colour
 // models, materials or maps.color (!rootsDiffer): the roots stay (no new generation).

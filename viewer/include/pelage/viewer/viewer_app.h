@@ -11,6 +11,7 @@
 #include "pelage/anatomy/pose.h"
 #include "pelage/fur/dynamics.h"
 #include "pelage/fur/fur_params.h"
+#include "pelage/fur/groom_strokes.h"
 #include "pelage/scene/camera.h"
 #include "pelage/scene/draw_list.h"
 #include "pelage/scene/model.h"
@@ -24,6 +25,9 @@ struct ViewerOptions {
   anatomy::Pose stillPose;  // the still pose (empty: the rest pose)
   double time = 0.0;        // start time in the clip, seconds [0, 1000000]
   fur::FurParams fur;       // the fur to start with (e.g. a preset; validated by the viewer)
+  // Strokes (fur/groom_strokes.h) replayed into the brushing session at the start, undoable as
+  // drawn ones; the panel's brushes then continue from them.
+  std::vector<fur::GroomStroke> strokes;
   std::optional<Eigen::Vector3f> skinColor;  // skin diffuse colour in [0, 1]; none: the model's
   int width = 1280;                          // window or image size, [16, 16384] per side
   int height = 720;

@@ -15,7 +15,7 @@
 #include "pelage/skin/texture.h"
 #include "pelage/util/color.h"
 #include "pelage/util/error.h"
-#include "png_writer.h"
+#include "pelage/util/image.h"
 #include "test_support.h"
 
 namespace pelage::fur {
@@ -39,7 +39,7 @@ skin::SkinMesh texturedSquare() {
 std::string writeRgbPng(const test::TempDir& dir, const std::string& name, int w, int h,
                         const std::vector<std::uint8_t>& rgb) {
   const std::string path = dir.file(name);
-  test::writePng(path, w, h, 3, rgb);
+  writeImageFile(path, rgb.data(), w, h, 3);
   return path;
 }
 

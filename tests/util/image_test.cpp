@@ -9,7 +9,6 @@
 #include <vector>
 
 #include "pelage/util/error.h"
-#include "png_writer.h"
 #include "test_support.h"
 
 namespace pelage {
@@ -21,7 +20,7 @@ std::vector<std::uint8_t> bytes(const std::string& s) {
 
 // A PNG of w x h RGB pixels.
 std::vector<std::uint8_t> png(int w, int h, const std::vector<std::uint8_t>& rgb) {
-  return test::pngBytes(w, h, 3, rgb);
+  return encodePng(rgb.data(), w, h, 3);
 }
 
 // A PNG signature and IHDR chunk claiming w x h RGB pixels, and nothing else (stb_image reads the

@@ -174,8 +174,9 @@ void generateDynamicFur(const skin::SkinMesh& skin, const FurRoots& roots, const
                         const DynamicsParams& dynamics, const skin::DeformedSkin& deformed,
                         double dtSeconds, const FurView& view, FurDynamicsState& state,
                         FurWorkspace& workspace, FurFrame& frame) {
-  if (cullingFactor(view) > 1.0f) {
-    // Culling draws a subset: advance every hair first, then draw the subset from the new state.
+  if (cullingFactor(view) > 1.0f || clumps(params)) {
+    // Culling draws a subset, and clumps read their centre hairs' dynamic ends before drawing:
+    // advance every hair first, then draw from the new state.
     stepFurDynamics(skin, roots, params, dynamics, deformed, dtSeconds, state, workspace);
     const detail::CoatDynamicsArgs over = coatArgs(dynamics, 0, 1.0, state, false, true);
     const detail::CoatDynamicsArgs under = coatArgs(dynamics, 1, 1.0, state, false, true);

@@ -3,7 +3,8 @@
 // quasi-static position through a damped spring, and the style is then built from the resulting
 // ending direction exactly as before (sec. 3.6 to 3.8). Written once over the lane type T like
 // hair_math.h (plain IEEE +, -, *, /, sqrt and selects), so every kernel build gives the same bits.
-// Included by kernel_impl.h only: no Eigen, nothing beyond <cstdint>.
+// Included by kernel_impl.h and by generate.cpp (the clump centres' dynamic ends, scalar): no
+// Eigen, nothing beyond <cstdint>.
 #pragma once
 
 #include <cstdint>

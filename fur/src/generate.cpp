@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "dynamics_kernel.h"
 #include "generate_dynamic.h"
 #include "kernel.h"
 #include "pelage/util/error.h"
@@ -275,7 +276,10 @@ void addClump(const std::array<float, kMaxCurvePoints>& w, float scale, int K, i
 // ws.clumpCentres: each centre hair as referenceHair computes it (rootInput, buildHair).
 void computeClumpCentres(const skin::SkinMesh& skin, const FurRoots& roots,
                          const skin::DeformedSkin& deformed, int coat, const CoatShape& shape,
-                         const HairLayout& layout, FurWorkspace& ws) {
+                         const HairLayout& layout, const detail::CoatDynamicsArgs* dynamics,
+                         FurWorkspace& ws) {
+  // With dynamics the centres take their dynamic ends from the state, already stepped.
+  PELAGE_CHECK(!dynamics || !dynamics->update, "clump centres from an unstepped dynamics state");
   const auto ci = static_cast<std::size_t>(coat);
   const CoatRoots& cr = roots.coats[ci];
   const int K = layout.strandPoints, M = layout.ringSides;
@@ -290,7 +294,10 @@ void computeClumpCentres(const skin::SkinMesh& skin, const FurRoots& roots,
               shape.twist ? twistOf(ws.twist[ci], cr.tableIndex[static_cast<std::size_t>(root)])
                           : HairTwist<float>{};
           PointSink sink{points.data()};
-          buildHair(shape, rootInput(skin, roots, deformed, coat, root), twist, sink);
+          HairFrame<float> f;
+          hairFrame(shape, rootInput(skin, roots, deformed, coat, root), f);
+          if (dynamics) detail::dynamicEnds(shape, *dynamics, &root, 1, f);
+          emitHair(shape, f, twist, sink);
           strandPointsOf(points.data(), K, M, out.data() + s * 3 * K);
         }
       });
@@ -371,11 +378,11 @@ void detail::generateFurWithDynamics(
       return reinterpret_cast<std::uintptr_t>(p) % 64 == 0;
     };
     const Clump& clump = params.coats[ci].clump;
-    // Not with dynamics (not there yet: scene::Playback refuses the two together).
-    const bool clumps = emit && clump.on() && !cr.clumpSlot.empty() && !dynamics[ci];
+    // With dynamics, generateDynamicFur steps the state before drawing a fur that clumps.
+    const bool clumps = emit && clump.on() && !cr.clumpSlot.empty();
     std::array<float, kMaxCurvePoints> clumpW{};
     if (clumps) {
-      computeClumpCentres(skin, roots, deformed, c, shape, hb.layout, ws);
+      computeClumpCentres(skin, roots, deformed, c, shape, hb.layout, dynamics[ci], ws);
       clumpW = clumpWeights(clump, hb.layout.strandPoints);
     }
     // Not with frizz or clumps: they read the points back at once.

@@ -42,10 +42,6 @@ void validatePlaybackOptions(const Model& model, const PlaybackOptions& o) {
 Playback::Playback(const Model& model, const Fur& fur, PlaybackOptions options)
     : model_(&model), fur_(&fur), options_(std::move(options)) {
   validatePlaybackOptions(model, options_);
-  if (options_.dynamics && fur::clumps(fur.params))
-    fieldError("dynamics",
-               "on with clumping (a coat's clump) is not there yet: set the coats' "
-               "clump density to 0, or dynamics off");
   stillPose_ =
       options_.stillPose.local.empty() ? anatomy::restPose(model.body) : options_.stillPose;
   stepSeconds_ = 1.0 / options_.clock.fps;

@@ -439,5 +439,58 @@ TEST(FurDynamics, StiffSpringsFollowTheTargetMoreClosely) {
   }
 }
 
+TEST(FurDynamics, DynamicHairsClumpByTheStrength) {
+  // Clumping (fur_params.h Clump) on the dynamic hairs: the damped ends do not depend on the
+  // clumps, so each clumped hair's strand point k lies (1 - s_k) of the way it lies, in the same
+  // run without clumps, from its centre hair's; centres and hairs in no clump are bit for bit
+  // those of that run. Frames: the plate still, turned 60 degrees (the hairs swing), still.
+  for (HairStyle style : {HairStyle::Polyline, HairStyle::Tube}) {
+    SCOPED_TRACE(styleName(style));
+    const Plate plate(style, 2000);
+    FurParams p = plate.params;
+    p.coats[0].clump = {.density = 1.0f, .strength = 0.7f, .shape = 1.0f, .radiusMm = 15.0f};
+    const FurRoots roots = growRoots(plate.skin, p);
+    const CoatRoots& cr = roots.coats[0];
+    ASSERT_FALSE(cr.clumpCentres.empty());
+    FurParams plain = p;
+    plain.coats[0].clump.strength = 0.0f;  // off: the same roots, no clumping
+    DynamicsParams dyn;
+    FurDynamicsState sa, sb;
+    resetFurDynamics(roots, sa);
+    resetFurDynamics(roots, sb);
+    FurWorkspace wa, wb;
+    FurFrame a, b;
+    const double dt = 1.0 / 60.0;
+    const skin::DeformedSkin turned = plate.moved(turnX(60), Eigen::Vector3f::Zero());
+    std::int64_t clumped = 0;
+    for (const skin::DeformedSkin* d : {&plate.rest, &plate.rest, &turned, &turned, &turned}) {
+      generateDynamicFur(plate.skin, roots, plain, dyn, *d, dt, {}, sa, wa, a);
+      generateDynamicFur(plate.skin, roots, p, dyn, *d, dt, {}, sb, wb, b);
+      const HairBuffers &ha = a.coats[0], &hb = b.coats[0];
+      ASSERT_EQ(ha.drawn, hb.drawn);
+      const int K = hb.layout.strandPoints, P = hb.layout.pointsPerHair();
+      clumped = 0;
+      for (std::int64_t h = 0; h < hb.drawn; ++h) {
+        const std::int32_t slot = cr.clumpSlot[static_cast<std::size_t>(h)];
+        const std::int64_t c = slot < 0 ? h : cr.clumpCentres[static_cast<std::size_t>(slot)];
+        if (c == h) {
+          for (int i = 0; i < P; ++i) ASSERT_EQ(test::point(hb, h, i), test::point(ha, h, i)) << h;
+          continue;
+        }
+        ++clumped;
+        for (int k = 1; k < K; ++k) {
+          const float sk = 0.7f * static_cast<float>(k) / static_cast<float>(K - 1);
+          const Eigen::Vector3f C = test::strandPoint(ha, c, k);
+          const Eigen::Vector3f expected = C + (1.0f - sk) * (test::strandPoint(ha, h, k) - C);
+          ASSERT_LE((test::strandPoint(hb, h, k) - expected).norm(), 2e-6f)
+              << "hair " << h << " k " << k;
+        }
+      }
+    }
+    EXPECT_GT(clumped, 1000);
+    EXPECT_GT(largestOffset(sb), 1e-4);  // the last frames swing
+  }
+}
+
 }  // namespace
 }  // namespace pelage::fur

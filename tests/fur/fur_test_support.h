@@ -139,6 +139,13 @@ inline Eigen::Vector3f point(const fur::HairBuffers& b, std::int64_t hair, int k
   return Eigen::Map<const Eigen::Vector3f>(b.positions.data() +
                                            (hair * b.layout.pointsPerHair() + k) * 3);
 }
+// A hair's strand point k (a tube's ring centre, the mean of its M points in order).
+inline Eigen::Vector3f strandPoint(const fur::HairBuffers& b, std::int64_t h, int k) {
+  const int M = b.layout.ringSides;
+  Eigen::Vector3f sum = Eigen::Vector3f::Zero();
+  for (int m = 0; m < M; ++m) sum += point(b, h, k * M + m);
+  return M == 1 ? sum : Eigen::Vector3f(sum / static_cast<float>(M));
+}
 inline Eigen::Vector3f normal(const fur::HairBuffers& b, std::int64_t hair, int k) {
   return Eigen::Map<const Eigen::Vector3f>(b.normals.data() +
                                            (hair * b.layout.pointsPerHair() + k) * 3);

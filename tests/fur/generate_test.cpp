@@ -165,14 +165,6 @@ TEST(Generate, FrizzMatchesTheReferenceOnEveryPathAndKeepsTheRoots) {
   }
 }
 
-// A hair's strand point k (a tube's ring centre, the mean of its M points in order).
-Eigen::Vector3f strandPoint(const HairBuffers& b, std::int64_t h, int k) {
-  const int M = b.layout.ringSides;
-  Eigen::Vector3f sum = Eigen::Vector3f::Zero();
-  for (int m = 0; m < M; ++m) sum += test::point(b, h, k * M + m);
-  return M == 1 ? sum : Eigen::Vector3f(sum / static_cast<float>(M));
-}
-
 TEST(Generate, ClumpedHairsGatherByTheStrengthAndMatchTheReferenceOnEveryPath) {
   // Clumping (fur_params.h Clump) on the sphere, every style: each clumped hair's strand point k
   // lies (1 - s_k) of the way it did from its centre hair's, s_k = strength t^shape, so the tips'
@@ -216,12 +208,13 @@ TEST(Generate, ClumpedHairsGatherByTheStrengthAndMatchTheReferenceOnEveryPath) {
         ASSERT_EQ(test::point(b, h, m), test::point(a, h, m)) << "root of hair " << h;
       for (int k = 1; k < K; ++k) {
         const float sk = 0.6f * std::pow(k / float(K - 1), 1.5f);
-        const Eigen::Vector3f C = strandPoint(a, c, k);
-        const Eigen::Vector3f expected = C + (1.0f - sk) * (strandPoint(a, h, k) - C);
-        ASSERT_LE((strandPoint(b, h, k) - expected).norm(), 2e-6f) << "hair " << h << " k " << k;
+        const Eigen::Vector3f C = test::strandPoint(a, c, k);
+        const Eigen::Vector3f expected = C + (1.0f - sk) * (test::strandPoint(a, h, k) - C);
+        ASSERT_LE((test::strandPoint(b, h, k) - expected).norm(), 2e-6f)
+            << "hair " << h << " k " << k;
       }
-      before += (strandPoint(a, h, K - 1) - strandPoint(a, c, K - 1)).norm();
-      after += (strandPoint(b, h, K - 1) - strandPoint(a, c, K - 1)).norm();
+      before += (test::strandPoint(a, h, K - 1) - test::strandPoint(a, c, K - 1)).norm();
+      after += (test::strandPoint(b, h, K - 1) - test::strandPoint(a, c, K - 1)).norm();
       if (h % 3 != 0) continue;
       referenceHair(s, r, p, d, 0, h, pos, nrm);
       const std::size_t n = static_cast<std::size_t>(P) * 3;

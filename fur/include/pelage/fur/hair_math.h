@@ -635,12 +635,11 @@ inline void addFrizz(const CoatShape& c, std::uint32_t root, float* positions) {
   }
 }
 
-// One hair, any style: calls sink(i, position, normal) for its points i = 0..P-1 in order.
+// One hair's points from its frame, any style: calls sink(i, position, normal) for its points
+// i = 0..P-1 in order.
 template <class T, class Sink>
-inline void buildHair(const CoatShape& c, const HairInput<T>& in, const HairTwist<T>& twist,
-                      Sink& sink) {
-  HairFrame<T> f;
-  hairFrame(c, in, f);
+inline void emitHair(const CoatShape& c, const HairFrame<T>& f, const HairTwist<T>& twist,
+                     Sink& sink) {
   switch (c.style) {
     case HairStyle::Line:
       emitLine(f, sink);
@@ -655,6 +654,15 @@ inline void buildHair(const CoatShape& c, const HairInput<T>& in, const HairTwis
       emitTube(c, f, sink);
       return;
   }
+}
+
+// One hair of the coat's style from its root input: its frame (hairFrame), then its points.
+template <class T, class Sink>
+inline void buildHair(const CoatShape& c, const HairInput<T>& in, const HairTwist<T>& twist,
+                      Sink& sink) {
+  HairFrame<T> f;
+  hairFrame(c, in, f);
+  emitHair(c, f, twist, sink);
 }
 
 }  // namespace pelage::fur

@@ -78,10 +78,15 @@ class Controls {
     const float px = io.MousePos.x * io.DisplayFramebufferScale.x - static_cast<float>(viewX);
     const float py = io.MousePos.y * io.DisplayFramebufferScale.y;
     const bool brushing = s.brushMode && !io.KeyAlt;
-    if (s.brushing() && (!io.MouseDown[0] || !brushing)) s.endBrush();
+    if (!io.MouseDown[0] || !brushing) {
+      if (s.brushing()) s.endBrush();
+      brushArmed_ = false;
+    }
     if (!io.WantCaptureMouse) {
       const float dx = io.MouseDelta.x, dy = io.MouseDelta.y;
-      if (brushing && io.MouseDown[0] && (s.brushing() || io.MouseClicked[0])) s.brushAt(px, py);
+      // A press in the view arms the brush; the stroke starts where the drag first meets the skin.
+      if (brushing && io.MouseClicked[0]) brushArmed_ = true;
+      if (brushArmed_) s.brushAt(px, py);
       if (brushing && !io.MouseDown[0]) {
         // The brush's circle on the skin under the cursor.
         if (const std::optional<scene::SkinHit> hit = s.skinAt(px, py))
@@ -133,6 +138,7 @@ class Controls {
     return edge;
   }
   std::array<bool, 512> wasDown_{};
+  bool brushArmed_ = false;  // the left button went down in the view in brush mode
 };
 
 int runWindow(const ViewerOptions& o, scene::Model model) {

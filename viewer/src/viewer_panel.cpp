@@ -235,11 +235,14 @@ std::string fileStem(const std::string& name) {
 std::vector<std::string> groomFilesHere() {
   std::vector<std::pair<std::filesystem::file_time_type, std::string>> found;
   std::error_code ec;
-  for (const auto& e : std::filesystem::directory_iterator(".", ec)) {
-    const std::string name = e.path().filename().string();
-    if (name.size() > 11 && name.compare(name.size() - 11, 11, ".groom.json") == 0)
-      found.emplace_back(e.last_write_time(ec), name);
-    if (found.size() >= 64) break;
+  // Unreadable entries (or directory) are skipped, never thrown.
+  for (std::filesystem::directory_iterator it(".", ec), end; !ec && it != end && found.size() < 64;
+       it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    std::error_code timeError;
+    const auto time = it->last_write_time(timeError);
+    if (!timeError && name.size() > 11 && name.compare(name.size() - 11, 11, ".groom.json") == 0)
+      found.emplace_back(time, name);
   }
   std::sort(found.begin(), found.end(), std::greater<>());
   std::vector<std::string> names;

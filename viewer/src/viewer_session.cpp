@@ -151,7 +151,8 @@ void ViewerSession::applyEdits() {
       fur_ = pending_.get();
       grownRevision_ = pendingRevision_;
     } catch (const InputError& e) {
-      editError = e.what();  // e.g. a hair count over the memory budget
+      grownRevision_ = pendingRevision_;  // that groom cannot grow: not retried every frame
+      editError = e.what();               // e.g. a hair count over the memory budget
       edit.hairs = fur_.params.hairs;
       edit.densityPerM2 = fur_.params.densityPerM2;
       edit.coverage = fur_.params.coverage;

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 
+#include "pelage/fur/culling.h"
 #include "pelage/util/error.h"
 
 namespace pelage::scene {
@@ -69,8 +70,7 @@ std::optional<SkinHit> pickSkin(const Model& model, const FrameState& frame, con
 }
 
 float pixelsToMeters(const Camera& camera, float pixels, float distance) {
-  const float tanHalf = std::tan(camera.fovYDegrees * 3.14159265358979f / 360.0f);
-  return pixels * 2.0f * distance * tanHalf / static_cast<float>(camera.height);
+  return pixels / fur::pixelsPerMeter(distance, camera.fovYDegrees, camera.height);
 }
 
 GroomEditor::GroomEditor(const Model& model, fur::VertexGroom start)

@@ -357,7 +357,7 @@ float ViewerSession::brushRadiusAt(const scene::SkinHit& hit) const {
 }
 
 float ViewerSession::metersToPixels(const scene::SkinHit& hit, float meters) const {
-  return meters / scene::pixelsToMeters(lastCamera_, 1.0f, hit.distance);
+  return meters * fur::pixelsPerMeter(hit.distance, lastCamera_.fovYDegrees, lastCamera_.height);
 }
 
 bool ViewerSession::brushAt(float x, float y) {

@@ -28,18 +28,14 @@ demo: build
 test: build
 	@scripts/ctest.sh $(BUILD) -j $(JOBS)
 
-# The suite again under AddressSanitizer + UndefinedBehaviorSanitizer (+ LeakSanitizer), less the
-# slow-labelled tests and the short soak runs (`make soak` runs the long ones under the sanitizers).
-# Also left out there: tests that repeat at large sizes or many times what smaller tests run under
-# the sanitizers (a 60,000-triangle skin, a skin built twice, the same bad value through every
-# command, the monkey's frames at three alpha settings); `make test` runs them. In the sanitizer run
-# of 2026-11-26 (commit be50da3) they took 220 s of its tests' 1,025 s (one core's time).
-ASAN_SKIP = ^(BuildSkin\.TriangleCountFollowsTheRequest|BuildSkin\.DeterministicWhateverTheThreadCount|SharedOptions\.TheSameBadValueGivesTheSameMessageAndStatus2Everywhere|SharedOptions\.OptionsWithSeveralValuesStopAtTheModel|FrameAlphaTest\.MonkeyFramesAreOpaqueAndTheTransparentOneCompositesBack)$$
+# The suite again under AddressSanitizer + UndefinedBehaviorSanitizer (+ LeakSanitizer), each suite
+# one process, less the slow-labelled suites, the short soak runs (`make soak` runs the long ones
+# under the sanitizers) and the large repeats tests/CMakeLists.txt names (PELAGE_SANITIZER_SKIP).
 test-asan: deps
 	@cmake $(ASAN_CMAKE) $(CMAKE_FLAGS) >/dev/null
 	@cmake --build $(BUILD_ASAN) -j $(JOBS)
 	@ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-	  scripts/ctest.sh $(BUILD_ASAN) -j $(JOBS) -LE "slow|soak" -E '$(ASAN_SKIP)'
+	  scripts/ctest.sh $(BUILD_ASAN) -j $(JOBS) -LE "slow|soak"
 
 # 10,000 frames of the viewer update path and the export loop under the sanitizers, a change every
 # frame, with resident memory at start and end (tests/viewer/soak_test.cpp); SOAK_FRAMES to change.

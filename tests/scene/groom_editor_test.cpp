@@ -153,8 +153,11 @@ TEST(GroomEditor, TheGroomIsAlwaysItsStrokesReplayedThroughUndoRedoAndCheckpoint
       const Eigen::Vector3f p1 = Eigen::Map<const Eigen::Vector3f>(rest + 3 * vertex(rng));
       for (int k = 0; k <= 4; ++k) {
         e.addPoint(p0 + (p1 - p0) * (0.25f * static_cast<float>(k)));
-        // Live: the groom so far is the strokes so far replayed.
-        ASSERT_TRUE(sameGroom(e.groom(), replayed(e))) << "live point at step " << step;
+        // Live: the groom so far is the strokes so far replayed (at the last point and at one
+        // more that moves with the step: every replay is all the strokes again, from the start).
+        if (k == 4 || k == step % 4) {
+          ASSERT_TRUE(sameGroom(e.groom(), replayed(e))) << "live point at step " << step;
+        }
       }
       e.endStroke();
       history.push_back(e.groom());

@@ -234,16 +234,6 @@ HairTwist<float> twistOf(const std::vector<float>& table, int entry) {
   return twist;
 }
 
-// Clumping (fur_params.h Clump): the weight s_k = strength t_k^shape of strand point k of K.
-std::array<float, kMaxCurvePoints> clumpWeights(const Clump& clump, int K) {
-  std::array<float, kMaxCurvePoints> w{};
-  for (int k = 0; k < K; ++k)
-    w[static_cast<std::size_t>(k)] =
-        static_cast<float>(static_cast<double>(clump.strength) *
-                           std::pow(k / double(K - 1), static_cast<double>(clump.shape)));
-  return w;
-}
-
 // A hair's strand points (K x 3) from its points (K x M x 3): the points themselves (M = 1), or
 // each ring's centre, the mean of its M points in order.
 void strandPointsOf(const float* points, int K, int M, float* out) {
@@ -304,6 +294,32 @@ void computeClumpCentres(const skin::SkinMesh& skin, const FurRoots& roots,
 }
 
 }  // namespace
+
+std::array<float, kMaxCurvePoints> clumpWeights(const Clump& clump, int K) {
+  std::array<float, kMaxCurvePoints> w{};
+  for (int k = 0; k < K; ++k)
+    w[static_cast<std::size_t>(k)] =
+        static_cast<float>(static_cast<double>(clump.strength) *
+                           std::pow(k / double(K - 1), static_cast<double>(clump.shape)));
+  return w;
+}
+
+void generateClumpCentres(const skin::SkinMesh& skin, const FurRoots& roots,
+                          const FurParams& params, const skin::DeformedSkin& deformed,
+                          FurWorkspace& ws) {
+  PELAGE_CHECK(roots.triangleCount == skin.numTriangles(), "roots grown on ", roots.triangleCount,
+               " triangles, skin has ", skin.numTriangles());
+  for (int c = 0; c < kCoatCount; ++c) {
+    const auto ci = static_cast<std::size_t>(c);
+    if (!params.coats[ci].clump.on() || roots.coats[ci].clumpSlot.empty()) {
+      ws.clumpCentres[ci].clear();
+      continue;
+    }
+    const CoatShape shape = makeCoatShape(params, roots, c);
+    if (shape.twist) ensureTwist(params, c, coatSeed(roots.seed, c), ws);
+    computeClumpCentres(skin, roots, deformed, c, shape, hairLayout(params.coats[ci]), nullptr, ws);
+  }
+}
 
 void generateFur(const skin::SkinMesh& skin, const FurRoots& roots, const FurParams& params,
                  const skin::DeformedSkin& deformed, const FurView& view, FurWorkspace& ws,

@@ -80,9 +80,11 @@ void buildDrawList(const Model& model, const FrameState& frame, const Fur* fur,
   if (!fur || !options.drawFur) return;
   const bool cpu = options.hairSource == HairSource::Cpu;
   PELAGE_CHECK(!cpu || frame.cpuFur, "CPU hair source without evaluateFur(..., cpuHairs = true)");
-  if (!cpu)
+  if (!cpu) {
     list.gpuFur = GpuFurInputs{&fur->params,         &fur->roots, fur->generation, &fur->colors,
                                fur->colorGeneration, &model.skin, &frame.skin};
+    if (fur::clumps(fur->params)) list.gpuFur.clumpCentres = &frame.furWorkspace.clumpCentres;
+  }
   const float pad = maxHairLength(model, fur->params);
   list.hairLength = pad;
   list.bounds.extend(frame.skinBounds.min() - Eigen::Vector3f::Constant(pad));

@@ -154,7 +154,10 @@ void evaluateFur(const Model& model, const Fur& fur, const fur::FurView& view, b
     frame.cpuFur = true;
     return;
   }
-  // Only the counts (sec. 3.3's rule, as the GPU applies it).
+  // Only the counts (sec. 3.3's rule, as the GPU applies it) and, for a coat that clumps, its clump
+  // centres' strand points, which the GPU's clumped hairs move toward.
+  if (fur::clumps(fur.params))
+    fur::generateClumpCentres(model.skin, fur.roots, fur.params, frame.skin, frame.furWorkspace);
   for (int c = 0; c < fur::kCoatCount; ++c) {
     const auto ci = static_cast<std::size_t>(c);
     const fur::CoatRoots& cr = fur.roots.coats[ci];

@@ -51,10 +51,9 @@ Playback::Playback(const Model& model, const Fur& fur, PlaybackOptions options)
 }
 
 HairSource Playback::hairSource() const {
-  // Dynamics and clumping run on the CPU only (the GPU shader has neither yet).
-  return options_.hairSource == HairSource::Cpu || options_.dynamics || fur::clumps(fur_->params)
-             ? HairSource::Cpu
-             : HairSource::Gpu;
+  // Fur dynamics run on the CPU only (the GPU shader has no state to step).
+  return options_.hairSource == HairSource::Cpu || options_.dynamics ? HairSource::Cpu
+                                                                     : HairSource::Gpu;
 }
 
 void Playback::setFur(const Fur& fur) {

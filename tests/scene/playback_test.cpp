@@ -1,7 +1,7 @@
 // The frame owner (scene/playback.h), tested directly: a clip's frame and the still pose pose the
 // skin the frame functions give, a frame reached out of order with dynamics equals a whole run's
 // bit for bit (the pre-roll), the GPU source counts the hairs the CPU draws, a playback's limits
-// name their fields, a fur that clumps is computed on the CPU (with dynamics too), and a
+// name their fields, a fur that clumps runs on either source (on the CPU with dynamics), and a
 // stop asked for ends a frame before it is posed.
 #include "pelage/scene/playback.h"
 
@@ -138,9 +138,10 @@ TEST(Playback, LimitsNameTheirFields) {
   EXPECT_THROW(Playback(wagCritter(), wagFur(), o), InputError);
 }
 
-TEST(Playback, ClumpingRunsOnTheCpuWithOrWithoutDynamics) {
-  // The GPU shader has no clumping yet: a fur that clumps is computed on the CPU whatever the
-  // hair source asked; with dynamics its dynamic hairs clump (fur/dynamics_test.cpp checks how).
+TEST(Playback, ClumpingRunsOnTheAskedSourceAndWithDynamicsOnTheCpu) {
+  // A fur that clumps runs on the GPU when asked: the frame then carries its clump centres' strand
+  // points (what the shader pulls the clumped hairs toward), the CPU frame's bit for bit. With
+  // dynamics the fur runs on the CPU and its dynamic hairs clump (fur/dynamics_test.cpp: how).
   fur::FurParams p = wagFur().params;
   p.coats[0].clump = {.density = 2.0f, .strength = 0.8f, .shape = 1.0f, .radiusMm = 10.0f};
   const Fur clumped = growFur(wagCritter(), p, "test");
@@ -149,20 +150,29 @@ TEST(Playback, ClumpingRunsOnTheCpuWithOrWithoutDynamics) {
   o.clip = 0;
   o.hairSource = HairSource::Gpu;
   EXPECT_EQ(Playback(wagCritter(), wagFur(), o).hairSource(), HairSource::Gpu);
-  Playback gpuAsked(wagCritter(), clumped, o);
-  EXPECT_EQ(gpuAsked.hairSource(), HairSource::Cpu);
-  // Its hairs are the clumped ones: they differ from the unclumped fur's.
+  Playback gpu(wagCritter(), clumped, o);
+  EXPECT_EQ(gpu.hairSource(), HairSource::Gpu);
   o.hairSource = HairSource::Cpu;
+  Playback cpu(wagCritter(), clumped, o);
   Playback plain(wagCritter(), wagFur(), o);
-  for (Playback* pb : {&plain, &gpuAsked}) {
+  for (Playback* pb : {&plain, &cpu, &gpu}) {
     pb->poseFrame(3);
     pb->evaluateFur(fur::FurView{});
   }
-  ASSERT_TRUE(gpuAsked.state().cpuFur);
-  ASSERT_EQ(plain.state().fur.drawn(), gpuAsked.state().fur.drawn());
-  EXPECT_FALSE(sameHairs(plain.state().fur, gpuAsked.state().fur));
+  ASSERT_FALSE(gpu.state().cpuFur);
+  ASSERT_TRUE(cpu.state().cpuFur);
+  const std::vector<float>& centres = gpu.state().furWorkspace.clumpCentres[0];
+  EXPECT_EQ(centres.size(), clumped.roots.coats[0].clumpCentres.size() * 3 *
+                                static_cast<std::size_t>(fur::hairLayout(p.coats[0]).strandPoints));
+  EXPECT_EQ(centres, cpu.state().furWorkspace.clumpCentres[0]);
+  EXPECT_EQ(gpu.state().drawnHairs, cpu.state().drawnHairs);
+  // The CPU's clumped hairs differ from the unclumped fur's.
+  ASSERT_EQ(plain.state().fur.drawn(), cpu.state().fur.drawn());
+  EXPECT_FALSE(sameHairs(plain.state().fur, cpu.state().fur));
+  o.hairSource = HairSource::Gpu;  // asked, but dynamics runs on the CPU
   o.dynamics = true;
   Playback dynamic(wagCritter(), clumped, o);
+  EXPECT_EQ(dynamic.hairSource(), HairSource::Cpu);
   Playback dynamicPlain(wagCritter(), wagFur(), o);
   for (Playback* pb : {&dynamic, &dynamicPlain}) {
     pb->poseFrame(3);

@@ -1,7 +1,7 @@
 // GPU fur against the CPU fur model: the same roots and deformed skin must give the same drawn
 // hairs, in the same order, with points and shading vectors within 1e-4 relative, for every style,
-// both coats, with culling on and off, with frizz and with a groom's comb on half the body; and the
-// splitting into bindings must not change anything.
+// both coats, with culling on and off, with frizz, clumps (and a groom's clump scale) and a groom's
+// comb on half the body; and the splitting into bindings must not change anything.
 #include "pelage/viewer/gpu_fur.h"
 #include "pelage/viewer/gl_context.h"
 
@@ -73,6 +73,12 @@ fur::FurParams paramsFor(const StyleCase& sc, double hairs) {
     cp.curlRadius = sc.curl;
     cp.curlTurns = sc.curl > 0.0f ? 2.5f : 0.0f;
     cp.frizz = {.amplitudeMm = c == 0 ? 0.8f : 0.3f, .frequency = 3.3f, .tipWeight = 2.0f};
+    // Clumps (fur_params.h Clump): the GPU pulls each clumped hair toward its centre's strand
+    // points, which the CPU computes for the frame (fur::generateClumpCentres); then the frizz.
+    cp.clump = {.density = c == 0 ? 0.5f : 1.0f,
+                .strength = c == 0 ? 0.7f : 0.4f,
+                .shape = c == 0 ? 1.0f : 2.5f,
+                .radiusMm = 12.0f};
     // Per-hair colours (fur/colors.h): the GPU copies each drawn hair's root and tip colour.
     cp.color.hueVariation = c == 0 ? 12.0f : 0.0f;
     cp.color.valueVariation = 0.2f;
@@ -144,10 +150,18 @@ TEST_P(GpuFurParity, MatchesTheCpuModel) {
       if (model.skin.restPositions()[3 * v] > 0.0f && t.norm() > 1e-3f)
         fur.groom.vertex.comb[v] = 0.8f * t.normalized();
     }
+    // And a clump scale (groom.h): half strength behind the middle.
+    fur.groom.vertex.clump.resize(fur.groom.vertex.comb.size());
+    for (std::size_t v = 0; v < fur.groom.vertex.clump.size(); ++v)
+      fur.groom.vertex.clump[v] = model.skin.restPositions()[3 * v] > 0.0f ? 1.0f : 0.5f;
     const std::vector<std::int32_t> triangles = fur.roots.coats[0].triangle;
     fur.roots = fur::growRoots(model.skin, fur.params, fur.groom);
     ASSERT_EQ(fur.roots.coats[0].triangle, triangles);
     ASSERT_FALSE(fur.roots.coats[0].comb.empty());
+    for (const fur::CoatRoots& cr : fur.roots.coats) {
+      ASSERT_GT(cr.clumpCentres.size(), 20u);
+      ASSERT_FALSE(cr.clumpScale.empty());
+    }
   }
   ASSERT_GT(fur.roots.coats[0].size(), 5000);
   ASSERT_GT(fur.roots.coats[1].size(), 2500);
@@ -171,13 +185,25 @@ TEST_P(GpuFurParity, MatchesTheCpuModel) {
       ASSERT_EQ(frame.cullFactor, 1.0f);
     }
 
+    // The GPU's frame as a GPU run makes it: counts and clump centres only (evaluateFur without
+    // CPU hairs).
+    scene::FrameState gpuFrame;
+    scene::evaluateFrame(model, bentPose(model.body), gpuFrame);
+    scene::evaluateFur(model, f2, cam, false, gpuFrame);
+    ASSERT_FALSE(gpuFrame.cpuFur);
+    for (int c = 0; c < fur::kCoatCount; ++c) {
+      const auto ci = static_cast<std::size_t>(c);
+      ASSERT_EQ(gpuFrame.furWorkspace.clumpCentres[ci], frame.furWorkspace.clumpCentres[ci]);
+    }
+
     for (const scene::HairShading shading :
          {scene::HairShading::Paper, scene::HairShading::KajiyaKay}) {
       scene::DrawOptions opt;
       opt.hairSource = scene::HairSource::Gpu;
       opt.hairShading = shading;
       scene::DrawList list;
-      scene::buildDrawList(model, frame, &f2, cam, scene::Light{}, opt, list);
+      scene::buildDrawList(model, gpuFrame, &f2, cam, scene::Light{}, opt, list);
+      ASSERT_NE(list.gpuFur.clumpCentres, nullptr);
       ASSERT_EQ(list.fur.size(), 2u);
       for (const bool split : {false, true}) {
         RendererOptions ro;
@@ -236,9 +262,10 @@ TEST_P(GpuFurParity, MatchesTheCpuModel) {
 
 // Random parameters: 24 draws, each coat a random style with random stiffness, randomness,
 // segment weight, length factor, curve points, tube sides, curl, a random length region and up
-// vector, with culling off and on. Every draw's GPU hairs (points and the style's shading
-// normals) equal the CPU model's within 1e-4 of each hair's size; the number that agree bit for
-// bit is reported (on llvmpipe, where both run IEEE single precision without contraction, all).
+// vector (every other draw random clumps), with culling off and on. Every draw's GPU hairs (points
+// and the style's shading normals) equal the CPU model's within 1e-4 of each hair's size; the
+// number that agree bit for bit is reported (on llvmpipe, where both run IEEE single precision
+// without contraction, all).
 TEST_F(GpuFurRandom, EveryStyleWithRandomParametersMatchesTheCpuModel) {
   const scene::Model& model = critter();
   scene::FrameState frame;
@@ -272,6 +299,11 @@ TEST_F(GpuFurRandom, EveryStyleWithRandomParametersMatchesTheCpuModel) {
       cp.width.tipMm = uniform(0.0f, 2.0f);
       cp.curlRadius = integer(0, 1) ? uniform(0.0f, 0.5f) : 0.0f;
       cp.curlTurns = uniform(0.0f, 6.0f);
+      if (draw % 2 == 1)  // clumps on every other draw
+        cp.clump = {.density = uniform(0.5f, 8.0f),
+                    .strength = uniform(0.05f, 1.0f),
+                    .shape = uniform(0.1f, 5.0f),
+                    .radiusMm = uniform(3.0f, 40.0f)};
     }
     const int region = integer(0, 2);
     p.lengthRegion.shape = static_cast<fur::RegionShape>(region);

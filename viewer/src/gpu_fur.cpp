@@ -22,6 +22,10 @@ using detail::uniform;
 
 namespace {
 
+// A coat's tables buffer (fur_hair.comp Tables): the barycentric table, then the twist table.
+constexpr int kTwistFloatsAt = 4 * fur::kBarycentricTableSize;
+constexpr int kTableFloats = kTwistFloatsAt + 2 * fur::kPolylinePoints * fur::kBarycentricTableSize;
+
 // The GLSL side of fur::CoatShape, generated from its member list (PELAGE_COAT_SHAPE_MEMBERS in
 // hair_math.h): the style and region constants, the array sizes and the std430 block `cs` that
 // hair_math.glsl reads. Every member is a 4-byte scalar or an array of them, so std430 puts each at
@@ -42,6 +46,7 @@ std::string coatShapeGlsl() {
   define("POLYLINE_POINTS", fur::kPolylinePoints);
   define("MAX_CURVE_POINTS", fur::kMaxCurvePoints);
   define("MAX_TUBE_SIDES", fur::kMaxTubeSides);
+  define("TWIST_FLOATS_AT", kTwistFloatsAt);
   s += "layout(std430, binding = 0) readonly buffer CoatShapeBlock {\n";
 #define PELAGE_GLSL_SCALAR(cpp, glsl, name) s += "  " #glsl " " #name ";\n";
 #define PELAGE_GLSL_ARRAY(cpp, glsl, name, size) \
@@ -117,7 +122,9 @@ struct GpuFur::Impl {
   // Shared by the coats.
   const skin::SkinMesh* skin = nullptr;
   std::int32_t triangleCount = 0;
-  Buffer triangles, lengths, directions, barycentric;
+  Buffer triangles;
+  Buffer
+      vertexData;  // nV x 3 segment directions (each frame), then nV fur lengths (with the roots)
   std::int32_t vertexCount = 0;
   GLuint skinPositions = 0, skinNormals = 0;
   const fur::FurRoots* roots = nullptr;
@@ -125,15 +132,22 @@ struct GpuFur::Impl {
   std::uint64_t generation = ~std::uint64_t{0};
   std::uint64_t colorGeneration = ~std::uint64_t{0};
   float cullFactor = 1.0f;
+  const std::array<std::vector<float>, fur::kCoatCount>* clumpCentres = nullptr;
 
   struct Coat {
     std::int64_t rootCount = 0;
-    Buffer rootData, jitter, triangleStart, drawnStart, cullU, blockSums, twist, shape;
+    Buffer rootData, jitter, triangleStart, drawnStart, cullU, blockSums, shape;
+    Buffer tables;  // the barycentric table, then the twist table (kTableFloats)
     Buffer colors;  // per root: root and tip colours
     bool perHairColor = false;
     float twistAmount = -1.0f;
     std::uint64_t twistSeed = 0;
     std::vector<float> twistTable;
+    // Clumping: per root (its clump's slot, or -1 for none and for a centre; the groom's clump
+    // scale as float bits), and this frame's centre strand points (grown as needed).
+    Buffer clumpRoots, clumpCentres;
+    bool clumpRootsUploaded = false;
+    std::int64_t clumpCentreBytes = 0;
   };
   std::array<Coat, fur::kCoatCount> coats;
 
@@ -164,17 +178,18 @@ struct GpuFur::Impl {
     vertexCount = s.numVertices();
     triangles = makeBuffer(static_cast<GLsizeiptr>(s.triangles.size() * sizeof(std::int32_t)),
                            s.triangles.data());
-    directions = makeBuffer(static_cast<GLsizeiptr>(vertexCount) * 12, nullptr);
+    vertexData = makeBuffer(static_cast<GLsizeiptr>(vertexCount) * 16, nullptr);
   }
 
   void uploadRoots(const fur::FurRoots& r) {
     PELAGE_CHECK(r.triangleCount == triangleCount, "roots grown on ", r.triangleCount,
                  " triangles, skin has ", triangleCount);
-    barycentric = makeBuffer(static_cast<GLsizeiptr>(r.barycentric.size() * sizeof(float)),
-                             r.barycentric.data());
+    PELAGE_CHECK(r.barycentric.size() == static_cast<std::size_t>(kTwistFloatsAt),
+                 "a barycentric table of ", r.barycentric.size(), " floats");
     // The vertex lengths the hairs interpolate (FurRoots::lengths: a groom's, else the skin's);
     // uploaded with the roots, which every new skin is followed by.
-    lengths = makeBuffer(static_cast<GLsizeiptr>(vertexCount) * 4, r.lengths(*skin));
+    glNamedBufferSubData(vertexData.get(), static_cast<GLintptr>(vertexCount) * 12,
+                         static_cast<GLsizeiptr>(vertexCount) * 4, r.lengths(*skin));
     for (int c = 0; c < fur::kCoatCount; ++c) {
       const fur::CoatRoots& cr = r.coats[static_cast<std::size_t>(c)];
       Coat& g = coats[static_cast<std::size_t>(c)];
@@ -206,7 +221,25 @@ struct GpuFur::Impl {
       g.blockSums =
           makeBuffer(static_cast<GLsizeiptr>((triangleCount + 255) / 256 + 1) * 4, nullptr);
       g.shape = makeBuffer(sizeof(fur::CoatShape), nullptr);
+      g.tables = makeBuffer(kTableFloats * 4, nullptr);
+      glNamedBufferSubData(g.tables.get(), 0, kTwistFloatsAt * 4, r.barycentric.data());
       g.twistAmount = -1.0f;
+      // Clumping: a root in a clump other than its own (generateFur's test) gets its slot.
+      g.clumpRootsUploaded = !cr.clumpSlot.empty();
+      std::vector<std::int32_t> clump;
+      if (g.clumpRootsUploaded) {
+        clump.resize(static_cast<std::size_t>(2 * g.rootCount));
+        for (std::int64_t j = 0; j < g.rootCount; ++j) {
+          const auto k = static_cast<std::size_t>(j);
+          const std::int32_t slot = cr.clumpSlot[k];
+          const bool centre = slot < 0 || cr.clumpCentres[static_cast<std::size_t>(slot)] == j;
+          clump[2 * k] = centre ? -1 : slot;
+          clump[2 * k + 1] =
+              std::bit_cast<std::int32_t>(cr.clumpScale.empty() ? 1.0f : cr.clumpScale[k]);
+        }
+      }
+      g.clumpRoots = makeBuffer(static_cast<GLsizeiptr>(clump.size() * 4), clump.data());
+      g.clumpCentreBytes = 0;
     }
   }
 
@@ -227,9 +260,12 @@ struct GpuFur::Impl {
     Coat& g = coats[static_cast<std::size_t>(c)];
     const float r = params->coats[static_cast<std::size_t>(c)].normalRandomize;
     const std::uint64_t seed = fur::coatSeed(roots->seed, c);
-    if (g.twist && g.twistAmount == r && g.twistSeed == seed) return;
+    if (g.twistAmount == r && g.twistSeed == seed) return;
     fur::makeTwistTable(seed, r, g.twistTable);
-    g.twist = makeBuffer(static_cast<GLsizeiptr>(g.twistTable.size() * 4), g.twistTable.data());
+    PELAGE_CHECK(g.twistTable.size() == static_cast<std::size_t>(kTableFloats - kTwistFloatsAt),
+                 "a twist table of ", g.twistTable.size(), " floats");
+    glNamedBufferSubData(g.tables.get(), kTwistFloatsAt * 4,
+                         static_cast<GLsizeiptr>(g.twistTable.size() * 4), g.twistTable.data());
     g.twistAmount = r;
     g.twistSeed = seed;
   }
@@ -262,8 +298,9 @@ void GpuFur::beginFrame(const GpuFurFrame& f) {
   m.skinPositions = f.skinPositions;
   m.skinNormals = f.skinNormals;
   m.cullFactor = f.cullFactor;
+  m.clumpCentres = f.clumpCentres;
   PELAGE_CHECK(f.deformed->directions.size() == static_cast<std::size_t>(m.vertexCount));
-  glNamedBufferSubData(m.directions.get(), 0, static_cast<GLsizeiptr>(m.vertexCount) * 12,
+  glNamedBufferSubData(m.vertexData.get(), 0, static_cast<GLsizeiptr>(m.vertexCount) * 12,
                        f.deformed->directions.data());
 }
 
@@ -279,6 +316,31 @@ void GpuFur::generate(int coat, const fur::HairLayout& layout, bool tangents,
   glNamedBufferSubData(g.shape.get(), 0, sizeof shape, &shape);
   if (shape.twist) m.ensureTwist(coat);
   lastDispatches_ = 0;
+
+  // Clumping: this frame's centre strand points (fur::generateClumpCentres), and the weights.
+  const fur::Clump& clump = m.params->coats[static_cast<std::size_t>(coat)].clump;
+  const bool clumps = clump.on() && g.clumpRootsUploaded;
+  std::array<float, fur::kMaxCurvePoints> clumpWeights{};
+  if (clumps) {
+    const std::vector<float>* centres =
+        m.clumpCentres ? &(*m.clumpCentres)[static_cast<std::size_t>(coat)] : nullptr;
+    const std::size_t expected =
+        m.roots->coats[static_cast<std::size_t>(coat)].clumpCentres.size() * 3 *
+        static_cast<std::size_t>(layout.strandPoints);
+    PELAGE_CHECK(centres && centres->size() == expected, "coat ", coat,
+                 " clumps but its frame has ", centres ? centres->size() : 0,
+                 " clump centre floats, not ", expected);
+    const auto bytes = static_cast<std::int64_t>(expected * sizeof(float));
+    // Bound whole (any hair may clump to any centre): the driver's limit, not the windows' size.
+    PELAGE_CHECK(bytes <= maxShaderStorageBlockSize(), "the clump centres' ", bytes,
+                 " bytes exceed a storage block (", maxShaderStorageBlockSize(), ")");
+    if (bytes > g.clumpCentreBytes) {
+      g.clumpCentres = makeBuffer(static_cast<GLsizeiptr>(bytes), nullptr);
+      g.clumpCentreBytes = bytes;
+    }
+    glNamedBufferSubData(g.clumpCentres.get(), 0, static_cast<GLsizeiptr>(bytes), centres->data());
+    clumpWeights = fur::clumpWeights(clump, layout.strandPoints);
+  }
 
   // Sec. 3.3: drawnStart on the GPU when culling, else the roots' own triangleStart.
   const bool culling = m.cullFactor > 1.0f;
@@ -316,18 +378,21 @@ void GpuFur::generate(int coat, const fur::HairLayout& layout, bool tangents,
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, m.triangles.get());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, g.triangleStart.get());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, drawnStart);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, m.barycentric.get());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, shape.twist ? g.twist.get() : m.barycentric.get());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, g.tables.get());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, m.skinPositions);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, m.skinNormals);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 10, m.directions.get());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 11, m.lengths.get());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 10, m.vertexData.get());
   glUniform1i(uniform(hp, "uTangents"), tangents ? 1 : 0);
   glUniform1i(uniform(hp, "uStrandStride"), layout.ringSides);
   glUniform1i(uniform(hp, "uColors"), g.perHairColor ? 1 : 0);
+  glUniform1i(uniform(hp, "uVertexCount"), m.vertexCount);
+  glUniform1i(uniform(hp, "uClump"), clumps ? 1 : 0);
+  if (clumps) glUniform1fv(uniform(hp, "uClumpWeights"), fur::kMaxCurvePoints, clumpWeights.data());
   // (Unused bindings still need a buffer bound.)
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 11, clumps ? g.clumpCentres.get() : g.tables.get());
+  if (!clumps) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, g.tables.get());
   if (!g.perHairColor) {
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 16, m.barycentric.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 16, g.tables.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 17, out.colors());
   }
   const std::int64_t P = layout.pointsPerHair();
@@ -355,6 +420,8 @@ void GpuFur::generate(int coat, const fur::HairLayout& layout, bool tangents,
       glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 5, g.jitter.get(), first * 16, count * 16);
       if (g.perHairColor)
         glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 16, g.colors.get(), first * 8, count * 8);
+      if (clumps)
+        glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 7, g.clumpRoots.get(), first * 8, count * 8);
       glUniform1i(uniform(hp, "uWindowFirst"), static_cast<GLint>(first));
       glUniform1i(uniform(hp, "uWindowCount"), static_cast<GLint>(count));
       dispatch1d(count, 64, m.options.maxGroupsPerDimension);

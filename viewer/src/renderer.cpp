@@ -500,6 +500,7 @@ struct Renderer::Impl {
           g.skinPositions = skinPositions.get();
           g.skinNormals = skinNormals.get();
           g.cullFactor = f.cullFactor;
+          g.clumpCentres = in.clumpCentres;
           gpuFur->beginFrame(g);
           gpuBegun = true;
         }

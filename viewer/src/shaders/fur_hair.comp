@@ -2,19 +2,24 @@
 // culling (sec. 3.3: the first k' roots of each triangle, in creation order) compute their hair with
 // buildHair (hair_math.glsl, the mirror of the CPU model) and write its P points at their drawn slot
 // i = drawnStart[t] + (j - triangleStart[t]), inside the output chunk bound at bindings 12/13.
+// A clumped hair then moves toward its clump centre's strand points (generate.cpp addClump), and
+// frizz comes last (addFrizz), in the CPU model's order.
 layout(local_size_x = 64) in;
 
+// (16 storage blocks: GL's guaranteed minimum for a compute shader, and llvmpipe's limit.)
 layout(std430, binding = 1) readonly buffer Triangles { int triangles[]; };          // nT x 3
 layout(std430, binding = 2) readonly buffer TriangleStart { int triangleStart[]; };  // nT + 1
 layout(std430, binding = 3) readonly buffer DrawnStart { int drawnStart[]; };        // nT + 1
 layout(std430, binding = 4) readonly buffer Roots { ivec4 roots[]; };  // window: (triangle, table index, length scale bits, packed comb)
 layout(std430, binding = 5) readonly buffer Jitter { vec4 jitter[]; };               // window: (xi, phase)
-layout(std430, binding = 6) readonly buffer Barycentric { vec4 barycentric[]; };     // 2048: (b1, b2, b3, 0)
-layout(std430, binding = 7) readonly buffer Twist { vec2 twist[]; };                 // 2048 x 8: (cos, sin)
+// The coat's tables: the barycentric table (2048 x (b1, b2, b3, 0)), then from TWIST_FLOATS_AT
+// the twist table (2048 x 8 x (cos, sin)).
+layout(std430, binding = 6) readonly buffer Tables { float tables[]; };
+layout(std430, binding = 7) readonly buffer ClumpRoots { ivec2 clumpRoots[]; };      // window: (slot or -1, scale bits)
 layout(std430, binding = 8) readonly buffer Positions { float positions[]; };        // nV x 3, deformed
 layout(std430, binding = 9) readonly buffer Normals { float normals[]; };            // nV x 3
-layout(std430, binding = 10) readonly buffer Directions { float directions[]; };     // nV x 3
-layout(std430, binding = 11) readonly buffer Lengths { float lengths[]; };           // nV
+layout(std430, binding = 10) readonly buffer VertexData { float vertexData[]; };     // nV x 3 directions, then nV lengths
+layout(std430, binding = 11) readonly buffer ClumpCentres { float clumpCentres[]; };  // clumps x K x 3
 layout(std430, binding = 12) buffer OutPositions { float outPositions[]; };          // chunk: C x P x 3
 layout(std430, binding = 13) buffer OutShading { float outShading[]; };              // chunk: C x P x 3
 layout(std430, binding = 16) readonly buffer RootColors { uvec2 rootColors[]; };     // window: (root, tip)
@@ -27,14 +32,18 @@ uniform int uChunkCount;    // drawn slots in the chunk
 uniform bool uTangents;     // shading = unit tangents (Kajiya-Kay) instead of the style's normals
 uniform int uStrandStride;  // 1, or M for tubes
 uniform bool uColors;       // per-hair colours: copy each drawn hair's root and tip colour
+uniform int uVertexCount;   // nV (where VertexData's lengths start)
+uniform bool uClump;        // the coat clumps (ClumpRoots and ClumpCentres are its)
+uniform float uClumpWeights[MAX_CURVE_POINTS];  // fur::clumpWeights: s_k
 
 int gOut = 0;    // first float of this hair's points in the chunk
 uint gRoot = 0u;  // the hair's root index in the coat (its frizz seed)
+bool gLater = false;  // clump and frizz after the hair is built (a clumped hair)
 
 void emitPoint(int i, vec3 p, vec3 n) {
   int o = gOut + 3 * i;
   // Frizz (hair_math.h addFrizz): strand point i / frizzRing's offset on every point around it.
-  if (cs.frizz != 0) p += frizzOffset(gRoot, i / cs.frizzRing);
+  if (cs.frizz != 0 && !gLater) p += frizzOffset(gRoot, i / cs.frizzRing);
   outPositions[o] = p.x;
   outPositions[o + 1] = p.y;
   outPositions[o + 2] = p.z;
@@ -46,7 +55,37 @@ void emitPoint(int i, vec3 p, vec3 n) {
 vec3 vertexArray3(int which, int v) {
   if (which == 0) return vec3(positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]);
   if (which == 1) return vec3(normals[3 * v], normals[3 * v + 1], normals[3 * v + 2]);
-  return vec3(directions[3 * v], directions[3 * v + 1], directions[3 * v + 2]);
+  return vec3(vertexData[3 * v], vertexData[3 * v + 1], vertexData[3 * v + 2]);
+}
+
+vec3 outPoint(int i) {
+  int o = gOut + 3 * i;
+  return vec3(outPositions[o], outPositions[o + 1], outPositions[o + 2]);
+}
+
+void setOutPoint(int i, vec3 p) {
+  int o = gOut + 3 * i;
+  outPositions[o] = p.x;
+  outPositions[o + 1] = p.y;
+  outPositions[o + 2] = p.z;
+}
+
+// Clumping (generate.cpp addClump): every point of ring k of K moves by s_k scale (C_k - S_k), S_k
+// the hair's own strand point (its ring's mean, in order; the point itself when M = 1), C_k its
+// clump centre's (`slot`); the root ring stays.
+void addClump(int slot, float scale) {
+  int M = uStrandStride;
+  int K = cs.points / M;
+  for (int k = 1; k < K; ++k) {
+    vec3 sum = vec3(0.0);
+    for (int m = 0; m < M; ++m) sum += outPoint(k * M + m);
+    vec3 own = M == 1 ? sum : sum / float(M);
+    int c = (slot * K + k) * 3;
+    vec3 centre = vec3(clumpCentres[c], clumpCentres[c + 1], clumpCentres[c + 2]);
+    float wk = uClumpWeights[k] * scale;
+    vec3 offset = wk * (centre - own);
+    for (int m = 0; m < M; ++m) setOutPoint(k * M + m, outPoint(k * M + m) + offset);
+  }
 }
 
 void main() {
@@ -65,17 +104,27 @@ void main() {
 
   // Sec. 3.2: interpolate at the root with the table's barycentric coordinates.
   int v1 = triangles[3 * t], v2 = triangles[3 * t + 1], v3 = triangles[3 * t + 2];
-  HairInput hin = interpolateRoot(barycentric[r.y].xyz, vertexArray3(0, v1), vertexArray3(0, v2),
-                                  vertexArray3(0, v3), lengths[v1], lengths[v2], lengths[v3],
+  vec3 b = vec3(tables[4 * r.y], tables[4 * r.y + 1], tables[4 * r.y + 2]);
+  int L = 3 * uVertexCount;  // the lengths
+  HairInput hin = interpolateRoot(b, vertexArray3(0, v1), vertexArray3(0, v2),
+                                  vertexArray3(0, v3), vertexData[L + v1], vertexData[L + v2], vertexData[L + v3],
                                   vertexArray3(1, v1), vertexArray3(1, v2), vertexArray3(1, v3),
                                   vertexArray3(2, v1), vertexArray3(2, v2), vertexArray3(2, v3),
                                   jitter[local], intBitsToFloat(r.z), r.w);
   for (int i = 0; i < POLYLINE_POINTS; ++i) {
-    vec2 cs2 = cs.twist != 0 ? twist[r.y * POLYLINE_POINTS + i] : vec2(1.0, 0.0);
+    int w = TWIST_FLOATS_AT + 2 * (r.y * POLYLINE_POINTS + i);
+    vec2 cs2 = cs.twist != 0 ? vec2(tables[w], tables[w + 1]) : vec2(1.0, 0.0);
     hin.twistCos[i] = cs2.x;
     hin.twistSin[i] = cs2.y;
   }
+  ivec2 clump = uClump ? clumpRoots[local] : ivec2(-1, 0);
+  gLater = clump.x >= 0;
   buildHair(hin);
+  if (gLater) {
+    addClump(clump.x, intBitsToFloat(clump.y));
+    if (cs.frizz != 0)
+      for (int i = 0; i < cs.points; ++i) setOutPoint(i, outPoint(i) + frizzOffset(gRoot, i / cs.frizzRing));
+  }
 
   if (uTangents) {
     // Kajiya-Kay's T: the direction of the segment leaving each point along its strand (the last

@@ -117,6 +117,18 @@ void generateFur(const skin::SkinMesh& skin, const FurRoots& roots, const FurPar
                  const skin::DeformedSkin& deformed, const FurView& view, FurWorkspace& workspace,
                  FurFrame& frame);
 
+// Clumping (fur_params.h Clump): the weight s_k = strength t_k^shape of strand point k of K, the
+// share of the way toward its clump centre's strand point that point k of a clumped hair moves.
+std::array<float, kMaxCurvePoints> clumpWeights(const Clump& clump, int K);
+
+// Clumping where the hairs are built elsewhere (viewer::GpuFur): this frame's strand points (K x
+// 3) of every clump centre hair of each coat that clumps, into workspace.clumpCentres, exactly as
+// generateFur computes them (unclumped, no frizz); the vectors of coats that do not clump are
+// cleared. The hairs of a clump then move toward them by clumpWeights (generateFur's rule).
+void generateClumpCentres(const skin::SkinMesh& skin, const FurRoots& roots,
+                          const FurParams& params, const skin::DeformedSkin& deformed,
+                          FurWorkspace& workspace);
+
 // The kernel's SIMD targets (Google Highway, e.g. "AVX3", "AVX2", "SSE4", "SSSE3", "NEON",
 // "SCALAR") that this CPU runs, best first; generateFur uses the first unless one is forced. All
 // give bit-identical output.

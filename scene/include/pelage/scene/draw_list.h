@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -104,6 +105,9 @@ struct GpuFurInputs {
   std::uint64_t colorGeneration = 0;
   const skin::SkinMesh* skin = nullptr;
   const skin::DeformedSkin* deformed = nullptr;
+  // When a coat clumps: this frame's strand points of its clump centres (fur::FurWorkspace::
+  // clumpCentres, from evaluateFur); null otherwise.
+  const std::array<std::vector<float>, fur::kCoatCount>* clumpCentres = nullptr;
 };
 
 // The background colour of every frame (linear RGB; sRGB 0.80, 0.82, 0.86: a pale blue-grey).

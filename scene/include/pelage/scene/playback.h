@@ -67,8 +67,7 @@ class Playback {
   const Model& model() const { return *model_; }
   const Fur& fur() const { return *fur_; }
   const PlaybackOptions& options() const { return options_; }
-  // The source the draw list uses: the CPU when asked for, when dynamics is on or when a coat
-  // clumps (fur_params.h Clump: not in the GPU shader yet), else the GPU.
+  // The source the draw list uses: the CPU when asked for or when dynamics is on, else the GPU.
   HairSource hairSource() const;
   bool cpuHairs() const { return hairSource() == HairSource::Cpu; }
 

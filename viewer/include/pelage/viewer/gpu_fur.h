@@ -13,6 +13,7 @@
 // 20 bytes per root, which the CPU model keeps anyway.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -52,6 +53,9 @@ struct GpuFurFrame {
       0;  // the deformed positions and normals already on the GPU (nV x 3 floats)
   GLuint skinNormals = 0;
   float cullFactor = 1.0f;  // c of sec. 3.3 (1: every hair)
+  // When a coat clumps: this frame's strand points of its clump centres
+  // (fur::generateClumpCentres), which its clumped hairs move toward; null otherwise.
+  const std::array<std::vector<float>, fur::kCoatCount>* clumpCentres = nullptr;
 };
 
 class GpuFur {

@@ -1,5 +1,7 @@
 #include "pelage/scene/playback.h"
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
 #include <cmath>
 
@@ -106,6 +108,37 @@ void Playback::posePose(const anatomy::Pose& pose, double stepSeconds) {
   nextFrame_ = -1;
 }
 
+void Playback::posePlayed(const PlayedPose& p, double stepSeconds) {
+  const auto clips = static_cast<int>(model_->clips.size());
+  PELAGE_CHECK(p.clip >= -1 && p.clip < clips && p.fromClip >= -1 && p.fromClip < clips, "clips ",
+               p.clip, " and ", p.fromClip, " of ", clips);
+  if (p.clip < 0) {
+    played_ = stillPose_;  // same size every frame: no allocation after the first
+  } else if (p.fromClip >= 0) {
+    animation::sampleBlend(model_->clips[static_cast<std::size_t>(p.fromClip)], p.fromSeconds,
+                           model_->clips[static_cast<std::size_t>(p.clip)], p.seconds, p.fadeWeight,
+                           model_->body, blendScratch_, played_);
+  } else {
+    animation::sampleClip(model_->clips[static_cast<std::size_t>(p.clip)], model_->body, p.seconds,
+                          played_);
+  }
+  if (!turnPivot_) {
+    // The turntable's pivot: the centre of the first pose played, on the ground plane.
+    posePose(played_, stepSeconds);
+    const Framing f = framing();
+    turnPivot_ = Eigen::Vector3f(f.center.x(), f.center.y(), 0.0f);
+  }
+  if (p.turnDegrees != 0.0) {
+    const double deg = std::fmod(p.turnDegrees, 360.0);
+    const Eigen::Quaternionf q(Eigen::AngleAxisf(static_cast<float>(deg * 3.14159265358979 / 180.0),
+                                                 Eigen::Vector3f::UnitZ()));
+    anatomy::Transform& root = played_.local[0];
+    root.rotation = q * root.rotation;
+    root.translation = q * (root.translation - *turnPivot_) + *turnPivot_;
+  }
+  posePose(played_, stepSeconds);
+}
+
 Framing Playback::framing() const {
   return framingOf(*model_, state_, maxHairLength(*model_, fur_->params));
 }
@@ -151,11 +184,15 @@ const DrawList& Playback::drawList(const Camera& camera, const Light& light,
   return list_;
 }
 
+Camera Playback::sequenceCamera(int frame, const CameraRig& rig, int width, int height) {
+  poseFrame(frame);
+  return rigCamera(rig, firstFraming_, framing(), frame, width, height);
+}
+
 const DrawList& Playback::sequenceFrame(int frame, const CameraRig& rig, int width, int height,
                                         const Light& light, const DrawOptions& options,
                                         const Material* skin) {
-  poseFrame(frame);
-  const Camera camera = rigCamera(rig, firstFraming_, framing(), frame, width, height);
+  const Camera camera = sequenceCamera(frame, rig, width, height);
   evaluateFur(camera);
   return drawList(camera, light, options, skin);
 }

@@ -10,6 +10,7 @@
 #include <cstring>
 
 #include "pelage/anatomy/pose.h"
+#include "pelage/animation/clip.h"
 #include "pelage/util/error.h"
 #include "pelage/util/interrupt.h"
 #include "scene/scene_fixture.h"
@@ -50,6 +51,68 @@ TEST(Playback, AClipFrameIsTheClipAtItsTime) {
   p.poseFrame(0);
   evaluateClipFrame(wagCritter(), 0, 0.25 + 6 / 12.0, expected);
   EXPECT_FALSE(sameSkin(p.state(), expected));
+}
+
+TEST(Playback, APlayedPoseIsItsClipBlendOrStillPoseTurnedAboutTheFirstCentre) {
+  // The viewer's poses (posePlayed): a clip at any time, a cross-fade, the still pose, each as the
+  // animation module samples it; the turntable turns the skin rigidly about +Z through the centre
+  // of the first pose played.
+  const Model& m = wagCritter();
+  Playback p(m, wagFur(), PlaybackOptions{});
+  PlayedPose played;
+  played.clip = 0;
+  played.seconds = 0.4;
+  p.posePlayed(played, 1.0 / 30.0);
+  const Framing first = p.framing();
+  FrameState expected;
+  evaluateClipFrame(m, 0, 0.4, expected);
+  EXPECT_TRUE(sameSkin(p.state(), expected));
+
+  played.fromClip = 0;
+  played.fromSeconds = 0.1;
+  played.fadeWeight = 0.3f;
+  p.posePlayed(played, 1.0 / 30.0);
+  anatomy::Pose blended, scratch;
+  animation::sampleBlend(m.clips[0], 0.1, m.clips[0], 0.4, 0.3f, m.body, scratch, blended);
+  evaluateFrame(m, blended, expected);
+  EXPECT_TRUE(sameSkin(p.state(), expected));
+  FrameState clipOnly;
+  evaluateClipFrame(m, 0, 0.4, clipOnly);
+  EXPECT_FALSE(sameSkin(p.state(), clipOnly));  // the fade shows
+
+  played = PlayedPose{};  // the still pose (the rest pose here)
+  p.posePlayed(played, 1.0 / 30.0);
+  evaluateFrame(m, anatomy::restPose(m.body), expected);
+  EXPECT_TRUE(sameSkin(p.state(), expected));
+
+  played.turnDegrees = 450.0;  // a quarter turn past a whole one
+  p.posePlayed(played, 1.0 / 30.0);
+  const Eigen::Vector3f pivot(first.center.x(), first.center.y(), 0.0f);
+  const Eigen::Matrix3f r =
+      Eigen::AngleAxisf(0.5f * 3.14159265f, Eigen::Vector3f::UnitZ()).matrix();
+  double worst = 0.0;
+  for (std::size_t v = 0; v < expected.skin.positions.size(); ++v)
+    worst = std::max(worst, static_cast<double>((p.state().skin.positions[v] -
+                                                 (r * (expected.skin.positions[v] - pivot) + pivot))
+                                                    .norm()));
+  EXPECT_LT(worst, 2e-6);
+  EXPECT_GT((p.state().skin.positions[0] - expected.skin.positions[0]).norm(), 1e-3f);
+}
+
+TEST(Playback, ASequenceFramesCameraIsItsRigsOnThatFrame) {
+  PlaybackOptions o;
+  o.clip = 0;
+  Playback p(wagCritter(), wagFur(), o);
+  CameraRig rig;
+  rig.preset = CameraPreset::Side;
+  rig.track = true;
+  const Camera c = p.sequenceCamera(9, rig, 320, 200);
+  const Camera expected = rigCamera(rig, p.firstFraming(), p.framing(), 9, 320, 200);
+  EXPECT_EQ(c.eye, expected.eye);
+  EXPECT_EQ(c.target, expected.target);
+  FrameState f9;
+  evaluateClipFrame(wagCritter(), 0, 9 / 30.0, f9);
+  EXPECT_TRUE(sameSkin(p.state(), f9));  // posed on frame 9
 }
 
 TEST(Playback, TheStillPoseIsTheSameEveryFrame) {

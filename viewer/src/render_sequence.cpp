@@ -89,9 +89,7 @@ SequenceRenderer::~SequenceRenderer() = default;
 
 scene::Camera SequenceRenderer::camera(int frame) {
   Impl& m = *impl_;
-  m.playback.poseFrame(frame);
-  return scene::rigCamera(m.options.camera, m.playback.firstFraming(), m.playback.framing(), frame,
-                          m.options.width, m.options.height);
+  return m.playback.sequenceCamera(frame, m.options.camera, m.options.width, m.options.height);
 }
 
 RenderStats SequenceRenderer::render(int frame, Image& out) {

@@ -74,10 +74,9 @@ ViewerSession::ViewerSession(const ViewerOptions& options, scene::Model model)
   po.hairSource = hairSource;
   playback_ = std::make_unique<scene::Playback>(model_, fur_, po);
   // The first camera: the preset on the first frame.
-  playback_->posePose(pose(), 0.0);
+  playback_->posePlayed(played(), 0.0);
   framing_ = playback_->framing();
   lastRoot_ = framing_.rootPosition;
-  pivot_ = Eigen::Vector3f(framing_.center.x(), framing_.center.y(), 0.0f);
   pendingPreset_ = options.camera;
   orbit =
       scene::orbitOf(scene::presetCamera(framing_, *pendingPreset_, options.width, options.height));
@@ -255,29 +254,18 @@ void ViewerSession::advance(double dtSeconds) {
   }
 }
 
-const anatomy::Pose& ViewerSession::pose() {
-  if (clip_ >= 0) {
-    const animation::Clip& c = model_.clips[static_cast<std::size_t>(clip_)];
-    if (fromClip_ >= 0) {
-      const float w = animation::crossFadeWeight(fadeSeconds_, kCrossFadeSeconds);
-      animation::sampleBlend(model_.clips[static_cast<std::size_t>(fromClip_)], fromTime_, c, time_,
-                             w, model_.body, blendScratch_, pose_);
-    } else {
-      animation::sampleClip(c, model_.body, time_, pose_);
-    }
-  } else {
-    pose_ = stillPose_;  // same size every frame: no allocation after the first
+scene::PlayedPose ViewerSession::played() const {
+  scene::PlayedPose p;
+  p.clip = clip_;
+  p.seconds = time_;
+  if (clip_ >= 0 && fromClip_ >= 0) {
+    p.fromClip = fromClip_;
+    p.fromSeconds = fromTime_;
+    p.fadeWeight = animation::crossFadeWeight(fadeSeconds_, kCrossFadeSeconds);
   }
-  if (turntableDegPerSecond != 0.0f) {
-    // The root segment turned about the world +Z axis through the creature's first centre.
-    const double deg = std::fmod(time_ * static_cast<double>(turntableDegPerSecond), 360.0);
-    const Eigen::Quaternionf q(Eigen::AngleAxisf(static_cast<float>(deg * 3.14159265358979 / 180.0),
-                                                 Eigen::Vector3f::UnitZ()));
-    anatomy::Transform& root = pose_.local[0];
-    root.rotation = q * root.rotation;
-    root.translation = q * (root.translation - pivot_) + pivot_;
-  }
-  return pose_;
+  if (turntableDegPerSecond != 0.0f)
+    p.turnDegrees = std::fmod(time_ * static_cast<double>(turntableDegPerSecond), 360.0);
+  return p;
 }
 
 void ViewerSession::frame(double dtSeconds, int width, int height) {
@@ -294,7 +282,7 @@ void ViewerSession::frame(double dtSeconds, int width, int height) {
   }
   playback_->setDynamics(dynamics && drawFur, appliedDynamics_);
   playback_->setHairSource(hairSource);
-  playback_->posePose(pose(), lastStep_);
+  playback_->posePlayed(played(), lastStep_);
   framing_ = playback_->framing();
   if (follow) orbit.target += framing_.rootPosition - lastRoot_;
   lastRoot_ = framing_.rootPosition;

@@ -142,18 +142,15 @@ class ViewerSession {
  private:
   void applyEdits();
   void advance(double dtSeconds);
-  // The frame's pose (clip or still, cross-fades, then the turntable).
-  const anatomy::Pose& pose();
+  // The frame's pose as the playback makes it (clip or still, cross-fade, turntable).
+  scene::PlayedPose played() const;
 
   scene::Model model_;
   anatomy::Pose stillPose_;
-  anatomy::Pose pose_;
-  anatomy::Pose blendScratch_;
   int clip_ = -1;
   int fromClip_ = -1;  // the clip being faded out, or -1
   double fromTime_ = 0.0;
   double fadeSeconds_ = 0.0;
-  Eigen::Vector3f pivot_ = Eigen::Vector3f::Zero();
   scene::Fur fur_;
   std::future<scene::Fur> pending_;
   scene::GroomEditor groomEditor_;

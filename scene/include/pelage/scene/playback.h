@@ -15,7 +15,10 @@
 // Playback owns the per-frame state, the dynamic springs and the pre-roll.
 #pragma once
 
+#include <Eigen/Core>
+
 #include <cstdint>
+#include <optional>
 #include <utility>
 
 #include "pelage/anatomy/pose.h"
@@ -42,6 +45,18 @@ struct PlaybackOptions {
   // Needs a clip for sequence frames.
   bool dynamics = false;
   fur::DynamicsParams dynamicsParams;
+};
+
+// The pose an interactive player shows (Playback::posePlayed): any clip at any time, cross-faded
+// from another, turned on a turntable. The player keeps the clock; the playback makes the pose.
+struct PlayedPose {
+  int clip = -1;         // index into model.clips; -1: the playback's still pose
+  double seconds = 0.0;  // clip time (a looping clip wraps with its root motion: sampleClip)
+  int fromClip = -1;     // the clip faded out (-1: none)
+  double fromSeconds = 0.0;
+  float fadeWeight = 1.0f;   // weight of `clip` against `fromClip`, [0, 1] (crossFadeWeight)
+  double turnDegrees = 0.0;  // the root segment turned about the world +Z axis through the
+                             // centre of the first pose played (unturned), in degrees
 };
 
 // Checks the options against `model` (clip index, fps, pre-roll, dynamics parameters, dynamics
@@ -88,9 +103,11 @@ class Playback {
   // The posed frame held still one frame time longer: the same skin, the springs step once more
   // (analysis of a body that stops).
   void holdFrame();
-  // Any pose (the viewer's), `stepSeconds` after the previous one: the springs step by it, kept in
-  // [1 ms, 1 s].
+  // Any pose, `stepSeconds` after the previous one: the springs step by it, kept in [1 ms, 1 s].
   void posePose(const anatomy::Pose& pose, double stepSeconds);
+  // The pose an interactive player asks for (the viewer's), `stepSeconds` after the previous one,
+  // as posePose: see PlayedPose.
+  void posePlayed(const PlayedPose& played, double stepSeconds);
 
   // The posed frame's framing (skin plus the longest hair) and that of sequence frame 0.
   Framing framing() const;
@@ -110,6 +127,9 @@ class Playback {
   // `skin` overrides the model's skin material.
   const DrawList& drawList(const Camera& camera, const Light& light, const DrawOptions& options,
                            const Material* skin = nullptr);
+  // Sequence frame `frame` posed (poseFrame) and the camera `rig` gives it in a width x height
+  // image (rigCamera): the one camera of a sequence's frame.
+  Camera sequenceCamera(int frame, const CameraRig& rig, int width, int height);
   // All three for sequence frame `frame` seen by `rig` in a width x height image.
   const DrawList& sequenceFrame(int frame, const CameraRig& rig, int width, int height,
                                 const Light& light, const DrawOptions& options,
@@ -131,6 +151,8 @@ class Playback {
   const Fur* fur_;
   PlaybackOptions options_;
   anatomy::Pose stillPose_;
+  anatomy::Pose played_, blendScratch_;       // posePlayed's pose and cross-fade scratch
+  std::optional<Eigen::Vector3f> turnPivot_;  // posePlayed's turntable pivot, from its first pose
   FrameState state_;
   FrameState scratch_;  // the pre-roll's frames
   Framing firstFraming_;

@@ -275,33 +275,34 @@ GpuFur::GpuFur(const GpuFurOptions& options) : impl_(std::make_unique<Impl>(opti
 GpuFur::~GpuFur() = default;
 
 void GpuFur::beginFrame(const GpuFurFrame& f) {
-  PELAGE_CHECK(f.skin && f.roots && f.params && f.deformed && f.skinPositions && f.skinNormals,
+  const scene::GpuFurInputs& in = f.inputs;
+  PELAGE_CHECK(in.skin && in.roots && in.params && in.deformed && f.skinPositions && f.skinNormals,
                "incomplete GPU fur frame");
   Impl& m = *impl_;
-  if (m.skin != f.skin || m.triangleCount != f.skin->numTriangles() ||
-      m.vertexCount != f.skin->numVertices()) {
-    m.uploadSkin(*f.skin);
+  if (m.skin != in.skin || m.triangleCount != in.skin->numTriangles() ||
+      m.vertexCount != in.skin->numVertices()) {
+    m.uploadSkin(*in.skin);
     m.generation = ~std::uint64_t{0};
   }
-  if (m.generation != f.rootsGeneration || m.roots != f.roots) {
-    m.uploadRoots(*f.roots);
-    m.generation = f.rootsGeneration;
+  if (m.generation != in.rootsGeneration || m.roots != in.roots) {
+    m.uploadRoots(*in.roots);
+    m.generation = in.rootsGeneration;
     m.colorGeneration = ~std::uint64_t{0};
   }
-  const std::uint64_t colorGeneration = f.colors ? f.colorGeneration : 0;
+  const std::uint64_t colorGeneration = in.colors ? in.colorGeneration : 0;
   if (m.colorGeneration != colorGeneration) {
-    m.uploadColors(f.colors);
+    m.uploadColors(in.colors);
     m.colorGeneration = colorGeneration;
   }
-  m.roots = f.roots;
-  m.params = f.params;
+  m.roots = in.roots;
+  m.params = in.params;
+  m.clumpCentres = in.clumpCentres;
   m.skinPositions = f.skinPositions;
   m.skinNormals = f.skinNormals;
   m.cullFactor = f.cullFactor;
-  m.clumpCentres = f.clumpCentres;
-  PELAGE_CHECK(f.deformed->directions.size() == static_cast<std::size_t>(m.vertexCount));
+  PELAGE_CHECK(in.deformed->directions.size() == static_cast<std::size_t>(m.vertexCount));
   glNamedBufferSubData(m.vertexData.get(), 0, static_cast<GLsizeiptr>(m.vertexCount) * 12,
-                       f.deformed->directions.data());
+                       in.deformed->directions.data());
 }
 
 void GpuFur::generate(int coat, const fur::HairLayout& layout, bool tangents,

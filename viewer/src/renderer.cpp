@@ -490,17 +490,10 @@ struct Renderer::Impl {
           if (!list.skin.positions) uploadSkinArrays(in.deformed->positions, in.deformed->normals);
           if (!gpuFur) gpuFur = std::make_unique<GpuFur>(options.gpuFur);
           GpuFurFrame g;
-          g.skin = in.skin;
-          g.roots = in.roots;
-          g.params = in.params;
-          g.rootsGeneration = in.rootsGeneration;
-          g.colors = in.colors;
-          g.colorGeneration = in.colorGeneration;
-          g.deformed = in.deformed;
+          g.inputs = in;
           g.skinPositions = skinPositions.get();
           g.skinNormals = skinNormals.get();
           g.cullFactor = f.cullFactor;
-          g.clumpCentres = in.clumpCentres;
           gpuFur->beginFrame(g);
           gpuBegun = true;
         }

@@ -22,6 +22,7 @@
 #include "pelage/fur/fur_params.h"
 #include "pelage/fur/hair_layout.h"
 #include "pelage/fur/roots.h"
+#include "pelage/scene/draw_list.h"
 #include "pelage/skin/deform.h"
 #include "pelage/skin/skin_mesh.h"
 #include "pelage/viewer/gl.h"
@@ -42,20 +43,12 @@ struct GpuFurOptions {
 
 // What one frame of GPU fur reads.
 struct GpuFurFrame {
-  const skin::SkinMesh* skin = nullptr;
-  const fur::FurRoots* roots = nullptr;
-  const fur::FurParams* params = nullptr;
-  std::uint64_t rootsGeneration = 0;             // changes whenever `roots` are regrown (re-upload)
-  const fur::FurColors* colors = nullptr;        // per-hair colours of the roots, or null
-  std::uint64_t colorGeneration = 0;             // changes whenever `colors` change (re-upload)
-  const skin::DeformedSkin* deformed = nullptr;  // its directions are uploaded by beginFrame
-  GLuint skinPositions =
-      0;  // the deformed positions and normals already on the GPU (nV x 3 floats)
+  // The fur, its roots (re-uploaded when their generation changes), colours, clump centres, the
+  // skin and its deformation (whose segment directions beginFrame uploads): the draw list's.
+  scene::GpuFurInputs inputs;
+  GLuint skinPositions = 0;  // the deformed positions and normals already on the GPU (nV x 3)
   GLuint skinNormals = 0;
   float cullFactor = 1.0f;  // c of sec. 3.3 (1: every hair)
-  // When a coat clumps: this frame's strand points of its clump centres
-  // (fur::generateClumpCentres), which its clumped hairs move toward; null otherwise.
-  const std::array<std::vector<float>, fur::kCoatCount>* clumpCentres = nullptr;
 };
 
 class GpuFur {

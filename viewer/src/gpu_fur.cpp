@@ -146,7 +146,6 @@ struct GpuFur::Impl {
     // Clumping: per root (its clump's slot, or -1 for none and for a centre; the groom's clump
     // scale as float bits), and this frame's centre strand points (grown as needed).
     Buffer clumpRoots, clumpCentres;
-    bool clumpRootsUploaded = false;
     std::int64_t clumpCentreBytes = 0;
   };
   std::array<Coat, fur::kCoatCount> coats;
@@ -225,9 +224,8 @@ struct GpuFur::Impl {
       glNamedBufferSubData(g.tables.get(), 0, kTwistFloatsAt * 4, r.barycentric.data());
       g.twistAmount = -1.0f;
       // Clumping: a root in a clump other than its own (generateFur's test) gets its slot.
-      g.clumpRootsUploaded = !cr.clumpSlot.empty();
       std::vector<std::int32_t> clump;
-      if (g.clumpRootsUploaded) {
+      if (!cr.clumpSlot.empty()) {
         clump.resize(static_cast<std::size_t>(2 * g.rootCount));
         for (std::int64_t j = 0; j < g.rootCount; ++j) {
           const auto k = static_cast<std::size_t>(j);
@@ -320,7 +318,8 @@ void GpuFur::generate(int coat, const fur::HairLayout& layout, bool tangents,
 
   // Clumping: this frame's centre strand points (fur::generateClumpCentres), and the weights.
   const fur::Clump& clump = m.params->coats[static_cast<std::size_t>(coat)].clump;
-  const bool clumps = clump.on() && g.clumpRootsUploaded;
+  const bool clumps =
+      clump.on() && !m.roots->coats[static_cast<std::size_t>(coat)].clumpSlot.empty();
   std::array<float, fur::kMaxCurvePoints> clumpWeights{};
   if (clumps) {
     const std::vector<float>* centres =

@@ -117,6 +117,9 @@ void validateFurParams(FurParams& p, const std::string& source) {
     checkRange(source, at + "lengthMm", g.lengthMm, 0.0, 10000.0);
     checkRange(source, at + "densityScale", g.densityScale, 0.0, 100.0);
     for (int k = 0; k < 3; ++k) checkRange(source, str(at, "tint[", k, "]"), g.tint[k], 0.0, 10.0);
+    if (g.stiffness)
+      for (int k = 0; k < 2; ++k)
+        checkRange(source, str(at, "stiffness[", k, "]"), (*g.stiffness)[k], 0.0, 1.0);
   }
   for (int k = 0; k < 3; ++k) checkRange(source, str("up[", k, "]"), p.up[k], -1e6, 1e6);
   const float upLength = p.up.norm();

@@ -37,6 +37,7 @@ void FloatBuffer::resize(std::size_t n) {
 CoatShape makeCoatShape(const FurParams& params, const FurRoots& roots, int coat) {
   CoatShape c = makeCoatShape(params, coat);
   c.comb = roots.coats[static_cast<std::size_t>(coat)].comb.empty() ? 0 : 1;
+  c.perHairFloppiness = roots.coats[static_cast<std::size_t>(coat)].floppiness.empty() ? 0 : 1;
   const std::uint64_t seed = coatSeed(roots.seed, coat);
   c.frizzSeed = std::bit_cast<std::int32_t>(static_cast<std::uint32_t>(seed ^ (seed >> 32)));
   return c;
@@ -379,6 +380,7 @@ void detail::generateFurWithDynamics(
     a.jitter = cr.jitter.data();
     a.lengthScale = cr.lengthScale.empty() ? nullptr : cr.lengthScale.data();
     a.comb = cr.comb.empty() ? nullptr : cr.comb.data();
+    a.floppiness = cr.floppiness.empty() ? nullptr : cr.floppiness.data();
     a.barycentric = roots.barycentric.data();
     a.twist = shape.twist ? ws.twist[ci].data() : nullptr;
     a.positions = emit ? hb.positions.data() : nullptr;
@@ -459,10 +461,10 @@ HairInput<float> rootInput(const skin::SkinMesh& skin, const FurRoots& roots,
     rec[4] = n.x(), rec[5] = n.y(), rec[6] = n.z(), rec[7] = 0.0f;
     rec[8] = s.x(), rec[9] = s.y(), rec[10] = s.z(), rec[11] = 0.0f;
   }
-  return interpolateRoot(roots.barycentric.data() + 4 * cr.tableIndex[r], records[0], records[1],
-                         records[2], cr.jitter.data() + 4 * r,
-                         cr.lengthScale.empty() ? 1.0f : cr.lengthScale[r],
-                         cr.comb.empty() ? 0u : cr.comb[r]);
+  return interpolateRoot(
+      roots.barycentric.data() + 4 * cr.tableIndex[r], records[0], records[1], records[2],
+      cr.jitter.data() + 4 * r, cr.lengthScale.empty() ? 1.0f : cr.lengthScale[r],
+      cr.comb.empty() ? 0u : cr.comb[r], cr.floppiness.empty() ? 0.0f : cr.floppiness[r]);
 }
 
 void referenceHair(const skin::SkinMesh& skin, const FurRoots& roots, const FurParams& params,

@@ -43,7 +43,7 @@ Groom loadGroomMaps(const GroomMapPaths& paths, const skin::SkinMesh& skin,
     fieldError(field, ": model '", modelName,
                "' has no texture coordinates, so groom maps cannot be placed on it (they need a "
                "glTF model with TEXCOORD_0); groom it by regions instead (a preset's \"regions\": "
-               "lengthScale, lengthMm, densityScale, tint per region or joint)");
+               "lengthScale, lengthMm, densityScale, tint, stiffness per region or joint)");
   }
   m.density = loadMap(paths.density, "maps.density", false, skin::Filter::Nearest);
   m.length = loadMap(paths.length, "maps.length", false, skin::Filter::Linear);
@@ -131,6 +131,15 @@ VertexGroom groomFromRegions(const skin::SkinMesh& skin, const anatomy::Body& bo
         if (w[v] > 0.0f)
           for (int k = 0; k < 3; ++k)
             g.tint[v][k] = blend(g.tint[v][k], g.tint[v][k] * reg.tint[k], w[v]);
+    }
+    if (reg.stiffness) {
+      if (g.stiffness.empty())
+        g.stiffness.assign(nV, Eigen::Vector2f(params.coats[kOvercoat].stiffness,
+                                               params.coats[kUndercoat].stiffness));
+      for (std::size_t v = 0; v < nV; ++v)
+        if (w[v] > 0.0f)
+          for (int k = 0; k < 2; ++k)
+            g.stiffness[v][k] = blend(g.stiffness[v][k], (*reg.stiffness)[k], w[v]);
     }
     if (matches) matches->push_back(std::move(m));
   }

@@ -28,24 +28,29 @@ void mixBytes(std::uint64_t& h, const void* data, std::size_t n) {
   }
 }
 
-// One array of nV values (width 1 or 3: [x, y, z] triples), each finite in [lo, hi]; `field`
-// names it.
+// One array of nV values (width 1, or 2 or 3: pairs or [x, y, z] triples), each finite in
+// [lo, hi]; `field` names it.
 std::vector<float> readValues(const JsonReader& doc, const char* field, std::size_t nV, int width,
                               double lo, double hi) {
   const JsonReader a = doc.at(field);
   if (!a.isArray() || a.size() != nV)
-    a.fail(str("expected an array of ", nV, width == 1 ? " numbers" : " [x, y, z] triples",
+    a.fail(str("expected an array of ", nV,
+               width == 1   ? " numbers"
+               : width == 2 ? " [overcoat, undercoat] pairs"
+                            : " [x, y, z] triples",
                " (one per skin vertex)"));
   std::vector<float> out(nV * static_cast<std::size_t>(width));
   const nlohmann::json& j = a.json();
   for (std::size_t v = 0; v < nV; ++v) {
     const nlohmann::json& e = j[v];
     for (int k = 0; k < width; ++k) {
-      const nlohmann::json& x = width == 1 ? e : (e.is_array() && e.size() == 3 ? e[k] : e);
+      const bool tuple = e.is_array() && e.size() == static_cast<std::size_t>(width);
+      const nlohmann::json& x = width == 1 ? e : (tuple ? e[static_cast<std::size_t>(k)] : e);
       const double d = x.is_number() ? x.get<double>() : std::nan("");
-      if (!(d >= lo && d <= hi) || (width == 3 && !(e.is_array() && e.size() == 3)))
+      if (!(d >= lo && d <= hi) || (width > 1 && !tuple))
         inputError(a.file(), ": ", field, "[", v, "]: expected ",
-                   width == 1 ? "a number" : "3 numbers", " in [", lo, ", ", hi, "]");
+                   width == 1 ? std::string("a number") : str(width, " numbers"), " in [", lo, ", ",
+                   hi, "]");
       out[v * static_cast<std::size_t>(width) + static_cast<std::size_t>(k)] =
           static_cast<float>(d);
     }
@@ -71,7 +76,8 @@ std::string groomFileJson(const skin::SkinMesh& skin, const VertexGroom& g) {
                    (g.density.empty() || g.density.size() == nV) &&
                    (g.tint.empty() || g.tint.size() == nV) &&
                    (g.comb.empty() || g.comb.size() == nV) &&
-                   (g.clump.empty() || g.clump.size() == nV),
+                   (g.clump.empty() || g.clump.size() == nV) &&
+                   (g.stiffness.empty() || g.stiffness.size() == nV),
                "groom arrays sized for another mesh");
   nlohmann::json j;
   j["format"] = kFormat;
@@ -96,6 +102,12 @@ std::string groomFileJson(const skin::SkinMesh& skin, const VertexGroom& g) {
   if (!g.tint.empty()) j["tint"] = triples(g.tint);
   if (!g.comb.empty()) j["comb"] = triples(g.comb);
   if (!g.clump.empty()) j["clump"] = singles(g.clump);
+  if (!g.stiffness.empty()) {
+    nlohmann::json t = nlohmann::json::array();
+    for (const Eigen::Vector2f& s : g.stiffness)
+      t.push_back({shortestDecimal(s.x()), shortestDecimal(s.y())});
+    j["stiffness"] = std::move(t);
+  }
   return j.dump() + "\n";
 }
 
@@ -111,7 +123,8 @@ VertexGroom parseGroomFile(const std::string& text, const std::string& source,
   if (!j.has("format") || !j.at("format").json().is_string() || j.string("format") != kFormat)
     j.fail(str("not a groom file: expected \"format\": \"", kFormat,
                "\" (groom files come from pelage's groom output or Python's write_groom)"));
-  j.rejectUnknown({"format", "version", "mesh", "length", "density", "tint", "comb", "clump"});
+  j.rejectUnknown(
+      {"format", "version", "mesh", "length", "density", "tint", "comb", "clump", "stiffness"});
   j.integer("version", kGroomFileVersion, kGroomFileVersion);
   const JsonReader mesh = j.at("mesh");
   mesh.rejectUnknown({"vertices", "triangles", "hash"});
@@ -131,6 +144,11 @@ VertexGroom parseGroomFile(const std::string& text, const std::string& source,
   if (j.has("density"))
     g.density = readValues(j, "density", n, 1, 0.0, static_cast<double>(kMaxGroomDensity));
   if (j.has("clump")) g.clump = readValues(j, "clump", n, 1, 0.0, 1.0);
+  if (j.has("stiffness")) {
+    const std::vector<float> s = readValues(j, "stiffness", n, 2, 0.0, 1.0);
+    g.stiffness.resize(n);
+    for (std::size_t v = 0; v < n; ++v) g.stiffness[v] = Eigen::Vector2f(s[2 * v], s[2 * v + 1]);
+  }
   const auto readTriples = [&](const char* field, double lo, double hi) {
     const std::vector<float> t = readValues(j, field, n, 3, lo, hi);
     std::vector<Eigen::Vector3f> out(n);

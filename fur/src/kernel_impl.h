@@ -163,6 +163,13 @@ void runCoatRange(const CoatKernelArgs& a, std::int64_t begin, std::int64_t end)
         for (int l = 0; l < kFrameLanes; ++l) s[l] = a.lengthScale[roots[k * kFrameLanes + l]];
         inputs[k].length = inputs[k].length * B::loadFrame(s);
       }
+    // A groom's stiffness: each root's own floppiness (CoatRoots::floppiness).
+    if (a.floppiness)
+      for (int k = 0; k < frameBlocks; ++k) {
+        float f[kFrameLanes];
+        for (int l = 0; l < kFrameLanes; ++l) f[l] = a.floppiness[roots[k * kFrameLanes + l]];
+        inputs[k].floppiness = B::loadFrame(f);
+      }
     // A groom's comb: each hair's first triangle edge and unpacked comb (interpolateRoot's).
     if (a.comb)
       for (int k = 0; k < frameBlocks; ++k) {

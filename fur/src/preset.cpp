@@ -138,7 +138,8 @@ LengthRegion parseRegion(const JsonReader& j) {
 }
 
 // "regions": [{"match": PATTERN, "lengthScale": s, "lengthMm": mm, "densityScale": d,
-// "tint": [r, g, b]}, ...]; the list replaces the base preset's.
+// "tint": [r, g, b], "stiffness": s | [overcoat, undercoat]}, ...]; the list replaces the base
+// preset's.
 std::vector<FurRegion> parseFurRegions(const JsonReader& list) {
   if (!list.isArray())
     list.fail("expected an array of regions, e.g. [{\"match\": \"b_Tail*\", \"lengthScale\": 2}]");
@@ -148,9 +149,9 @@ std::vector<FurRegion> parseFurRegions(const JsonReader& list) {
   for (std::size_t i = 0; i < list.size(); ++i) {
     const JsonReader j = list.at(i);
     if (!j.isObject()) j.fail("expected an object {\"match\": PATTERN, ...}");
-    // Per-region coat fields (stiffness, width, curl, ...) are not supported yet: the kernel holds
-    // them per coat.
-    j.rejectUnknown({"match", "lengthScale", "lengthMm", "densityScale", "tint"});
+    // Of the coat fields only the stiffness is per region yet (width, curl, direction weight and
+    // colour source are per coat).
+    j.rejectUnknown({"match", "lengthScale", "lengthMm", "densityScale", "tint", "stiffness"});
     FurRegion r;
     if (!j.has("match"))
       j.fail("missing 'match' (a region, material or joint name; '*' wildcards)");
@@ -164,6 +165,19 @@ std::vector<FurRegion> parseFurRegions(const JsonReader& list) {
       if (!t.isArray() || t.size() != 3) t.fail("expected an array of 3 numbers in [0, 10]");
       for (std::size_t k = 0; k < 3; ++k)
         r.tint[static_cast<int>(k)] = static_cast<float>(t.at(k).asNumber(0.0, 10.0));
+    }
+    if (j.has("stiffness")) {
+      const JsonReader s = j.at("stiffness");
+      if (s.isArray()) {
+        if (s.size() != 2)
+          s.fail(
+              "expected a number in [0, 1] (both coats) or [overcoat, undercoat], each in [0, 1]");
+        r.stiffness = Eigen::Vector2f(static_cast<float>(s.at(0).asNumber(0.0, 1.0)),
+                                      static_cast<float>(s.at(1).asNumber(0.0, 1.0)));
+      } else {
+        const auto both = static_cast<float>(s.asNumber(0.0, 1.0));
+        r.stiffness = Eigen::Vector2f(both, both);
+      }
     }
     out.push_back(std::move(r));
   }
@@ -409,12 +423,15 @@ std::string furPresetJson(const FurParams& p) {
                          {"scale", r.scale}};
   if (!p.regions.empty()) {
     nlohmann::json list = nlohmann::json::array();
-    for (const FurRegion& g : p.regions)
-      list.push_back({{"match", g.match},
-                      {"lengthScale", g.lengthScale},
-                      {"lengthMm", g.lengthMm},
-                      {"densityScale", g.densityScale},
-                      {"tint", colorJson(g.tint)}});
+    for (const FurRegion& g : p.regions) {
+      nlohmann::json region = {{"match", g.match},
+                               {"lengthScale", g.lengthScale},
+                               {"lengthMm", g.lengthMm},
+                               {"densityScale", g.densityScale},
+                               {"tint", colorJson(g.tint)}};
+      if (g.stiffness) region["stiffness"] = {g.stiffness->x(), g.stiffness->y()};
+      list.push_back(std::move(region));
+    }
     j["regions"] = list;
   }
   j["up"] = colorJson(p.up);

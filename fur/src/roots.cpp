@@ -283,6 +283,10 @@ FurRoots growRoots(const skin::SkinMesh& skin, const FurParams& params, const Gr
                    groom.vertex.clump.size() == static_cast<std::size_t>(skin.numVertices()),
                "groom clump has ", groom.vertex.clump.size(), " values for ", skin.numVertices(),
                " vertices");
+  PELAGE_CHECK(groom.vertex.stiffness.empty() ||
+                   groom.vertex.stiffness.size() == static_cast<std::size_t>(skin.numVertices()),
+               "groom stiffness has ", groom.vertex.stiffness.size(), " values for ",
+               skin.numVertices(), " vertices");
   skin::DeformedSkin rest;  // rest normals, for the comb's tangent frames
   if (!groom.vertex.comb.empty()) skin::restSkin(skin, rest);
   const std::vector<double> area = triangleAreas(skin);
@@ -398,6 +402,7 @@ FurRoots growRoots(const skin::SkinMesh& skin, const FurParams& params, const Gr
     const bool clumpScaled =
         !groom.vertex.clump.empty() && params.coats[static_cast<std::size_t>(c)].clump.on();
     if (clumpScaled) cr.clumpScale.resize(n);
+    if (!groom.vertex.stiffness.empty()) cr.floppiness.resize(n);
     parallelForChunks(nT, 4096, [&](std::int64_t tb, std::int64_t te) {
       for (std::int64_t t = tb; t < te; ++t) {
         const std::int64_t first = cr.triangleStart[static_cast<std::size_t>(t)];
@@ -425,6 +430,16 @@ FurRoots growRoots(const skin::SkinMesh& skin, const FurParams& params, const Gr
               return groom.vertex.clump[static_cast<std::size_t>(v[i])];
             };
             cr.clumpScale[ks] = b[0] * at(0) + b[1] * at(1) + b[2] * at(2);
+          }
+          if (!cr.floppiness.empty()) {
+            // s1 + b2 (s2 - s1) + b3 (s3 - s1): exactly s where the three vertices agree, so a
+            // hair there droops as the coat of stiffness s does.
+            const float* b = roots.barycentric.data() + 4 * cr.tableIndex[ks];
+            const std::int32_t* v = skin.triangles.data() + 3 * t;
+            const auto at = [&](int i) {
+              return groom.vertex.stiffness[static_cast<std::size_t>(v[i])][c];
+            };
+            cr.floppiness[ks] = floppiness(at(0) + b[1] * (at(1) - at(0)) + b[2] * (at(2) - at(0)));
           }
           if (!cr.comb.empty())
             cr.comb[ks] = restComb(skin, rest, groom.vertex.comb, static_cast<std::int32_t>(t),

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <mutex>
+#include <optional>
 
 #include "pelage/fur/fur_params.h"
 #include "pelage/scene/playback.h"
@@ -173,7 +174,7 @@ Dynamics dynamicsFrom(const py::object& d) {
 
 fur::VertexGroom vertexGroomFrom(int vertices, const py::object& length, const py::object& density,
                                  const py::object& tint, const py::object& comb,
-                                 const py::object& clump) {
+                                 const py::object& clump, const py::object& stiffness) {
   const auto nV = static_cast<py::ssize_t>(vertices);
   const auto column = [&](const py::object& o, const char* name) {
     std::vector<float> out;
@@ -185,14 +186,22 @@ fur::VertexGroom vertexGroomFrom(int vertices, const py::object& length, const p
     out.assign(a.data(), a.data() + nV);
     return out;
   };
+  // Rows of `width` values (shape (nV, width)).
+  const auto rows = [&](const py::object& o, const char* name, py::ssize_t width,
+                        const char* what) {
+    using Array = py::array_t<float, py::array::c_style | py::array::forcecast>;
+    if (o.is_none()) return std::optional<Array>();
+    const auto a = Array::ensure(o);
+    if (!a || a.ndim() != 2 || a.shape(0) != nV || a.shape(1) != width)
+      throw InputError(std::string(name), str("must be an array of shape (", nV, ", ", width,
+                                              "), one ", what, " per skin vertex"));
+    return std::optional<Array>(a);
+  };
   const auto triples = [&](const py::object& o, const char* name, const char* what) {
     std::vector<Eigen::Vector3f> out;
-    if (o.is_none()) return out;
-    const auto a = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(o);
-    if (!a || a.ndim() != 2 || a.shape(0) != nV || a.shape(1) != 3)
-      throw InputError(std::string(name), str("must be an array of shape (", nV, ", 3), one ", what,
-                                              " per skin vertex"));
-    for (py::ssize_t v = 0; v < nV; ++v) out.emplace_back(a.at(v, 0), a.at(v, 1), a.at(v, 2));
+    const auto a = rows(o, name, 3, what);
+    if (!a) return out;
+    for (py::ssize_t v = 0; v < nV; ++v) out.emplace_back(a->at(v, 0), a->at(v, 1), a->at(v, 2));
     return out;
   };
   fur::VertexGroom g;
@@ -201,6 +210,8 @@ fur::VertexGroom vertexGroomFrom(int vertices, const py::object& length, const p
   g.tint = triples(tint, "tint", "RGB");
   g.comb = triples(comb, "comb", "direction times amount");
   g.clump = column(clump, "clump");
+  if (const auto a = rows(stiffness, "stiffness", 2, "(overcoat, undercoat) stiffness"))
+    for (py::ssize_t v = 0; v < nV; ++v) g.stiffness.emplace_back(a->at(v, 0), a->at(v, 1));
   return g;
 }
 
@@ -219,6 +230,9 @@ py::dict groomDict(const fur::VertexGroom& g) {
   if (!g.comb.empty()) d["comb"] = triples(g.comb);
   if (!g.clump.empty())
     d["clump"] = py::array_t<float>({static_cast<py::ssize_t>(g.clump.size())}, g.clump.data());
+  if (!g.stiffness.empty())
+    d["stiffness"] = py::array_t<float>(
+        {static_cast<py::ssize_t>(g.stiffness.size()), py::ssize_t{2}}, g.stiffness.data()->data());
   return d;
 }
 

@@ -46,6 +46,9 @@ Args:
         toward it by the amount (1: lies along it; gravity still applies), 0: not combed.
     clump: None, or shape (vertices,): multiplies the coats' clump strength [0, 1] (0: out of
         its clump); only where a coat clumps.
+    stiffness: None, or shape (vertices, 2): each coat's stiffness (overcoat, undercoat) [0, 1]
+        at the vertex, in place of the coat's: gravity bends a hair as a coat of the stiffness
+        interpolated at its root (floppiness 1 - stiffness, at least 0.02; sec. 3.5).
     strokes: None, or grooming strokes applied on top of the arrays (those they need and that
         are absent start from the model's lengths, density 1, tint 1, no comb): a strokes file's
         path, or its JSON as a dict, {"strokes": [{"tool": "length" | "density" | "color" | "comb",

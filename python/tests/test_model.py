@@ -123,6 +123,33 @@ def test_regions_and_groom_files(tmp_path):
 
 @pytest.mark.skipif(not os.path.exists(os.path.join(SHARED, "Fox", "Fox.glb")),
                     reason="the shared glTF models are not here")
+def test_stiffness_by_region_and_from_numpy(tmp_path):
+    fox = pelage.load(os.path.join(SHARED, "Fox", "Fox.glb"))
+    n = len(fox.skin()[0])
+    stiff_tail = fox.fur(hairs=3000, regions=[{"match": "b_Tail*", "stiffness": [0.9, 0.95]}])
+    assert stiff_tail.params["regions"][0]["stiffness"] == pytest.approx([0.9, 0.95])
+    stiffness = stiff_tail.groom["stiffness"]
+    assert stiffness.shape == (n, 2) and set(stiff_tail.groom) == {"stiffness"}
+    # From the coats' own (default: overcoat 0.3, undercoat 0.7) to the tail's.
+    assert stiffness[:, 0].min() == np.float32(0.3) and stiffness[:, 0].max() == np.float32(0.9)
+    assert stiffness[:, 1].min() == np.float32(0.7) and stiffness[:, 1].max() == np.float32(0.95)
+    plain = fox.fur(hairs=3000)
+    assert not np.array_equal(stiff_tail.hairs().points, plain.hairs().points)
+    # The same values from numpy, through a groom file: the same hairs, bit for bit.
+    path = str(tmp_path / "stiff.groom.json")
+    fox.write_groom(path, stiffness=stiffness)
+    from_file = fox.fur(hairs=3000, groom=path)
+    assert np.array_equal(bits(from_file.groom["stiffness"]), bits(stiffness))
+    assert np.array_equal(bits(from_file.hairs().points), bits(stiff_tail.hairs().points))
+    with pytest.raises(ValueError, match=r"stiffness.*shape \(%d, 2\)" % n):
+        fox.write_groom(path, stiffness=stiffness[:, 0])
+    with pytest.raises(ValueError, match=r"stiffness\[0\].*\[0, 1\]"):
+        fox.write_groom(str(tmp_path / "bad.json"), stiffness=np.full((n, 2), 1.5))
+    assert not os.path.exists(tmp_path / "bad.json")
+
+
+@pytest.mark.skipif(not os.path.exists(os.path.join(SHARED, "Fox", "Fox.glb")),
+                    reason="the shared glTF models are not here")
 def test_subdivision_levels():
     path = os.path.join(SHARED, "Fox", "Fox.glb")
     tris = {s: len(pelage.load(path, subdivide=s).skin()[2]) for s in (0, 1, "auto")}

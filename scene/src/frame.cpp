@@ -70,13 +70,30 @@ bool clumpRootsDiffer(const fur::FurParams& a, const fur::FurParams& b) {
   }
   return false;
 }
+
+// A region's stiffness blends from the coats' stiffness into the per-vertex values the roots'
+// floppiness is interpolated from (fur::groomFromRegions).
+bool regionStiffnessDiffers(const fur::FurParams& a, const fur::FurParams& b) {
+  const auto stiffRegions = [](const fur::FurParams& p) {
+    for (const fur::FurRegion& r : p.regions)
+      if (r.stiffness) return true;
+    return false;
+  };
+  if (!stiffRegions(a) && !stiffRegions(b)) return false;
+  for (int c = 0; c < fur::kCoatCount; ++c)
+    if (a.coats[static_cast<std::size_t>(c)].stiffness !=
+        b.coats[static_cast<std::size_t>(c)].stiffness)
+      return true;
+  return false;
+}
 }  // namespace
 
 bool rootsDiffer(const fur::FurParams& a, const fur::FurParams& b) {
   return a.hairs != b.hairs || a.densityPerM2 != b.densityPerM2 || a.coverage != b.coverage ||
          a.undercoatShare != b.undercoatShare || a.seed != b.seed ||
          a.maps.density != b.maps.density || a.maps.length != b.maps.length ||
-         a.regions != b.regions || a.groom != b.groom || clumpRootsDiffer(a, b);
+         a.regions != b.regions || a.groom != b.groom || clumpRootsDiffer(a, b) ||
+         regionStiffnessDiffers(a, b);
 }
 
 bool colorsDiffer(const fur::FurParams& a, const fur::FurParams& b) {

@@ -85,6 +85,26 @@ TEST(Groom, RegionsInListOrderOnTopOfAStart) {
       {"fur 'x'", "regions[3].match 'tail*'", "regions: body, left", "joints: a, b"});
 }
 
+TEST(Groom, RegionStiffnessBlendsFromTheCoatsStiffness) {
+  const Grid g;
+  FurParams p;
+  p.coats[kOvercoat].stiffness = 0.3f;
+  p.coats[kUndercoat].stiffness = 0.7f;
+  p.regions = {{.match = "b", .stiffness = Eigen::Vector2f(0.9f, 0.9f)},
+               {.match = "left", .stiffness = Eigen::Vector2f(0.1f, 0.5f)}};
+  const VertexGroom out = groomFromRegions(g.skin, g.body, p, "test");
+  ASSERT_EQ(out.stiffness.size(), 25u);
+  EXPECT_TRUE(out.length.empty() && out.density.empty() && out.tint.empty());
+  for (int v = 0; v < 25; ++v) {
+    const auto vs = static_cast<std::size_t>(v);
+    const float wb = g.x(v) / 0.04f;
+    Eigen::Vector2f expected(0.3f + wb * (0.9f - 0.3f), 0.7f + wb * (0.9f - 0.7f));
+    if (wb == 1.0f) expected = Eigen::Vector2f(0.9f, 0.9f);  // the region's exactly
+    if (g.x(v) < 0.015f) expected = Eigen::Vector2f(0.1f, 0.5f);
+    EXPECT_EQ(out.stiffness[vs], expected) << v;
+  }
+}
+
 TEST(Groom, FileRoundTripsBitIdenticallyAndRefusesAnotherMesh) {
   const Grid g;
   std::mt19937 rng(7);
@@ -95,6 +115,7 @@ TEST(Groom, FileRoundTripsBitIdenticallyAndRefusesAnotherMesh) {
     v.density.push_back(u(rng) * 3.0f);
     v.tint.emplace_back(u(rng), u(rng) * 10.0f, 1.0f / 3.0f);
     v.clump.push_back(u(rng));
+    v.stiffness.emplace_back(u(rng), 1.0f / 7.0f);
   }
   const std::string file = testing::TempDir() + "grid.groom.json";
   writeGroomFile(file, g.skin, v);
@@ -104,6 +125,9 @@ TEST(Groom, FileRoundTripsBitIdenticallyAndRefusesAnotherMesh) {
   EXPECT_EQ(std::memcmp(back.density.data(), v.density.data(), 25 * sizeof(float)), 0);
   EXPECT_EQ(std::memcmp(back.tint.data(), v.tint.data(), 25 * sizeof(Eigen::Vector3f)), 0);
   EXPECT_EQ(std::memcmp(back.clump.data(), v.clump.data(), 25 * sizeof(float)), 0);
+  ASSERT_EQ(back.stiffness.size(), 25u);
+  EXPECT_EQ(std::memcmp(back.stiffness.data(), v.stiffness.data(), 25 * sizeof(Eigen::Vector2f)),
+            0);
   EXPECT_EQ(groomFileJson(g.skin, back), test::readText(file));
   // The same counts but another shape: the hash tells them apart.
   const skin::SkinMesh moved = test::makeGrid(4, 0.011f, 0.01f);
@@ -135,6 +159,17 @@ TEST(Groom, FileValuesAreChecked) {
   text.replace(text.find("[0.5,"), 5, "[1.5,");
   test::expectInputError([&] { parseGroomFile(text, "f.json", g.skin, "grid"); },
                          {"f.json", "clump[0]", "[0, 1]"});
+  VertexGroom st;
+  st.stiffness.assign(25, Eigen::Vector2f(0.5f, 0.25f));
+  text = groomFileJson(g.skin, st);
+  const std::string goodStiffness = text;
+  text.replace(text.find("[0.5,0.25]"), 10, "[0.5,1.25]");
+  test::expectInputError([&] { parseGroomFile(text, "f.json", g.skin, "grid"); },
+                         {"f.json", "stiffness[0]", "2 numbers", "[0, 1]"});
+  text = goodStiffness;
+  text.replace(text.find("[0.5,0.25]"), 10, "[0.5]");
+  test::expectInputError([&] { parseGroomFile(text, "f.json", g.skin, "grid"); },
+                         {"stiffness[0]", "2 numbers"});
   test::expectInputError([&] { parseGroomFile("{}", "f.json", g.skin, "grid"); },
                          {"f.json", "not a groom file"});
   test::expectInputError([&] { parseGroomFile("[1,", "f.json", g.skin, "grid"); }, {"f.json"});
@@ -183,8 +218,63 @@ TEST(Groom, HairsOnAGroomMatchTheReferenceOnEveryPathAndThreadCount) {
     const float z = s.restPositions()[3 * v + 2];
     groom.vertex.length.push_back(z < -0.07f ? 0.0f : s.furLengths()[v] * (1.5f + 10.0f * z));
     groom.vertex.density.push_back(z > 0.0f ? 2.0f : 0.5f);
+    groom.vertex.stiffness.emplace_back(0.5f + 5.0f * z, 1.0f - (0.5f + 5.0f * z));
   }
   test::checkStylesAgainstReference(s, d, 6000, Eigen::Vector3f(0.0f, 0.0f, 0.1f), groom);
+}
+
+TEST(Groom, AStiffnessGroomDroopsEachHairAsACoatOfItsStiffness) {
+  // A groom of one stiffness everywhere gives, bit for bit, the hairs of coats of that stiffness
+  // (each root's floppiness is the coat's); halving it elsewhere changes only those hairs.
+  const skin::SkinMesh s = test::makeSphere(0.1f, 16, 32);
+  skin::DeformedSkin d;
+  skin::restSkin(s, d);
+  FurParams plain = loadFurPreset("default");
+  plain.setHairCount(4000);
+  plain.culling.enabled = false;
+  FurParams stiff = plain;
+  stiff.coats[kOvercoat].stiffness = 0.85f;
+  stiff.coats[kUndercoat].stiffness = 0.05f;
+  Groom groom;
+  groom.vertex.stiffness.assign(static_cast<std::size_t>(s.numVertices()),
+                                Eigen::Vector2f(0.85f, 0.05f));
+  const FurRoots groomed = growRoots(s, plain, groom);
+  const FurRoots ungroomed = growRoots(s, stiff);
+  ASSERT_EQ(groomed.coats[kOvercoat].floppiness.size(),
+            static_cast<std::size_t>(groomed.coats[kOvercoat].size()));
+  EXPECT_TRUE(ungroomed.coats[kOvercoat].floppiness.empty());
+  EXPECT_TRUE(test::sameHairs(test::furFrame(s, groomed, plain, d),
+                              test::furFrame(s, ungroomed, stiff, d)));
+  EXPECT_FALSE(test::sameHairs(test::furFrame(s, groomed, plain, d),
+                               test::furFrame(s, ungroomed, plain, d)));
+  // Stiff (0.85) only on the upper half: hairs whose three vertices are all below keep the
+  // plain coat's shape exactly; those all above are the stiff coat's.
+  for (int v = 0; v < s.numVertices(); ++v)
+    if (s.restPositions()[3 * v + 2] < 0.0f)
+      groom.vertex.stiffness[static_cast<std::size_t>(v)] =
+          Eigen::Vector2f(plain.coats[kOvercoat].stiffness, plain.coats[kUndercoat].stiffness);
+  const FurRoots half = growRoots(s, plain, groom);
+  const FurFrame mixed = test::furFrame(s, half, plain, d);
+  const FurFrame allPlain = test::furFrame(s, ungroomed, plain, d);
+  const FurFrame allStiff = test::furFrame(s, ungroomed, stiff, d);
+  const HairBuffers& m = mixed.coats[kOvercoat];
+  const std::size_t n = static_cast<std::size_t>(m.layout.pointsPerHair()) * 3;
+  int below = 0, above = 0;
+  for (std::int64_t h = 0; h < m.drawn; ++h) {
+    const std::int32_t t = half.coats[kOvercoat].triangle[static_cast<std::size_t>(h)];
+    int up = 0;
+    for (int k = 0; k < 3; ++k) up += s.restPositions()[3 * s.triangles[3 * t + k] + 2] >= 0.0f;
+    const FurFrame* same = up == 0 ? &allPlain : up == 3 ? &allStiff : nullptr;
+    if (!same) continue;
+    (up == 0 ? below : above) += 1;
+    EXPECT_EQ(
+        0, std::memcmp(m.positions.data() + h * static_cast<std::int64_t>(n),
+                       same->coats[kOvercoat].positions.data() + h * static_cast<std::int64_t>(n),
+                       n * sizeof(float)))
+        << h;
+  }
+  EXPECT_GT(below, 1000);
+  EXPECT_GT(above, 1000);
 }
 
 }  // namespace

@@ -49,7 +49,7 @@ CoatShape shapeFor(HairStyle style, float stiffness, float weight = 0.0f,
 
 HairFrame<float> frameOf(const CoatShape& c, const V& root, const V& n, const V& s, float length,
                          const V& xi = {0, 0, 0}) {
-  HairInput<float> in{root, n, s, length, xi, 0.0f, {0, 0, 0}, 0.0f, 0.0f};
+  HairInput<float> in{root, n, s, length, xi, 0.0f, {0, 0, 0}, 0.0f, 0.0f, 0.0f};
   HairFrame<float> f;
   hairFrame(c, in, f);
   return f;
@@ -95,7 +95,7 @@ TEST(HairMath, GravityWithZUpIsThePapersZSubtraction) {
   const CoatShape c = shapeFor(HairStyle::Line, 0.2f);
   ASSERT_FLOAT_EQ(c.floppiness, 0.8f);
   const V d = v3(std::sqrt(0.5f), 0, std::sqrt(0.5f));
-  const Eigen::Vector3f e = E(droopDirection(c, d, v3(0, 0, 1)));
+  const Eigen::Vector3f e = E(droopDirection(c, d, v3(0, 0, 1), c.floppiness));
   EXPECT_NEAR(e.x(), 0.980581f, 1e-5f);
   EXPECT_NEAR(e.y(), 0.0f, 1e-7f);
   EXPECT_NEAR(e.z(), 0.196116f, 1e-5f);
@@ -106,7 +106,8 @@ TEST(HairMath, GravityWithZUpIsThePapersZSubtraction) {
     const float cosTheta = dt.dot(n);
     const Eigen::Vector3f paper =
         Eigen::Vector3f(dt.x(), dt.y(), dt.z() - 0.8f * cosTheta).normalized();
-    EXPECT_TRUE(E(droopDirection(c, fromE(dt), fromE(n))).isApprox(paper, 1e-5f)) << k;
+    EXPECT_TRUE(E(droopDirection(c, fromE(dt), fromE(n), c.floppiness)).isApprox(paper, 1e-5f))
+        << k;
   }
 }
 
@@ -122,9 +123,9 @@ TEST(HairMath, StiffHairsEndNearTheWeightlessEndAndFloppyOnesOnTheSkinPlane) {
     d.z() = std::abs(d.z()) + 0.05f;  // pointing away from the skin
     d.normalize();
     // f = 0.02: |E - W| = L |e - d| <= about 0.02 L.
-    EXPECT_LT((E(droopDirection(stiff, fromE(d), n)) - d).norm(), 0.021f) << k;
+    EXPECT_LT((E(droopDirection(stiff, fromE(d), n, stiff.floppiness)) - d).norm(), 0.021f) << k;
     // f = 1 on a horizontal patch: d' = d - (d.n) n lies in the skin plane.
-    EXPECT_NEAR(E(droopDirection(floppy, fromE(d), n)).z(), 0.0f, 1e-6f) << k;
+    EXPECT_NEAR(E(droopDirection(floppy, fromE(d), n, floppy.floppiness)).z(), 0.0f, 1e-6f) << k;
   }
 }
 
@@ -361,7 +362,7 @@ TEST(HairMath, HelixKeepsTheEndsAndWindsAtTheGivenRadius) {
   p.coats[0].curlRadius = 0.0f;
   const CoatShape plain = makeCoatShape(p, 0);
   HairInput<float> in{v3(0, 0, 0), v3(0, 0, 1), v3(1, 0, 0), 0.05f, v3(0, 0, 0),
-                      0.3f,        v3(0, 0, 0), 0.0f,        0.0f};
+                      0.3f,        v3(0, 0, 0), 0.0f,        0.0f,  0.0f};
   HairFrame<float> f;
   hairFrame(curly, in, f);
   Collect a, b;
@@ -400,7 +401,7 @@ TEST(HairMath, TubeRingsSurroundTheCurveWithOutwardNormals) {
   p.coats[0].width = {2.0f, 0.1f};
   const CoatShape c = makeCoatShape(p, 0);
   HairInput<float> in{v3(0, 0, 0), v3(0, 0, 1), v3(1, 0, 0), 0.05f, v3(0, 0, 0),
-                      0.0f,        v3(0, 0, 0), 0.0f,        0.0f};
+                      0.0f,        v3(0, 0, 0), 0.0f,        0.0f,  0.0f};
   HairFrame<float> f;
   hairFrame(c, in, f);
   Collect curve, tube;

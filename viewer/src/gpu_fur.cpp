@@ -143,9 +143,10 @@ struct GpuFur::Impl {
     float twistAmount = -1.0f;
     std::uint64_t twistSeed = 0;
     std::vector<float> twistTable;
-    // Clumping: per root (its clump's slot, or -1 for none and for a centre; the groom's clump
-    // scale as float bits), and this frame's centre strand points (grown as needed).
-    Buffer clumpRoots, clumpCentres;
+    // Per root (uploadRoots: clump slot and scale, floppiness; empty when the coat needs none),
+    // and clumping's centre strand points of this frame (grown as needed).
+    Buffer rootExtras, clumpCentres;
+    bool hasRootExtras = false;
     std::int64_t clumpCentreBytes = 0;
   };
   std::array<Coat, fur::kCoatCount> coats;
@@ -223,20 +224,24 @@ struct GpuFur::Impl {
       g.tables = makeBuffer(kTableFloats * 4, nullptr);
       glNamedBufferSubData(g.tables.get(), 0, kTwistFloatsAt * 4, r.barycentric.data());
       g.twistAmount = -1.0f;
-      // Clumping: a root in a clump other than its own (generateFur's test) gets its slot.
-      std::vector<std::int32_t> clump;
-      if (!cr.clumpSlot.empty()) {
-        clump.resize(static_cast<std::size_t>(2 * g.rootCount));
+      // Per root, as the shader's RootExtras: (clump slot, clump scale bits, floppiness bits, 0);
+      // a root in a clump other than its own (generateFur's test) gets its slot, others -1.
+      std::vector<std::int32_t> extras;
+      if (!cr.clumpSlot.empty() || !cr.floppiness.empty()) {
+        extras.assign(static_cast<std::size_t>(4 * g.rootCount), 0);
         for (std::int64_t j = 0; j < g.rootCount; ++j) {
           const auto k = static_cast<std::size_t>(j);
-          const std::int32_t slot = cr.clumpSlot[k];
+          const std::int32_t slot = cr.clumpSlot.empty() ? -1 : cr.clumpSlot[k];
           const bool centre = slot < 0 || cr.clumpCentres[static_cast<std::size_t>(slot)] == j;
-          clump[2 * k] = centre ? -1 : slot;
-          clump[2 * k + 1] =
+          extras[4 * k] = centre ? -1 : slot;
+          extras[4 * k + 1] =
               std::bit_cast<std::int32_t>(cr.clumpScale.empty() ? 1.0f : cr.clumpScale[k]);
+          extras[4 * k + 2] =
+              std::bit_cast<std::int32_t>(cr.floppiness.empty() ? 0.0f : cr.floppiness[k]);
         }
       }
-      g.clumpRoots = makeBuffer(static_cast<GLsizeiptr>(clump.size() * 4), clump.data());
+      g.rootExtras = makeBuffer(static_cast<GLsizeiptr>(extras.size() * 4), extras.data());
+      g.hasRootExtras = !extras.empty();
       g.clumpCentreBytes = 0;
     }
   }
@@ -390,7 +395,8 @@ void GpuFur::generate(int coat, const fur::HairLayout& layout, bool tangents,
   if (clumps) glUniform1fv(uniform(hp, "uClumpWeights"), fur::kMaxCurvePoints, clumpWeights.data());
   // (Unused bindings still need a buffer bound.)
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 11, clumps ? g.clumpCentres.get() : g.tables.get());
-  if (!clumps) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, g.tables.get());
+  glUniform1i(uniform(hp, "uRootExtras"), g.hasRootExtras ? 1 : 0);
+  if (!g.hasRootExtras) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, g.tables.get());
   if (!g.perHairColor) {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 16, g.tables.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 17, out.colors());
@@ -420,8 +426,8 @@ void GpuFur::generate(int coat, const fur::HairLayout& layout, bool tangents,
       glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 5, g.jitter.get(), first * 16, count * 16);
       if (g.perHairColor)
         glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 16, g.colors.get(), first * 8, count * 8);
-      if (clumps)
-        glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 7, g.clumpRoots.get(), first * 8, count * 8);
+      if (g.hasRootExtras)
+        glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 7, g.rootExtras.get(), first * 16, count * 16);
       glUniform1i(uniform(hp, "uWindowFirst"), static_cast<GLint>(first));
       glUniform1i(uniform(hp, "uWindowCount"), static_cast<GLint>(count));
       dispatch1d(count, 64, m.options.maxGroupsPerDimension);

@@ -58,6 +58,7 @@ struct HairInput {
   vec3 combEdge;  // the groom's comb (cs.comb): the triangle's first edge v2 - v1,
   float combX;    // and the root's comb in the tangent frame it spans
   float combY;
+  float floppiness;  // the root's own (cs.perHairFloppiness: a groom's stiffness)
   float twistCos[POLYLINE_POINTS];
   float twistSin[POLYLINE_POINTS];
 };
@@ -90,6 +91,7 @@ HairInput interpolateRoot(vec3 b, vec3 p1, vec3 p2, vec3 p3, float len1, float l
   hin.combEdge = p2 - p1;
   hin.combX = float((comb << 16) >> 16) / 32767.0;
   hin.combY = float(comb >> 16) / 32767.0;
+  hin.floppiness = cs.floppiness;
   return hin;
 }
 
@@ -163,10 +165,11 @@ vec3 perturbedDirection(vec3 d, vec3 xi) {
   return normalizeOr(d + xi * cs.endRandomize, d, 1e-12);
 }
 
-// Sec. 3.5 gravity: cos(theta) = d~ . n, d' = d~ - f cos(theta) U, e = d' / |d'|.
-vec3 droopDirection(vec3 dTilde, vec3 n) {
+// Sec. 3.5 gravity: cos(theta) = d~ . n, d' = d~ - f cos(theta) U, e = d' / |d'| (f the coat's
+// floppiness or the hair's own).
+vec3 droopDirection(vec3 dTilde, vec3 n, float f) {
   float cosTheta = dot3(dTilde, n);
-  vec3 dPrime = dTilde - csUp() * (cs.floppiness * cosTheta);
+  vec3 dPrime = dTilde - csUp() * (f * cosTheta);
   return normalizeOr(dPrime, csFallbackTangent(), 1e-10);
 }
 
@@ -229,7 +232,7 @@ void buildHair(HairInput hin) {
   if (cs.comb != 0) d = combedDirection(n, d, hin);
   float L = hairLength(hin.length, root);
   vec3 dTilde = perturbedDirection(d, hin.xi);
-  vec3 e = droopDirection(dTilde, n);
+  vec3 e = droopDirection(dTilde, n, hin.floppiness);
   vec3 le = e * L;
   if (cs.style == STYLE_LINE) {
     // Sec. 3.6: a straight line from the root to the ending point, shaded with the skin normal.

@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -134,6 +135,9 @@ struct FurRegion {
                               // 0 = keep the length [0, 10000]
   float densityScale = 1.0f;  // multiplies the hairs per area [0, 100]
   Eigen::Vector3f tint{1.0f, 1.0f, 1.0f};  // multiplies the hairs' colour, [0, 10] each
+  // The stiffness of (overcoat, undercoat) there, [0, 1] each (the coat's floppiness, sec. 3.5,
+  // per hair); unset: keep.
+  std::optional<Eigen::Vector2f> stiffness = std::nullopt;
   bool operator==(const FurRegion&) const = default;
 };
 inline constexpr std::size_t kMaxFurRegions = 256;

@@ -40,14 +40,19 @@ inline constexpr float kMaxCombLength2 = 1.0f + 1e-5f;
 //  clump: multiplies each coat's clump strength (fur_params.h Clump) at the vertex, [0, 1]
 //    (interpolated at the root at rest); 0: that hair stays out of its clump. Only where the coat
 //    clumps.
+//  stiffness: each coat's stiffness at the vertex (overcoat, undercoat), [0, 1], replacing the
+//    coat's: a hair's floppiness (sec. 3.5) is floppiness() of the stiffness interpolated at its
+//    root at rest (roots.h CoatRoots::floppiness), so gravity bends it as a coat of that stiffness.
 struct VertexGroom {
   std::vector<float> length;
   std::vector<float> density;
   std::vector<Eigen::Vector3f> tint;
   std::vector<Eigen::Vector3f> comb;
   std::vector<float> clump;
+  std::vector<Eigen::Vector2f> stiffness;
   bool empty() const {
-    return length.empty() && density.empty() && tint.empty() && comb.empty() && clump.empty();
+    return length.empty() && density.empty() && tint.empty() && comb.empty() && clump.empty() &&
+           stiffness.empty();
   }
 };
 
@@ -99,11 +104,13 @@ VertexGroom groomFromRegions(const skin::SkinMesh& skin, const anatomy::Body& bo
 // Groom files: a VertexGroom saved for one mesh, JSON:
 //   {"format": "pelage groom", "version": 1,
 //    "mesh": {"vertices": nV, "triangles": nT, "hash": "16 hex digits"},
-//    "length": [nV metres], "density": [nV], "tint": [nV x [r, g, b]]}
+//    "length": [nV metres], "density": [nV], "tint": [nV x [r, g, b]], "comb": [nV x [x, y, z]],
+//    "clump": [nV], "stiffness": [nV x [overcoat, undercoat]]}
 // (each array optional; floats written with round-trip precision, so a file reads back
 // bit-identically). The hash (meshHash) keys the file to the skin's vertex and triangle order and
 // rest positions; loading it on another mesh is an error naming both meshes. Values: length
-// [0, 10] m, density [0, 100], tint [0, 10] each, all finite.
+// [0, 10] m, density [0, 100], tint [0, 10] each, comb of length <= 1, clump and stiffness
+// [0, 1], all finite.
 inline constexpr int kGroomFileVersion = 1;
 
 // FNV-1a 64 over the vertex and triangle counts, the triangles' vertex indices and the rest

@@ -153,6 +153,8 @@ inline constexpr int kMaxTubeSides = 32;    // M
 //  endRandomize r, floppiness f (sec. 3.5); up U, fallbackTangent (unit, perpendicular to U);
 //  twist: polyline normal randomize > 0 (twist table in use);
 //  comb: the coat's roots carry a groom's comb (CoatRoots::comb; combedDirection);
+//  perHairFloppiness: the coat's roots carry their own floppiness (CoatRoots::floppiness, a
+//    groom's stiffness; HairInput::floppiness replaces `floppiness`);
 //  frizz*: the frizz (fur_params.h Frizz; addFrizz): frizz = strand points with frizz (0: off),
 //    frizzRing = points per strand point (a tube's M, else 1), frizzSeed = the coat seed's 32 bits;
 //    per strand point k: frizzWeight = amplitude (m) t_k^tipWeight, frizzCell = floor(t_k freq),
@@ -174,6 +176,7 @@ inline constexpr int kMaxTubeSides = 32;    // M
   SCALAR(std::int32_t, int, twist)                                      \
   SCALAR(std::int32_t, int, curl)                                       \
   SCALAR(std::int32_t, int, comb)                                       \
+  SCALAR(std::int32_t, int, perHairFloppiness)                          \
   SCALAR(std::int32_t, int, frizz)                                      \
   SCALAR(std::int32_t, int, frizzRing)                                  \
   SCALAR(std::int32_t, int, frizzSeed)                                  \
@@ -247,6 +250,7 @@ struct HairInput {
   // v2 - v1, and the root's comb in the tangent frame it spans (unpackComb).
   Vec3<T> combEdge;
   T combX, combY;
+  T floppiness;  // the root's own (read only when CoatShape::perHairFloppiness)
 };
 
 // The polyline normal twist of one hair (sec. 3.7), per point: cos and sin of the random angle.
@@ -300,11 +304,12 @@ inline void unpackComb(std::uint32_t packed, float& x, float& y) {
 // Sec. 3.2: one hair's inputs at its root, interpolated from its triangle's three vertex records
 // (kVertexRecordFloats each) with the barycentric entry b = (b1, b2, b3), and the root's jitter
 // j = (xi x, y, z, helix phase); a length map's value at the root multiplies the interpolated
-// length (1 without one: x * 1 = x exactly); `comb` is the root's packed comb (0: none). The scalar
-// form of every kernel's gather (and of the GPU's interpolateRoot in hair_math.glsl).
+// length (1 without one: x * 1 = x exactly); `comb` is the root's packed comb (0: none);
+// `floppiness` the root's own (CoatRoots::floppiness; read only where the coat has them). The
+// scalar form of every kernel's gather (and of the GPU's interpolateRoot in hair_math.glsl).
 inline HairInput<float> interpolateRoot(const float* b, const float* v1, const float* v2,
                                         const float* v3, const float* j, float lengthScale = 1.0f,
-                                        std::uint32_t comb = 0) {
+                                        std::uint32_t comb = 0, float floppiness = 0.0f) {
   const auto mix = [&](int k) { return barycentricMix(b[0], b[1], b[2], v1[k], v2[k], v3[k]); };
   HairInput<float> in{};
   in.root = {mix(0), mix(1), mix(2)};
@@ -315,6 +320,7 @@ inline HairInput<float> interpolateRoot(const float* b, const float* v1, const f
   in.phase = j[3];
   in.combEdge = {v2[0] - v1[0], v2[1] - v1[1], v2[2] - v1[2]};
   unpackComb(comb, in.combX, in.combY);
+  in.floppiness = floppiness;
   return in;
 }
 
@@ -389,11 +395,13 @@ inline Vec3<T> perturbedDirection(const CoatShape& c, const Vec3<T>& d, const Ve
 
 // Sec. 3.5 gravity, for an up vector U (= -gravity; the paper's U = Z): cos(theta) = d~ . n,
 // d' = d~ - f cos(theta) U, e = d' / |d'|, and the ending point is E = h + L e. Where |d'| ~ 0 (a
-// hair straight up with f = 1) e is the coat's fixed tangent perpendicular to U.
+// hair straight up with f = 1) e is the coat's fixed tangent perpendicular to U. f is the coat's
+// floppiness, or the hair's own (a groom's stiffness).
 template <class T>
-inline Vec3<T> droopDirection(const CoatShape& c, const Vec3<T>& dTilde, const Vec3<T>& n) {
+inline Vec3<T> droopDirection(const CoatShape& c, const Vec3<T>& dTilde, const Vec3<T>& n,
+                              const T& f) {
   const T cosTheta = dot(dTilde, n);
-  const Vec3<T> dPrime = dTilde - splat<T>(c.up) * (T(c.floppiness) * cosTheta);
+  const Vec3<T> dPrime = dTilde - splat<T>(c.up) * (f * cosTheta);
   return normalizeOr(dPrime, splat<T>(c.fallbackTangent), 1e-10f);
 }
 
@@ -492,7 +500,8 @@ inline void hairFrame(const CoatShape& c, const HairInput<T>& in, HairFrame<T>& 
   if (c.comb) d = combedDirection(f.normal, d, in);
   f.length = hairLength(c, in.length, in.root);
   f.dTilde = perturbedDirection(c, d, in.xi);
-  f.e = droopDirection(c, f.dTilde, f.normal);
+  f.e =
+      droopDirection(c, f.dTilde, f.normal, c.perHairFloppiness ? in.floppiness : T(c.floppiness));
   f.planeNormal = c.style == HairStyle::Line ? Vec3<T>{T(0.0f), T(0.0f), T(0.0f)}
                                              : hairPlaneNormal(f.dTilde, f.e, f.normal);
   f.phase = in.phase;

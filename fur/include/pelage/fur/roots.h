@@ -48,6 +48,10 @@ struct CoatRoots {
   // nRoots: the groom's clump scale at the root (groom.h; sum b_i clump_i of its triangle's
   // vertices), multiplying the coat's clump strength; empty without one or without clumping.
   std::vector<float> clumpScale;
+  // nRoots: the hair's floppiness (sec. 3.5) from the groom's per-vertex stiffness of this coat
+  // interpolated at the root at rest (groom.h VertexGroom::stiffness); empty without one (the
+  // coat's floppiness for every hair).
+  std::vector<float> floppiness;
   double expectedHairs = 0.0;  // N_coat, before random rounding
   std::int64_t size() const { return static_cast<std::int64_t>(triangle.size()); }
 };

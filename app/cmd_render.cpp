@@ -35,6 +35,7 @@ struct RenderArgs {
   std::string video;
   std::string cameraFile;
   bool resume = false;
+  bool sceneFiles = false;
   int encoders = 0;
 };
 
@@ -91,6 +92,7 @@ void runRender(RenderArgs& a) {
   o.resume = a.resume;
   o.video = a.video;
   o.encoderThreads = a.encoders;
+  o.sceneFiles = a.sceneFiles;
   o.camera.fovYDegrees = static_cast<float>(a.view.fov);
   o.camera.track = a.view.follow;
   if (!a.cameraFile.empty())
@@ -103,6 +105,8 @@ void runRender(RenderArgs& a) {
   o.look.transparency = a.view.transparent();
   o.shadows = a.view.shadows;
   o.selfShadowing = a.view.selfShadowed();
+  o.lightAzimuth = a.view.lightAzimuth();
+  o.lightElevation = a.view.lightElevation();
   o.skinColor = a.view.skin();
   o.look.background = a.view.backgroundColor();
   o.transparentBackground = a.view.transparentBackground();
@@ -194,6 +198,9 @@ void addRenderCommand(CLI::App& app) {
                   "Camera JSON file (one camera or keys per frame) instead of a preset");
   a->fur.add(*cmd);
   a->dynamics.add(*cmd, true);
+  cmd->add_flag("--scene-files", a->sceneFiles,
+                "Also write each frame as DIR/frame_NNNNN.pelscene: camera, light, skin and hairs "
+                "for a path tracer (scripts/reference/; needs --hair-source cpu)");
   cmd->add_option("--encoders", a->encoders, "PNG encoder threads [0, 256] (default 0: --threads)");
   a->common.add(*cmd, true);
   cmd->callback([a, cmd] {

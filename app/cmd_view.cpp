@@ -70,6 +70,8 @@ void addViewCommand(CLI::App& app) {
     o->transparency = view->transparent();
     o->shadows = view->shadows;
     o->selfShadowing = view->selfShadowed();
+    o->lightAzimuth = view->lightAzimuth();
+    o->lightElevation = view->lightElevation();
     o->noCulling = view->noCulling;
     o->skinColor = view->skin();
     o->background = view->backgroundColor();

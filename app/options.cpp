@@ -45,7 +45,7 @@ int& sharedThreads() {
 }  // namespace
 
 std::string_view optionForField(std::string_view field) {
-  static constexpr std::array<std::pair<std::string_view, std::string_view>, 28> kOptions{{
+  static constexpr std::array<std::pair<std::string_view, std::string_view>, 30> kOptions{{
       {"benchmark frames", "--benchmark-frames"},
       {"benchmark hairs", "--benchmark-hairs"},
       {"camera", "--camera"},
@@ -57,6 +57,7 @@ std::string_view optionForField(std::string_view field) {
       {"fps", "--fps"},
       {"frames", "--frames"},
       {"hair source", "--hair-source"},
+      {"light", "--light"},
       {"hold", "--hold"},
       {"no fur", "--no-fur"},
       {"out", "--out"},
@@ -64,6 +65,7 @@ std::string_view optionForField(std::string_view field) {
       {"preroll", "--preroll"},
       {"resume", "--resume"},
       {"samples", "--samples"},
+      {"scene files", "--scene-files"},
       {"screenshot", "--screenshot"},
       {"shading", "--shading"},
       {"size", "--size"},
@@ -453,6 +455,20 @@ void ViewOptions::add(CLI::App& cmd) {
                  "'transparent' (PNGs with straight alpha, 0 where nothing is drawn; over the "
                  "default colour they equal the opaque frames). Frames are opaque otherwise")
       ->expected(1, 3);
+  cmd.add_option("--light", light,
+                 "The key light's place: azimuth (degrees about +Z from +X, [-360, 360]) and "
+                 "elevation (degrees above the ground, [-90, 90]) (default " +
+                     number(static_cast<double>(scene::kKeyLightAzimuthDegrees)) + " " +
+                     number(static_cast<double>(scene::kKeyLightElevationDegrees)) + ")")
+      ->expected(2);
+}
+
+float ViewOptions::lightAzimuth() const {
+  return light.size() == 2 ? light[0] : scene::kKeyLightAzimuthDegrees;
+}
+
+float ViewOptions::lightElevation() const {
+  return light.size() == 2 ? light[1] : scene::kKeyLightElevationDegrees;
 }
 
 int ViewOptions::width() const {
@@ -526,6 +542,7 @@ void ViewOptions::validate() const {
       inputError("--skin-color takes 3 values (R G B in [0, 1]), got ", skinColor.size());
     scene::validateColor(Eigen::Vector3f(skinColor[0], skinColor[1], skinColor[2]), "skin color");
   }
+  scene::validateLightAngles(lightAzimuth(), lightElevation());
 }
 
 // ---- Output folders --------------------------------------------------------------------------

@@ -154,6 +154,7 @@ struct ViewOptions {
   bool noCulling = false;
   std::vector<float> skinColor;
   std::vector<std::string> background;  // "transparent", or R G B (sRGB, [0, 1])
+  std::vector<float> light;             // the key light's azimuth and elevation (degrees)
   void add(CLI::App& cmd);
   int width() const;
   int height() const;
@@ -168,6 +169,9 @@ struct ViewOptions {
   bool transparentBackground() const;
   bool selfShadowed() const { return selfShadowing == "on"; }
   std::optional<Eigen::Vector3f> skin() const;
+  // --light AZ EL, or the default place (scene/light.h).
+  float lightAzimuth() const;
+  float lightElevation() const;
   // Parses and checks every value (size, samples, fov, names, colour).
   void validate() const;
 };

@@ -178,6 +178,8 @@ Args:
     camera: "three-quarter" (default), "side", "front", "top", ...; fov: degrees; follow: bool.
     hair_source: "gpu" (default) or "cpu"; shading: "paper", "kajiya-kay" or "marschner".
     lines, transparency, shadows, self_shadowing: bools as the command line's switches.
+    light: (azimuth, elevation) of the key light, degrees (azimuth about +Z from +X in
+        [-360, 360], elevation above the ground in [-90, 90]); default (35, 50).
     samples: MSAA samples (-1: 4 on a GPU, none on a software rasteriser).
     dynamics: as Fur.hairs(); skin_color: (r, g, b) in [0, 1].
     background: None (the default colour), (r, g, b) sRGB in [0, 1], or "transparent".

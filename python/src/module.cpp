@@ -408,7 +408,7 @@ py::array_t<std::uint8_t> render(PyModel& m, const py::object& clip, const py::o
   const Keywords kw("render", kwargs,
                     {"frame", "fps", "time", "size", "camera", "fov", "follow", "hair_source",
                      "shading", "lines", "transparency", "shadows", "self_shadowing", "samples",
-                     "dynamics", "skin_color", "background"});
+                     "dynamics", "skin_color", "background", "light"});
   scene::Model& model = *m.model;
   const std::shared_ptr<const scene::Fur> fur = furOf(m, furArg);
   viewer::SequenceOptions o;
@@ -429,6 +429,10 @@ py::array_t<std::uint8_t> render(PyModel& m, const py::object& clip, const py::o
   o.look.transparency = kw.get("transparency", true);
   o.shadows = kw.get("shadows", false);
   o.selfShadowing = kw.get("self_shadowing", true);
+  const auto light = kw.get("light", std::pair<float, float>(scene::kKeyLightAzimuthDegrees,
+                                                             scene::kKeyLightElevationDegrees));
+  o.lightAzimuth = light.first;
+  o.lightElevation = light.second;
   o.transparentBackground = backgroundOf(kw.object("background"), o);
   const py::object skinColor = kw.object("skin_color");
   if (!skinColor.is_none()) o.skinColor = colorOf(skinColor, "skin_color");

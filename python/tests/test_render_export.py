@@ -33,15 +33,19 @@ def test_render_look_options_match_the_command_line(monkey, cli, tmp_path):
     from PIL import Image
 
     fur = monkey.fur(hairs=8000)
-    look = dict(shading="marschner", self_shadowing=False)
+    look = dict(shading="marschner", self_shadowing=False, light=(-120, 30))
     image = render(monkey, "walk", fur=fur, frame=3, size=(192, 108), **look)
     cli("render", "--clip", "walk", "--hairs", 8000, "--frames", 3, "--size", "192x108",
-        "--shading", "marschner", "--self-shadowing", "off", "--out", tmp_path)
+        "--shading", "marschner", "--self-shadowing", "off", "--light", -120, 30, "--out",
+        tmp_path)
     png = np.asarray(Image.open(tmp_path / "frame_00003.png").convert("RGB"))
     np.testing.assert_array_equal(image, png)
     # The fur's own shadow takes light away: the default (self-shadowed) frame is darker.
-    shadowed = render(monkey, "walk", fur=fur, frame=3, size=(192, 108), shading="marschner")
+    shadowed = render(monkey, "walk", fur=fur, frame=3, size=(192, 108), shading="marschner",
+                      light=(-120, 30))
     assert shadowed.astype(int).sum() < image.astype(int).sum()
+    with pytest.raises(ValueError, match=r"light.*elevation 95 is out of range \[-90, 90\]"):
+        render(monkey, "walk", fur=fur, frame=3, size=(192, 108), light=(0, 95))
 
 
 def _files(directory):

@@ -14,6 +14,15 @@ Eigen::Vector3f lightDirection(float azimuthDegrees, float elevationDegrees) {
   return {std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el)};
 }
 
+void validateLightAngles(float azimuthDegrees, float elevationDegrees, std::string_view field) {
+  if (!(azimuthDegrees >= -360.0f && azimuthDegrees <= 360.0f))
+    fieldError(std::string(field), "azimuth ", azimuthDegrees,
+               " is out of range [-360, 360] (degrees about +Z from +X)");
+  if (!(elevationDegrees >= -90.0f && elevationDegrees <= 90.0f))
+    fieldError(std::string(field), "elevation ", elevationDegrees,
+               " is out of range [-90, 90] (degrees above the ground plane)");
+}
+
 void validateColor(const Eigen::Vector3f& rgb, std::string_view field) {
   for (int c = 0; c < 3; ++c)
     if (!(rgb[c] >= 0.0f && rgb[c] <= 1.0f))

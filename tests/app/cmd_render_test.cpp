@@ -6,9 +6,13 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstring>
 #include <filesystem>
 #include <thread>
 
+#include <nlohmann/json.hpp>
+
+#include "pelage/scene/light.h"
 #include "pelage/viewer/render_sequence.h"
 #include "scene/scene_fixture.h"
 #include "test_support.h"
@@ -158,6 +162,34 @@ TEST_F(RenderCommand, VideoFileThroughFfmpeg) {
   EXPECT_EQ(readText(dir.file("clip.mp4")).substr(4, 4), "ftyp");
 }
 
+TEST_F(RenderCommand, SceneFilesBesideTheFrames) {
+  // --scene-files: each frame also as a reference scene (scene/reference_scene.h), the frames
+  // themselves unchanged.
+  // The key light placed by --light: the scene holds its direction.
+  const std::string light = " --hair-source cpu --light -150 20";
+  const RunResult plain = runPelage("render " + args("2:3", dir.file("plain")) + light);
+  ASSERT_EQ(plain.exitCode, 0) << plain.output;
+  const RunResult lit = runPelage("render " + args("2:3", dir.file("lit")) + " --hair-source cpu");
+  ASSERT_EQ(lit.exitCode, 0) << lit.output;
+  EXPECT_NE(readText(dir.file("lit/frame_00002.png")), readText(dir.file("plain/frame_00002.png")));
+  const RunResult r = runPelage("render " + args("2:3", dir.file("f")) + light + " --scene-files");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_EQ(frames(dir.file("f")),
+            (std::vector<std::string>{"frame_00002.pelscene", "frame_00002.png",
+                                      "frame_00003.pelscene", "frame_00003.png"}));
+  for (const char* f : {"frame_00002.png", "frame_00003.png"})
+    EXPECT_EQ(readText(dir.file("f/") + f), readText(dir.file("plain/") + f)) << f;
+  const std::string scene = readText(dir.file("f/frame_00003.pelscene"));
+  EXPECT_EQ(scene.substr(0, 8), "PLGSCN01");
+  std::uint64_t length = 0;
+  std::memcpy(&length, scene.data() + 8, 8);
+  const nlohmann::json header = nlohmann::json::parse(scene.substr(16, length));
+  EXPECT_EQ(header["camera"]["width"], 128);
+  const Eigen::Vector3f towards = scene::lightDirection(-150.0f, 20.0f).normalized();
+  for (int a = 0; a < 3; ++a)
+    EXPECT_NEAR(header["light"]["direction"][a].get<float>(), towards[a], 1e-6f) << a;
+}
+
 TEST_F(RenderCommand, MissingFfmpegFailsBeforeRendering) {
   const std::string cmd = "PATH=/nonexistent-bin " + std::string(PELAGE_BIN_DIR) +
                           "/pelage render " + args("0:1", dir.file("f")) + " --video " +
@@ -210,6 +242,12 @@ INSTANTIATE_TEST_SUITE_P(
                   PELAGE_SOURCE_DIR
                   "/tests/scene/critter.json --clip dance --frames 0:1 --out <dir>/f",
                   "has no clip 'dance' (it has no clips"},
+        BadRender{"scene_files_gpu", "<args> --frames 0 --scene-files --hair-source gpu",
+                  "--scene-files needs the hairs computed on the CPU (hair source cpu)"},
+        BadRender{"light_azimuth", "<args> --frames 0 --light 400 10",
+                  "--light azimuth 400 is out of range [-360, 360]"},
+        BadRender{"light_elevation", "<args> --frames 0 --light 0 95",
+                  "--light elevation 95 is out of range [-90, 90]"},
         BadRender{"camera", "<args> --frames 0:1 --camera overhead",
                   "unknown camera preset 'overhead'"},
         BadRender{"camera_file", "<args> --frames 0:1 --camera-file <dir>/none.json", "none.json"},

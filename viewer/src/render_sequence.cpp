@@ -7,6 +7,7 @@
 #include <string_view>
 
 #include "encoder_pool.h"
+#include "pelage/scene/reference_scene.h"
 #include "pelage/util/atomic_file.h"
 #include "pelage/util/error.h"
 #include "pelage/util/interrupt.h"
@@ -46,6 +47,9 @@ void validateSequenceOptions(const SequenceOptions& o) {
   if (o.playback.dynamics && o.playback.clip < 0)
     fieldError("dynamics", "on needs a clip: the rest pose does not move");
   if (o.skinColor) scene::validateColor(*o.skinColor, "skin color");
+  scene::validateLightAngles(o.lightAzimuth, o.lightElevation);
+  if (o.sceneFiles && o.playback.hairSource != scene::HairSource::Cpu)
+    fieldError("scene files", "needs the hairs computed on the CPU (hair source cpu)");
   if (!o.video.empty()) {
     const std::string ext = fs::path(o.video).extension().string();
     if (ext != ".mp4" && ext != ".gif")
@@ -59,6 +63,7 @@ struct SequenceRenderer::Impl {
   SequenceOptions options;
   scene::Playback playback;
   Renderer renderer;
+  const scene::DrawList* last = nullptr;  // what render() drew last
 
   Impl(const scene::Model& m, const scene::Fur& f, const SequenceOptions& o)
       : options(validated(o)), playback(m, f, o.playback), renderer(rendererOptions(o)) {}
@@ -75,6 +80,7 @@ struct SequenceRenderer::Impl {
 
   scene::Light light() const {
     scene::Light l;
+    l.direction = scene::lightDirection(options.lightAzimuth, options.lightElevation);
     l.shadows = options.shadows;
     l.selfShadowing = options.selfShadowing;
     return l;
@@ -100,10 +106,17 @@ RenderStats SequenceRenderer::render(int frame, Image& out) {
   const scene::DrawList& list =
       m.playback.sequenceFrame(frame, m.options.camera, m.options.width, m.options.height,
                                m.light(), m.options.look, skin ? &*skin : nullptr);
+  m.last = &list;
   const RenderStats stats = m.renderer.render(list);
   m.renderer.readPixels(
       out, m.options.transparentBackground ? FrameAlpha::Straight : FrameAlpha::Opaque);
   return stats;
+}
+
+void SequenceRenderer::writeScene(const std::string& path) const {
+  const Impl& m = *impl_;
+  PELAGE_CHECK(m.last, "writeScene before a frame was rendered");
+  scene::writeReferenceScene(path, *m.last, m.playback.state().fur);
 }
 
 // ---- renderSequence ---------------------------------------------------------------------------
@@ -187,6 +200,8 @@ SequenceReport renderSequence(const scene::Model& model, const scene::Fur& fur,
     }
     std::unique_ptr<Image> img = pool.acquire();
     report.hairsDrawn = sequence.render(frame, *img).hairsDrawn;
+    if (options.sceneFiles)
+      sequence.writeScene((fs::path(options.outDir) / frameFileName(frame, ".pelscene")).string());
     if (video) video->addFrame(*img);
     pool.submit(frame, framePath(frame), std::move(img));
     ++report.rendered;

@@ -255,6 +255,7 @@ void validateViewerOptions(const ViewerOptions& o) {
   if (o.frames < 0 || o.frames > 10000000)
     fieldError("frames", o.frames, " is out of range [0, 10000000]");
   scene::validateSamples(o.samples);
+  scene::validateLightAngles(o.lightAzimuth, o.lightElevation);
   scene::validateStartSeconds(o.time);
   if (o.skinColor) scene::validateColor(*o.skinColor, "skin color");
   if (o.benchmarkFrames < 1 || o.benchmarkFrames > 100000)

@@ -55,6 +55,8 @@ ViewerSession::ViewerSession(const ViewerOptions& options, scene::Model model)
   transparency = options.transparency;
   shadows = options.shadows;
   selfShadowing = options.selfShadowing;
+  lightAzimuth = options.lightAzimuth;
+  lightElevation = options.lightElevation;
   dynamics = options.dynamics;
   dynamicsParams = options.dynamicsParams;
   fur::validateDynamicsParams(dynamicsParams, "dynamics");

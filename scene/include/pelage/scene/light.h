@@ -42,6 +42,11 @@ struct Light {
 // The skin's lighting material (linear) for a typed, sRGB-encoded diffuse colour (the same ambient,
 // small specular terms).
 Material skinMaterial(const Eigen::Vector3f& color);
+// Checks a key light's place: azimuth in [-360, 360], elevation in [-90, 90] degrees; InputError
+// naming `field` ("light azimuth 400 is out of range [-360, 360]").
+void validateLightAngles(float azimuthDegrees, float elevationDegrees,
+                         std::string_view field = "light");
+
 // Checks that each of r, g, b is in [0, 1] (a typed colour: skin, background); InputError naming
 // `field` and the channel otherwise ("skin color G = 2 is out of range [0, 1]").
 void validateColor(const Eigen::Vector3f& rgb, std::string_view field);

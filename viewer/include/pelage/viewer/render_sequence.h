@@ -45,10 +45,16 @@ struct SequenceOptions {
   std::optional<Eigen::Vector3f> skinColor;  // the skin's diffuse colour; none: the model's
   bool shadows = false;
   bool selfShadowing = true;  // the fur's deep opacity shadow (scene::Light::selfShadowing)
-  std::string outDir;         // frames go to outDir/frame_NNNNN.png
-  bool resume = false;        // skip frames whose PNG is already complete
-  std::string video;          // "" or an .mp4/.gif path (ffmpeg)
-  int encoderThreads = 0;     // PNG encoders; 0 = the worker thread count (util/parallel.h)
+  // The key light's place (scene::lightDirection), degrees.
+  float lightAzimuth = scene::kKeyLightAzimuthDegrees;
+  float lightElevation = scene::kKeyLightElevationDegrees;
+  std::string outDir;      // frames go to outDir/frame_NNNNN.png
+  bool resume = false;     // skip frames whose PNG is already complete
+  std::string video;       // "" or an .mp4/.gif path (ffmpeg)
+  int encoderThreads = 0;  // PNG encoders; 0 = the worker thread count (util/parallel.h)
+  // Also write each rendered frame as a reference scene for a path tracer, outDir/
+  // frame_NNNNN.pelscene (scene/reference_scene.h); needs the CPU hair source.
+  bool sceneFiles = false;
 };
 
 // Checks the options (size, frames, fps, samples, encoders, field of view, output, video
@@ -68,6 +74,9 @@ class SequenceRenderer {
   scene::Camera camera(int frame);
   // Renders frame `frame` and reads it back into `out` (RGBA8, top row first).
   RenderStats render(int frame, Image& out);
+  // Writes the frame render() drew last as a reference scene (scene/reference_scene.h; the CPU
+  // hair source).
+  void writeScene(const std::string& path) const;
 
  private:
   struct Impl;

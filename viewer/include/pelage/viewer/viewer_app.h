@@ -39,7 +39,9 @@ struct ViewerOptions {
   scene::HairWidth hairWidth = scene::HairWidth::Strands;
   bool transparency = true;  // strands blended by coverage (order-independent)
   bool shadows = false;
-  bool selfShadowing = true;  // the fur's deep opacity shadow
+  bool selfShadowing = true;                            // the fur's deep opacity shadow
+  float lightAzimuth = scene::kKeyLightAzimuthDegrees;  // the key light's place, degrees
+  float lightElevation = scene::kKeyLightElevationDegrees;
   bool noCulling = false;
   bool dynamics = false;  // dynamic fur (fur/dynamics.h): hair ends lag through damped springs
   fur::DynamicsParams dynamicsParams;

@@ -1,0 +1,140 @@
+#!/usr/bin/python3
+"""pelage's frames on fixed views against their committed Cycles references.
+
+  views.py render [NAME...]   path-traces the views' references (Blender; scripts/reference-render.sh)
+                              into docs/reference/NAME.png and records pelage's figures against
+                              them in docs/reference/figures.json
+  views.py check [NAME...]    renders pelage's frames again and measures them against the
+                              committed references (make test runs this; no Blender): each
+                              figure must stay within its tolerance of the recorded one
+
+The views are scripts/reference/views.txt. Environment: PELAGE (the pelage binary, default
+build/bin/pelage), PELAGE_SHARED_MODELS_DIR (the shared models, default ../shared/models),
+SAMPLES (Cycles samples per pixel for render, default 256).
+"""
+import json
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.normpath(os.path.join(HERE, "..", ".."))
+sys.path.insert(0, HERE)
+import compare  # noqa: E402 (next to this file)
+
+REFERENCES = os.path.join(ROOT, "docs", "reference")
+FIGURES = os.path.join(REFERENCES, "figures.json")
+BACKGROUND = (0.80, 0.82, 0.86)  # pelage's default background (sRGB)
+MAX_REFERENCE_BYTES = 300_000
+# How far a recorded figure may move before check fails: a change of pelage's look shows here
+# (and is then recorded again with `render`, saying why in the commit).
+TOLERANCE = {"mae": 0.5, "luminance_ratio": 0.01, "detail_ratio": 0.05, "laplacian_ratio": 0.05}
+
+
+def views():
+    out = []
+    with open(os.path.join(HERE, "views.txt")) as f:
+        for line in f:
+            line = line.strip()
+            if line and not line.startswith("#"):
+                name, model, *options = line.split()
+                out.append((name, model, options))
+    return out
+
+
+def selected(names):
+    all_views = views()
+    unknown = set(names) - {v[0] for v in all_views}
+    if unknown:
+        sys.exit("views.py: unknown view(s) %s (views.txt has %s)"
+                 % (", ".join(sorted(unknown)), ", ".join(v[0] for v in all_views)))
+    return [v for v in all_views if not names or v[0] in names]
+
+
+def shared_models():
+    return os.environ.get("PELAGE_SHARED_MODELS_DIR",
+                          os.path.join(ROOT, "..", "shared", "models"))
+
+
+def model_path(model):
+    return model.replace("$SHARED", shared_models())
+
+
+def pelage():
+    return os.environ.get("PELAGE", os.path.join(ROOT, "build", "bin", "pelage"))
+
+
+def render_pelage(model, options, out_dir):
+    """pelage's frame as users render it (culling on), straight alpha; its PNG's path."""
+    subprocess.run([pelage(), "render", model_path(model), "--out", out_dir, "--background",
+                    "transparent", "--quiet"] + options, check=True)
+    frames = sorted(f for f in os.listdir(out_dir) if f.endswith(".png"))
+    if len(frames) != 1:
+        sys.exit("views.py: expected one frame in %s, got %d" % (out_dir, len(frames)))
+    return os.path.join(out_dir, frames[0])
+
+
+def render(names):
+    figures = {}
+    if os.path.exists(FIGURES):
+        with open(FIGURES) as f:
+            figures = json.load(f)
+    for name, model, options in selected(names):
+        with tempfile.TemporaryDirectory() as tmp:
+            subprocess.run([os.path.join(ROOT, "scripts", "reference-render.sh"),
+                            model_path(model), tmp] + options, check=True)
+            size = os.path.getsize(os.path.join(tmp, "cycles.png"))
+            if size > MAX_REFERENCE_BYTES:
+                sys.exit("views.py: %s's reference is %d bytes (at most %d)"
+                         % (name, size, MAX_REFERENCE_BYTES))
+            shutil.copyfile(os.path.join(tmp, "cycles.png"),
+                            os.path.join(REFERENCES, name + ".png"))
+            shutil.copyfile(os.path.join(tmp, "side_by_side.png"),
+                            os.path.join(REFERENCES, name + "_side_by_side.png"))
+            with open(os.path.join(tmp, "figures.json")) as f:
+                figures[name] = json.load(f)
+        with open(FIGURES + ".tmp", "w") as f:
+            json.dump(figures, f, indent=1, sort_keys=True)
+            f.write("\n")
+        os.replace(FIGURES + ".tmp", FIGURES)
+    return 0
+
+
+def check(names):
+    with open(FIGURES) as f:
+        recorded = json.load(f)
+    failed = []
+    print("%-14s %8s %10s %8s %10s" % ("view", "MAE/255", "luminance", "detail", "Laplacian"))
+    for name, model, options in selected(names):
+        if "$SHARED" in model and not os.path.isdir(shared_models()):
+            print("%-14s skipped: the shared models are not here" % name)
+            continue
+        with tempfile.TemporaryDirectory() as tmp:
+            frame = render_pelage(model, options, tmp)
+            got, _, _ = compare.measure(compare.read_rgba(frame),
+                                        compare.read_rgba(os.path.join(REFERENCES, name + ".png")),
+                                        BACKGROUND)
+        was = recorded[name]
+        print("%-14s %8.1f %+9.1f%% %7.0f%% %9.0f%%" % (
+            name, got["mae"], 100 * (got["luminance_ratio"] - 1), 100 * got["detail_ratio"],
+            100 * got["laplacian_ratio"]))
+        for key, tolerance in TOLERANCE.items():
+            if abs(got[key] - was[key]) > tolerance:
+                failed.append("%s: %s %.4f, recorded %.4f (tolerance %g)"
+                              % (name, key, got[key], was[key], tolerance))
+    for f in failed:
+        print("views.py: " + f, file=sys.stderr)
+    return 1 if failed else 0
+
+
+def main(argv):
+    if not argv or argv[0] not in ("render", "check"):
+        print(__doc__.strip(), file=sys.stderr)
+        return 2
+    return render(argv[1:]) if argv[0] == "render" else check(argv[1:])
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))

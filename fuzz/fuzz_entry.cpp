@@ -203,6 +203,8 @@ std::string groomExample() {
     g.tint.emplace_back(0.1f * static_cast<float>(v % 7), 1.0f, 0.7f);
     g.comb.emplace_back(0.125f * static_cast<float>(v % 5), -0.5f, 0.0f);
     g.clump.push_back(0.25f * static_cast<float>(v % 5));
+    g.stiffness.emplace_back(0.125f * static_cast<float>(v % 9),
+                             1.0f - 0.25f * static_cast<float>(v % 5));
   }
   return fur::groomFileJson(groomMesh(), g);
 }

@@ -305,6 +305,11 @@ std::array<float, kMaxCurvePoints> clumpWeights(const Clump& clump, int K) {
   return w;
 }
 
+bool coatClumps(const FurParams& params, const FurRoots& roots, int coat) {
+  const auto ci = static_cast<std::size_t>(coat);
+  return params.coats[ci].clump.on() && !roots.coats[ci].clumpSlot.empty();
+}
+
 void generateClumpCentres(const skin::SkinMesh& skin, const FurRoots& roots,
                           const FurParams& params, const skin::DeformedSkin& deformed,
                           FurWorkspace& ws) {
@@ -312,7 +317,7 @@ void generateClumpCentres(const skin::SkinMesh& skin, const FurRoots& roots,
                " triangles, skin has ", skin.numTriangles());
   for (int c = 0; c < kCoatCount; ++c) {
     const auto ci = static_cast<std::size_t>(c);
-    if (!params.coats[ci].clump.on() || roots.coats[ci].clumpSlot.empty()) {
+    if (!coatClumps(params, roots, c)) {
       ws.clumpCentres[ci].clear();
       continue;
     }
@@ -397,7 +402,7 @@ void detail::generateFurWithDynamics(
     };
     const Clump& clump = params.coats[ci].clump;
     // With dynamics, generateDynamicFur steps the state before drawing a fur that clumps.
-    const bool clumps = emit && clump.on() && !cr.clumpSlot.empty();
+    const bool clumps = emit && coatClumps(params, roots, c);
     std::array<float, kMaxCurvePoints> clumpW{};
     if (clumps) {
       computeClumpCentres(skin, roots, deformed, c, shape, hb.layout, dynamics[ci], ws);
@@ -491,7 +496,8 @@ void referenceHair(const skin::SkinMesh& skin, const FurRoots& roots, const FurP
   const Clump& clump = params.coats[ci].clump;
   const std::int32_t slot =
       cr.clumpSlot.empty() ? -1 : cr.clumpSlot[static_cast<std::size_t>(rootIndex)];
-  if (clump.on() && slot >= 0 && cr.clumpCentres[static_cast<std::size_t>(slot)] != rootIndex) {
+  if (coatClumps(params, roots, coat) && slot >= 0 &&
+      cr.clumpCentres[static_cast<std::size_t>(slot)] != rootIndex) {
     const HairLayout layout = hairLayout(params.coats[ci]);
     const int K = layout.strandPoints;
     std::vector<float> p, n, centre(static_cast<std::size_t>(3 * K));

@@ -185,6 +185,11 @@ TEST(Generate, ClumpedHairsGatherByTheStrengthAndMatchTheReferenceOnEveryPath) {
     const FurRoots r = growRoots(s, p);
     const CoatRoots& cr = r.coats[0];
     ASSERT_EQ(cr.clumpSlot.size(), static_cast<std::size_t>(cr.size()));
+    // The coat clumps with these roots and a strength; not with strength 0, nor with roots grown
+    // without clumps.
+    EXPECT_TRUE(coatClumps(p, r, 0));
+    EXPECT_FALSE(coatClumps(plain, r, 0));
+    EXPECT_FALSE(coatClumps(p, growRoots(s, plain), 0));
     const FurFrame without = test::furFrame(s, r, plain, d);  // strength 0: off
     setThreadCount(1);
     const FurFrame one = test::furFrame(s, r, p, d);

@@ -323,8 +323,7 @@ void GpuFur::generate(int coat, const fur::HairLayout& layout, bool tangents,
 
   // Clumping: this frame's centre strand points (fur::generateClumpCentres), and the weights.
   const fur::Clump& clump = m.params->coats[static_cast<std::size_t>(coat)].clump;
-  const bool clumps =
-      clump.on() && !m.roots->coats[static_cast<std::size_t>(coat)].clumpSlot.empty();
+  const bool clumps = fur::coatClumps(*m.params, *m.roots, coat);
   std::array<float, fur::kMaxCurvePoints> clumpWeights{};
   if (clumps) {
     const std::vector<float>* centres =

@@ -121,6 +121,11 @@ void generateFur(const skin::SkinMesh& skin, const FurRoots& roots, const FurPar
 // share of the way toward its clump centre's strand point that point k of a clumped hair moves.
 std::array<float, kMaxCurvePoints> clumpWeights(const Clump& clump, int K);
 
+// Whether coat `coat` clumps: its Clump is on and its roots were assigned to clumps (growRoots
+// with that clump density and radius). The one test of the CPU kernel path, referenceHair,
+// generateClumpCentres and the GPU.
+bool coatClumps(const FurParams& params, const FurRoots& roots, int coat);
+
 // Clumping where the hairs are built elsewhere (viewer::GpuFur): this frame's strand points (K x
 // 3) of every clump centre hair of each coat that clumps, into workspace.clumpCentres, exactly as
 // generateFur computes them (unclumped, no frizz); the vectors of coats that do not clump are

@@ -58,6 +58,17 @@ std::vector<float> readValues(const JsonReader& doc, const char* field, std::siz
   return out;
 }
 
+// readValues' rows as vectors of W floats.
+template <int W>
+std::vector<Eigen::Matrix<float, W, 1>> readRows(const JsonReader& doc, const char* field,
+                                                 std::size_t nV, double lo, double hi) {
+  const std::vector<float> flat = readValues(doc, field, nV, W, lo, hi);
+  std::vector<Eigen::Matrix<float, W, 1>> out(nV);
+  for (std::size_t v = 0; v < nV; ++v)
+    out[v] = Eigen::Map<const Eigen::Matrix<float, W, 1>>(flat.data() + W * v);
+  return out;
+}
+
 }  // namespace
 
 std::uint64_t meshHash(const skin::SkinMesh& skin) {
@@ -93,21 +104,20 @@ std::string groomFileJson(const skin::SkinMesh& skin, const VertexGroom& g) {
   };
   if (!g.length.empty()) j["length"] = singles(g.length);
   if (!g.density.empty()) j["density"] = singles(g.density);
-  const auto triples = [](const std::vector<Eigen::Vector3f>& values) {
+  // Rows ([x, y, z] triples, [overcoat, undercoat] pairs) the same way.
+  const auto rows = [](const auto& values) {
     nlohmann::json t = nlohmann::json::array();
-    for (const Eigen::Vector3f& c : values)
-      t.push_back({shortestDecimal(c.x()), shortestDecimal(c.y()), shortestDecimal(c.z())});
+    for (const auto& row : values) {
+      nlohmann::json r = nlohmann::json::array();
+      for (Eigen::Index k = 0; k < row.size(); ++k) r.push_back(shortestDecimal(row[k]));
+      t.push_back(std::move(r));
+    }
     return t;
   };
-  if (!g.tint.empty()) j["tint"] = triples(g.tint);
-  if (!g.comb.empty()) j["comb"] = triples(g.comb);
+  if (!g.tint.empty()) j["tint"] = rows(g.tint);
+  if (!g.comb.empty()) j["comb"] = rows(g.comb);
   if (!g.clump.empty()) j["clump"] = singles(g.clump);
-  if (!g.stiffness.empty()) {
-    nlohmann::json t = nlohmann::json::array();
-    for (const Eigen::Vector2f& s : g.stiffness)
-      t.push_back({shortestDecimal(s.x()), shortestDecimal(s.y())});
-    j["stiffness"] = std::move(t);
-  }
+  if (!g.stiffness.empty()) j["stiffness"] = rows(g.stiffness);
   return j.dump() + "\n";
 }
 
@@ -144,21 +154,10 @@ VertexGroom parseGroomFile(const std::string& text, const std::string& source,
   if (j.has("density"))
     g.density = readValues(j, "density", n, 1, 0.0, static_cast<double>(kMaxGroomDensity));
   if (j.has("clump")) g.clump = readValues(j, "clump", n, 1, 0.0, 1.0);
-  if (j.has("stiffness")) {
-    const std::vector<float> s = readValues(j, "stiffness", n, 2, 0.0, 1.0);
-    g.stiffness.resize(n);
-    for (std::size_t v = 0; v < n; ++v) g.stiffness[v] = Eigen::Vector2f(s[2 * v], s[2 * v + 1]);
-  }
-  const auto readTriples = [&](const char* field, double lo, double hi) {
-    const std::vector<float> t = readValues(j, field, n, 3, lo, hi);
-    std::vector<Eigen::Vector3f> out(n);
-    for (std::size_t v = 0; v < n; ++v)
-      out[v] = Eigen::Vector3f(t[3 * v], t[3 * v + 1], t[3 * v + 2]);
-    return out;
-  };
-  if (j.has("tint")) g.tint = readTriples("tint", 0.0, static_cast<double>(kMaxGroomTint));
+  if (j.has("stiffness")) g.stiffness = readRows<2>(j, "stiffness", n, 0.0, 1.0);
+  if (j.has("tint")) g.tint = readRows<3>(j, "tint", n, 0.0, static_cast<double>(kMaxGroomTint));
   if (j.has("comb")) {
-    g.comb = readTriples("comb", -1.0, 1.0);
+    g.comb = readRows<3>(j, "comb", n, -1.0, 1.0);
     for (std::size_t v = 0; v < n; ++v)
       if (!(g.comb[v].squaredNorm() <= kMaxCombLength2))
         j.at("comb").fail(str("comb[", v, "] has length ", g.comb[v].norm(),

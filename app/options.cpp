@@ -432,8 +432,9 @@ void ViewOptions::add(CLI::App& cmd) {
   cmd.add_option("--hair-source", hairSource,
                  "Where hairs are computed each frame: gpu or cpu (default " + hairSource +
                      "; dynamic fur is always the CPU's)");
-  cmd.add_option("--shading", shading,
-                 "Hair shading: paper, kajiya-kay or marschner (default " + shading + ")");
+  cmd.add_option(
+      "--shading", shading,
+      "Hair shading: paper, kajiya-kay, marschner or physical (default " + shading + ")");
   cmd.add_flag("--lines", lines,
                "Draw hairs as the paper's 1-pixel lines instead of strands of their width "
                "(sec. 3.3)");

@@ -146,7 +146,7 @@ struct ViewOptions {
   bool follow = false;
   double fov = static_cast<double>(scene::kDefaultFovYDegrees);
   std::string hairSource = "gpu";
-  std::string shading = "paper";
+  std::string shading{scene::hairShadingName(scene::kDefaultHairShading)};
   bool lines = false;
   std::string transparency = "on";
   bool shadows = false;

@@ -176,7 +176,7 @@ Args:
     frame: the frame (clip time time + frame / fps); fps, time as analyze().
     size: (width, height), 16 to 16384 each; default (1280, 720).
     camera: "three-quarter" (default), "side", "front", "top", ...; fov: degrees; follow: bool.
-    hair_source: "gpu" (default) or "cpu"; shading: "paper", "kajiya-kay" or "marschner".
+    hair_source: "gpu" (default) or "cpu"; shading: "physical" (default), "paper", "kajiya-kay" or "marschner".
     lines, transparency, shadows, self_shadowing: bools as the command line's switches.
     light: (azimuth, elevation) of the key light, degrees (azimuth about +Z from +X in
         [-360, 360], elevation above the ground in [-90, 90]); default (35, 50).

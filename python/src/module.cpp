@@ -424,7 +424,8 @@ py::array_t<std::uint8_t> render(PyModel& m, const py::object& clip, const py::o
   o.camera.preset = scene::parseCameraPreset(kw.get<std::string>("camera", "three-quarter"));
   o.camera.fovYDegrees = static_cast<float>(kw.get("fov", double{scene::kDefaultFovYDegrees}));
   o.camera.track = kw.get("follow", false);
-  o.look.hairShading = scene::parseHairShading(kw.get<std::string>("shading", "paper"));
+  o.look.hairShading = scene::parseHairShading(kw.get<std::string>(
+      "shading", std::string(scene::hairShadingName(scene::kDefaultHairShading))));
   o.look.hairWidth = kw.get("lines", false) ? scene::HairWidth::Lines : scene::HairWidth::Strands;
   o.look.transparency = kw.get("transparency", true);
   o.shadows = kw.get("shadows", false);

@@ -14,6 +14,8 @@ std::string_view hairShadingName(HairShading shading) {
       return "kajiya-kay";
     case HairShading::Marschner:
       return "marschner";
+    case HairShading::Physical:
+      return "physical";
   }
   return "?";
 }
@@ -22,7 +24,7 @@ HairShading parseHairShading(std::string_view name, std::string_view field) {
   for (HairShading s : kHairShadings)
     if (name == hairShadingName(s)) return s;
   fieldError(std::string(field), ": unknown hair shading '", excerpt(name),
-             "' (accepted: paper, kajiya-kay, marschner)");
+             "' (accepted: paper, kajiya-kay, marschner, physical)");
 }
 
 std::string_view hairSourceName(HairSource source) {

@@ -102,6 +102,12 @@ def write_png(path, rgb):
     os.replace(tmp, path)
 
 
+def write_side_by_side(path, a, b):
+    """pelage's frame, the reference and 4 x their difference, side by side (measure's a, b)."""
+    diff = np.clip(4.0 * np.abs(a - b), 0, 255)
+    write_png(path, np.round(np.concatenate([a, b, diff], axis=1)).astype(np.uint8))
+
+
 def main(argv):
     parser = argparse.ArgumentParser(description=__doc__.strip().splitlines()[0])
     parser.add_argument("pelage")
@@ -124,9 +130,7 @@ def main(argv):
         f.write("\n")
     os.replace(tmp, args.json)
     if args.side_by_side:
-        diff = np.clip(4.0 * np.abs(a - b), 0, 255)
-        row = np.concatenate([a, b, diff], axis=1)
-        write_png(args.side_by_side, np.round(row).astype(np.uint8))
+        write_side_by_side(args.side_by_side, a, b)
     print("MAE %.1f/255, luminance %.1f vs %.1f (%+.1f %%), detail %.2f vs %.2f (%.0f %%), "
           "Laplacian spread %.2f vs %.2f (%.0f %%), %d px" % (
               figures["mae"], figures["luminance"], figures["reference_luminance"],

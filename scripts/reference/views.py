@@ -7,6 +7,10 @@
   views.py check [NAME...]    renders pelage's frames again and measures them against the
                               committed references (make test runs this; no Blender): each
                               figure must stay within its tolerance of the recorded one
+  views.py record [NAME...]   renders pelage's frames again and records their figures against
+                              the committed references, with new side-by-sides (no Blender):
+                              after a change of pelage's look that leaves the hairs as they were
+                              (shading, lighting)
 
 The views are scripts/reference/views.txt. Environment: PELAGE (the pelage binary, default
 build/bin/pelage), PELAGE_SHARED_MODELS_DIR (the shared models, default ../shared/models),
@@ -102,7 +106,7 @@ def render(names):
     return 0
 
 
-def check(names):
+def check(names, record=False):
     with open(FIGURES) as f:
         recorded = json.load(f)
     failed = []
@@ -113,9 +117,12 @@ def check(names):
             continue
         with tempfile.TemporaryDirectory() as tmp:
             frame = render_pelage(model, options, tmp)
-            got, _, _ = compare.measure(compare.read_rgba(frame),
+            got, a, b = compare.measure(compare.read_rgba(frame),
                                         compare.read_rgba(os.path.join(REFERENCES, name + ".png")),
                                         BACKGROUND)
+        if record:
+            recorded[name] = got
+            compare.write_side_by_side(os.path.join(REFERENCES, name + "_side_by_side.png"), a, b)
         was = recorded[name]
         print("%-14s %8.1f %+9.1f%% %7.0f%% %9.0f%%" % (
             name, got["mae"], 100 * (got["luminance_ratio"] - 1), 100 * got["detail_ratio"],
@@ -124,16 +131,23 @@ def check(names):
             if abs(got[key] - was[key]) > tolerance:
                 failed.append("%s: %s %.4f, recorded %.4f (tolerance %g)"
                               % (name, key, got[key], was[key], tolerance))
+    if record:
+        with open(FIGURES + ".tmp", "w") as f:
+            json.dump(recorded, f, indent=1, sort_keys=True)
+            f.write("\n")
+        os.replace(FIGURES + ".tmp", FIGURES)
     for f in failed:
         print("views.py: " + f, file=sys.stderr)
     return 1 if failed else 0
 
 
 def main(argv):
-    if not argv or argv[0] not in ("render", "check"):
+    if not argv or argv[0] not in ("render", "check", "record"):
         print(__doc__.strip(), file=sys.stderr)
         return 2
-    return render(argv[1:]) if argv[0] == "render" else check(argv[1:])
+    if argv[0] == "render":
+        return render(argv[1:])
+    return check(argv[1:], record=argv[0] == "record")
 
 
 if __name__ == "__main__":

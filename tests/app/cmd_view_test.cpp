@@ -162,7 +162,7 @@ TEST(ViewCommand, BadOptionsGetClearMessages) {
       {"--headless --size big", "is not WIDTHxHEIGHT"},
       {"--headless --hair-source tpu", "accepted: gpu, cpu"},
       {"--headless --camera top", "accepted: front, side, three-quarter, face, follow"},
-      {"--headless --shading pbr", "accepted: paper, kajiya-kay, marschner"},
+      {"--headless --shading pbr", "accepted: paper, kajiya-kay, marschner, physical"},
       {"--headless --fur " + dir.file("missing.json"), "missing.json"},
       {"--headless --frames -1", "--frames -1 is out of range"},
       {"--headless --style fuzzy", "accepted: line, polyline, curve, tube"},

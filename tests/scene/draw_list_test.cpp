@@ -24,10 +24,12 @@ TEST(Names, ShadingsParseAndRejectUnknownNames) {
   EXPECT_EQ(parseHairShading("kajiya-kay"), HairShading::KajiyaKay);
   EXPECT_EQ(parseHairShading("paper"), HairShading::Paper);
   EXPECT_EQ(parseHairShading("marschner"), HairShading::Marschner);
+  EXPECT_EQ(parseHairShading("physical"), HairShading::Physical);
   for (HairShading s : kHairShadings) EXPECT_EQ(parseHairShading(hairShadingName(s)), s);
   EXPECT_FALSE(shadesWithTangents(HairShading::Paper));
   EXPECT_TRUE(shadesWithTangents(HairShading::KajiyaKay));
   EXPECT_TRUE(shadesWithTangents(HairShading::Marschner));
+  EXPECT_FALSE(shadesWithTangents(HairShading::Physical));  // style normals; tangents from strands
   EXPECT_THROW(parseHairShading("pbr"), InputError);
 }
 

@@ -183,14 +183,17 @@ TEST_F(RendererTest, ShadowsDarkenTheSkin) {
   o.samples = 0;
   Renderer r(o);
   // Light from the front, low: the head shadows the front of the body, the body the tail's base.
-  auto shot = [&](bool shadows) {
+  auto shot = [&](bool shadows, scene::HairShading shading) {
     scene::DrawList list = skinOnly(scene::CameraPreset::Side, 200, 200, shadows);
     list.light.direction = Eigen::Vector3f(1.0f, 0.4f, 0.3f);
+    list.hairShading = shading;
     r.render(list);
     return std::pair{r.readPixels(), list};
   };
-  const auto [lit, list] = shot(false);
-  const auto [shadowed, unused] = shot(true);
+  // The light's switch under the paper's shading; the physical model always draws the shadow map.
+  const auto [lit, list] = shot(false, scene::HairShading::Paper);
+  const auto [shadowed, unused] = shot(true, scene::HairShading::Paper);
+  EXPECT_EQ(shot(false, scene::HairShading::Physical).first.rgba, shadowed.rgba);
   const float bg[3] = {list.background.x(), list.background.y(), list.background.z()};
   int skin = 0, darker = 0, brighter = 0;
   double a = 0, b = 0;

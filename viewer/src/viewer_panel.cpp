@@ -380,8 +380,9 @@ void viewPanel(ViewerSession& s) {
   ImGui::Checkbox("fur", &s.drawFur);
   int shading = static_cast<int>(s.shading);
   const char* shadings[] = {"paper (Phong, style normals)", "Kajiya-Kay (tangents)",
-                            "Marschner (R, TT, TRT lobes)"};
-  if (ImGui::Combo("hair shading", &shading, shadings, 3))
+                            "Marschner (R, TT, TRT lobes)",
+                            "physical (calibrated against a path tracer)"};
+  if (ImGui::Combo("hair shading", &shading, shadings, 4))
     s.shading = static_cast<scene::HairShading>(shading);
   int width = static_cast<int>(s.hairWidth);
   const char* widths[] = {"1-pixel lines (the paper's)", "strands of their width (coat panel)"};

@@ -39,7 +39,7 @@ class ViewerSession {
   scene::Orbit orbit;
   bool follow = false;
   scene::HairSource hairSource = scene::HairSource::Gpu;  // the CPU's hairs with dynamics on
-  scene::HairShading shading = scene::HairShading::Paper;
+  scene::HairShading shading = scene::kDefaultHairShading;
   scene::HairWidth hairWidth = scene::HairWidth::Strands;
   bool transparency = true;
   Eigen::Vector3f skinColor;  // the skin's diffuse colour (the model's, or --skin-color)

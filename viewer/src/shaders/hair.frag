@@ -2,12 +2,14 @@
 in vec3 gPosition;
 in vec3 gShading;
 in vec3 gColor;
+flat in vec3 gTangent;
 noperspective in float gEdge;
 noperspective in float gHalfWidth;
 noperspective in float gCoverage;
 #define P_IN gPosition
 #define S_IN gShading
 #define C_IN gColor
+#define T_IN gTangent
 #else
 in vec3 vPosition;
 in vec3 vShading;
@@ -15,12 +17,13 @@ in vec3 vColor;
 #define P_IN vPosition
 #define S_IN vShading
 #define C_IN vColor
+#define T_IN vec3(0.0)  // lines and tubes carry no tangent: the physical model's coat term only
 #endif
 uniform vec3 uKa;
 uniform vec3 uKd;
 uniform vec3 uKs;
 uniform float uShininess;
-uniform int uShading;  // scene::HairShading: 0 paper, 1 Kajiya-Kay, 2 Marschner
+uniform int uShading;  // scene::HairShading: 0 paper, 1 Kajiya-Kay, 2 Marschner, 3 physical
 uniform bool uPerHairColor;  // the hair's colour is its diffuse, times uAmbientRatio its ambient
 uniform float uAmbientRatio;
 uniform float uShadowBias;
@@ -48,7 +51,8 @@ void main() {
   float s = shadowFactor(P_IN, uShadowBias);
   vec3 kd = uPerHairColor ? C_IN : uKd;
   vec3 ka = uPerHairColor ? C_IN * uAmbientRatio : uKa;
-  vec3 c = uShading == 2   ? marschner(u, P_IN, ka, kd, uKs, s)
+  vec3 c = uShading == 3   ? physicalFur(u, T_IN, P_IN, kd, s)
+           : uShading == 2 ? marschner(u, P_IN, ka, kd, uKs, s)
            : uShading == 1 ? kajiyaKay(u, P_IN, ka, kd, uKs, uShininess, s)
                            : phong(u, P_IN, ka, kd, uKs, uShininess, s);
 #ifdef OIT

@@ -15,6 +15,7 @@ in vec3 vColor[];
 out vec3 gPosition;
 out vec3 gShading;
 out vec3 gColor;
+flat out vec3 gTangent;  // the segment's direction (unit; 0 for a degenerate segment)
 noperspective out float gEdge;       // signed distance from the centre line, pixels
 noperspective out float gHalfWidth;  // half the drawn width, pixels
 noperspective out float gCoverage;   // true width / drawn width
@@ -36,12 +37,17 @@ void main() {
   float t1 = uWiden * uProjScale * mix(uRootWidth, uTipWidth, vAlong[1]) / c1.w;
   float h0 = 0.5 * max(t0, 1.0), h1 = 0.5 * max(t1, 1.0);
   float k0 = t0 / max(t0, 1.0), k1 = t1 / max(t1, 1.0);
+  vec3 seg = vPosition[1] - vPosition[0];
+  float segLen = length(seg);
+  vec3 tangent = segLen > 0.0 ? seg / segLen : vec3(0.0);
   vec2 o0 = n * (h0 + 0.5) / (uViewport * 0.5) * c0.w;
   vec2 o1 = n * (h1 + 0.5) / (uViewport * 0.5) * c1.w;
+  gTangent = tangent;
   gPosition = vPosition[0]; gShading = vShading[0]; gColor = vColor[0];
   gHalfWidth = h0; gCoverage = k0;
   gEdge = h0 + 0.5; gl_Position = vec4(c0.xy + o0, c0.zw); EmitVertex();
   gEdge = -(h0 + 0.5); gl_Position = vec4(c0.xy - o0, c0.zw); EmitVertex();
+  gTangent = tangent;
   gPosition = vPosition[1]; gShading = vShading[1]; gColor = vColor[1];
   gHalfWidth = h1; gCoverage = k1;
   gEdge = h1 + 0.5; gl_Position = vec4(c1.xy + o1, c1.zw); EmitVertex();

@@ -99,22 +99,89 @@ vec3 kajiyaKay(vec3 T, vec3 P, vec3 Ka, vec3 Kd, vec3 Ks, float shininess, float
 float hairLobe(float beta, float x) {
   return exp(-0.5 * x * x / (beta * beta)) / (2.50662827 * beta);
 }
-vec3 marschner(vec3 T, vec3 P, vec3 Ka, vec3 Kd, vec3 Ks, float s) {
-  const float alphaR = radians(-7.5), betaR = radians(7.5);
-  vec3 V = normalize(uEye - P);
-  vec3 L = uLightDir;
+// The angles of light direction L and view direction V about a hair of unit tangent T.
+struct HairAngles {
+  float thetaH;  // (theta_i + theta_r) / 2
+  float thetaD;  // (theta_r - theta_i) / 2
+  float cosD;    // cos(theta_d)
+  float cosI;    // cos(theta_i)
+  float cosPhi;  // cos(phi): L and V projected on T's normal plane
+};
+HairAngles hairAngles(vec3 T, vec3 L, vec3 V) {
   float sinI = clamp(dot(T, L), -1.0, 1.0), sinR = clamp(dot(T, V), -1.0, 1.0);
   float thetaI = asin(sinI), thetaR = asin(sinR);
-  float thetaH = 0.5 * (thetaI + thetaR);
-  float cosD = cos(0.5 * (thetaR - thetaI));
+  HairAngles a;
+  a.thetaH = 0.5 * (thetaI + thetaR);
+  a.thetaD = 0.5 * (thetaR - thetaI);
+  a.cosD = cos(a.thetaD);
+  a.cosI = sqrt(max(1.0 - sinI * sinI, 0.0));
   vec3 lp = L - T * sinI, vp = V - T * sinR;
-  float cosPhi = clamp(dot(lp, vp) * inversesqrt(max(dot(lp, lp) * dot(vp, vp), 1e-8)), -1.0, 1.0);
-  float nR = 0.25 * sqrt(0.5 + 0.5 * cosPhi);
-  float nTT = exp(-3.65 * cosPhi - 3.98);
-  float nTRT = exp(17.0 * cosPhi - 16.78);
-  vec3 S = Ks * (hairLobe(betaR, thetaH - alphaR) * nR) +
-           Kd * (hairLobe(0.5 * betaR, thetaH + 0.5 * alphaR) * nTT) +
-           Ks * Kd * (hairLobe(2.0 * betaR, thetaH + 1.5 * alphaR) * nTRT);
-  float cosI = sqrt(max(1.0 - sinI * sinI, 0.0));
-  return Ka * uAmbientLight + s * uLightColor * cosI * (Kd + S / max(cosD * cosD, 0.04));
+  a.cosPhi = clamp(dot(lp, vp) * inversesqrt(max(dot(lp, lp) * dot(vp, vp), 1e-8)), -1.0, 1.0);
+  return a;
+}
+vec3 marschner(vec3 T, vec3 P, vec3 Ka, vec3 Kd, vec3 Ks, float s) {
+  const float alphaR = radians(-7.5), betaR = radians(7.5);
+  HairAngles a = hairAngles(T, uLightDir, normalize(uEye - P));
+  float nR = 0.25 * sqrt(0.5 + 0.5 * a.cosPhi);
+  float nTT = exp(-3.65 * a.cosPhi - 3.98);
+  float nTRT = exp(17.0 * a.cosPhi - 16.78);
+  vec3 S = Ks * (hairLobe(betaR, a.thetaH - alphaR) * nR) +
+           Kd * (hairLobe(0.5 * betaR, a.thetaH + 0.5 * alphaR) * nTT) +
+           Ks * Kd * (hairLobe(2.0 * betaR, a.thetaH + 1.5 * alphaR) * nTRT);
+  return Ka * uAmbientLight + s * uLightColor * a.cosI * (Kd + S / max(a.cosD * a.cosD, 0.04));
+}
+
+// The physically based fur model (scene::HairShading::Physical), calibrated against Blender
+// Cycles' Principled Hair BSDF (Chiang, Bitterli, Tappan and Burley 2016, "A practical and
+// controllable hair and fur model for production path tracing") on dense coats
+// (scripts/reference/, docs/reference/; the skin's shadow map is always on with it). Two parts, as
+// Karis 2016 ("Physically based hair shading in Unreal") splits a strand's light:
+// - the coat: light scattered many times among the hairs leaves the coat much as from a diffuse
+//   surface about the style's normal N (the skin's normal carried along the hair), of the
+//   multiple-scattering albedo of a finite coat, A = c^g (fewer bounces than Chiang's
+//   infinite-volume colour mapping assumes, so paler than the colour c), keeping a share k_a of
+//   the ambient (the rest stopped by the coat and the body);
+//     coat = A (k_a La + s Ld max(N.L, 0));
+// - the fibre, about the strand's tangent T (absent for lines and tubes, which carry none):
+//   Marschner's R, TT and TRT lobes with Chiang's roughness (longitudinal width beta = 0.726 r +
+//   0.812 r^2 for Cycles' default r = 0.3, cuticle tilt 2 deg), the dielectric's Fresnel
+//   reflectance F = F0 + (1 - F0)(1 - cos)^5 at IOR 1.55 (F0 = 0.0465), and Chiang's absorption
+//   from the colour, sigma_a = (ln c / 5.888)^2 (his eq. 9 at azimuthal roughness 0.3), through a
+//   fibre path of 2 / cos(theta_t): T_abs = exp(-2 sigma_a / cos(theta_t)), sin(theta_t) =
+//   sin(theta_d) / 1.55, on TT (once) and TRT (twice);
+//     fibre = s Ld cos(theta_i) (F_r M_R N_R + (1 - F_t)^2 T_abs M_TT N_TT
+//                                 + (1 - F_t)^2 F_t T_abs^2 M_TRT N_TRT) / cos^2(theta_d),
+//   N_p as marschner()'s, F_r at cos(theta_d) cos(phi / 2), F_t at cos(theta_d).
+// g and k_a were fitted on the six committed views (docs/reference/figures.json, README).
+const float kPhysGamma = 0.7;    // g: the coat's albedo exponent
+const float kPhysAmbient = 0.7;  // k_a: the share of the ambient the coat keeps
+vec3 physicalFur(vec3 N, vec3 T, vec3 P, vec3 c, float s) {
+  vec3 L = uLightDir;
+  vec3 V = normalize(uEye - P);
+  vec3 albedo = pow(max(c, vec3(1e-4)), vec3(kPhysGamma));
+  vec3 color = albedo * (kPhysAmbient * uAmbientLight + s * uLightColor * max(dot(N, L), 0.0));
+  if (dot(T, T) < 0.5) return color;
+  const float r = 0.3;
+  const float beta = 0.726 * r + 0.812 * r * r;
+  const float alphaR = radians(-2.0);  // Cycles' default cuticle tilt
+  const float f0 = 0.0465;             // ((1.55 - 1) / (1.55 + 1))^2
+  HairAngles a = hairAngles(T, L, V);
+  float cosD = a.cosD, cosPhi = a.cosPhi, thetaH = a.thetaH;
+  float cosHalfPhi = sqrt(0.5 + 0.5 * cosPhi);
+  // Fresnel at the R lobe's angle of incidence on the fibre, cos = cos(theta_d) cos(phi / 2).
+  float fr = f0 + (1.0 - f0) * pow(1.0 - cosD * cosHalfPhi, 5.0);
+  float ft = f0 + (1.0 - f0) * pow(1.0 - cosD, 5.0);
+  vec3 lnc = log(max(c, vec3(1e-4)));
+  vec3 sigmaA = lnc * lnc / (5.888 * 5.888);
+  // theta_t: the refracted longitudinal angle, sin(theta_t) = sin(theta_d) / 1.55.
+  float sinT = sin(a.thetaD) / 1.55;
+  float cosT = sqrt(max(1.0 - sinT * sinT, 1e-4));
+  vec3 tAbs = exp(-2.0 * sigmaA / cosT);
+  float nR = 0.25 * cosHalfPhi * fr;
+  float nTT = exp(-3.65 * cosPhi - 3.98) * (1.0 - ft) * (1.0 - ft);
+  float nTRT = exp(17.0 * cosPhi - 16.78) * (1.0 - ft) * (1.0 - ft) * ft;
+  vec3 S = vec3(hairLobe(beta, thetaH - alphaR) * nR) +
+           tAbs * (hairLobe(0.5 * beta, thetaH + 0.5 * alphaR) * nTT) +
+           tAbs * tAbs * (hairLobe(2.0 * beta, thetaH + 1.5 * alphaR) * nTRT);
+  return color + s * uLightColor * a.cosI * S / max(cosD * cosD, 0.04);
 }

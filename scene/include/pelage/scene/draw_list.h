@@ -29,17 +29,22 @@ struct FrameState;
 struct Fur;
 
 // How hairs are lit: the paper's Phong model with each style's shading normals, Kajiya-Kay with
-// the hair tangent, or Marschner's three lobes (R, TT, TRT) about the tangent (lighting.glsl).
+// the hair tangent, Marschner's three lobes (R, TT, TRT) about the tangent, or the physically based
+// fur model calibrated against a path tracer's Chiang hair BSDF (the coat's multiple scattering
+// about the style's normals, the fibre's lobes about the strand's tangent; lighting.glsl).
 // The values are the renderer's shader codes.
-enum class HairShading { Paper = 0, KajiyaKay = 1, Marschner = 2 };
+enum class HairShading { Paper = 0, KajiyaKay = 1, Marschner = 2, Physical = 3 };
 inline constexpr HairShading kHairShadings[] = {HairShading::Paper, HairShading::KajiyaKay,
-                                                HairShading::Marschner};
+                                                HairShading::Marschner, HairShading::Physical};
+// The shading every frame gets unless asked otherwise: the physical model, the one measured
+// closest to a path tracer (README, "Next to a path-traced reference").
+inline constexpr HairShading kDefaultHairShading = HairShading::Physical;
 // Whether `shading` lights hairs by their tangent (the renderer's shading vector) instead of the
 // style's normals.
 inline bool shadesWithTangents(HairShading shading) {
-  return shading != HairShading::Paper;
+  return shading == HairShading::KajiyaKay || shading == HairShading::Marschner;
 }
-// "paper", "kajiya-kay", "marschner".
+// "paper", "kajiya-kay", "marschner", "physical".
 std::string_view hairShadingName(HairShading shading);
 // Parses a shading name; InputError naming `field` and the accepted names.
 HairShading parseHairShading(std::string_view name, std::string_view field = "shading");
@@ -120,7 +125,7 @@ struct DrawList {
   Eigen::Vector3f background = kDefaultBackground;
   SkinDrawItem skin;
   std::vector<FurDrawItem> fur;  // 0, 1 or 2 coats
-  HairShading hairShading = HairShading::Paper;
+  HairShading hairShading = kDefaultHairShading;
   HairWidth hairWidth = HairWidth::Strands;
   // Strands blended in any order (weighted blended order-independent transparency); off: drawn
   // opaque at their drawn width.
@@ -135,7 +140,7 @@ struct DrawList {
 // How a frame is drawn (the draw list's look).
 struct DrawOptions {
   HairSource hairSource = HairSource::Cpu;
-  HairShading hairShading = HairShading::Paper;
+  HairShading hairShading = kDefaultHairShading;
   HairWidth hairWidth = HairWidth::Strands;
   bool transparency = true;
   bool drawFur = true;

@@ -35,7 +35,7 @@ struct ViewerOptions {
   scene::CameraPreset camera = scene::CameraPreset::ThreeQuarter;
   bool follow = false;  // camera follows the creature
   scene::HairSource hairSource = scene::HairSource::Gpu;
-  scene::HairShading shading = scene::HairShading::Paper;
+  scene::HairShading shading = scene::kDefaultHairShading;
   scene::HairWidth hairWidth = scene::HairWidth::Strands;
   bool transparency = true;  // strands blended by coverage (order-independent)
   bool shadows = false;

@@ -119,15 +119,23 @@ HairAngles hairAngles(vec3 T, vec3 L, vec3 V) {
   a.cosPhi = clamp(dot(lp, vp) * inversesqrt(max(dot(lp, lp) * dot(vp, vp), 1e-8)), -1.0, 1.0);
   return a;
 }
-vec3 marschner(vec3 T, vec3 P, vec3 Ka, vec3 Kd, vec3 Ks, float s) {
-  const float alphaR = radians(-7.5), betaR = radians(7.5);
-  HairAngles a = hairAngles(T, uLightDir, normalize(uEye - P));
+// The three lobes' M_p N_p (R, TT, TRT) for a cuticle tilt alphaR and an R width betaR:
+// M_p = g(beta_p, theta_h - alpha_p) with alpha_TT = -alpha_R / 2, alpha_TRT = -3 alpha_R / 2,
+// beta_TT = beta_R / 2, beta_TRT = 2 beta_R; N_R = cos(phi / 2) / 4, N_TT = exp(-3.65 cos(phi) -
+// 3.98), N_TRT = exp(17 cos(phi) - 16.78) (Karis 2016's azimuthal fits).
+vec3 hairLobes(HairAngles a, float alphaR, float betaR) {
   float nR = 0.25 * sqrt(0.5 + 0.5 * a.cosPhi);
   float nTT = exp(-3.65 * a.cosPhi - 3.98);
   float nTRT = exp(17.0 * a.cosPhi - 16.78);
-  vec3 S = Ks * (hairLobe(betaR, a.thetaH - alphaR) * nR) +
-           Kd * (hairLobe(0.5 * betaR, a.thetaH + 0.5 * alphaR) * nTT) +
-           Ks * Kd * (hairLobe(2.0 * betaR, a.thetaH + 1.5 * alphaR) * nTRT);
+  return vec3(hairLobe(betaR, a.thetaH - alphaR) * nR,
+              hairLobe(0.5 * betaR, a.thetaH + 0.5 * alphaR) * nTT,
+              hairLobe(2.0 * betaR, a.thetaH + 1.5 * alphaR) * nTRT);
+}
+vec3 marschner(vec3 T, vec3 P, vec3 Ka, vec3 Kd, vec3 Ks, float s) {
+  const float alphaR = radians(-7.5), betaR = radians(7.5);
+  HairAngles a = hairAngles(T, uLightDir, normalize(uEye - P));
+  vec3 m = hairLobes(a, alphaR, betaR);
+  vec3 S = Ks * m.x + Kd * m.y + Ks * Kd * m.z;
   return Ka * uAmbientLight + s * uLightColor * a.cosI * (Kd + S / max(a.cosD * a.cosD, 0.04));
 }
 
@@ -151,7 +159,7 @@ vec3 marschner(vec3 T, vec3 P, vec3 Ka, vec3 Kd, vec3 Ks, float s) {
 //   sin(theta_d) / 1.55, on TT (once) and TRT (twice);
 //     fibre = s Ld cos(theta_i) (F_r M_R N_R + (1 - F_t)^2 T_abs M_TT N_TT
 //                                 + (1 - F_t)^2 F_t T_abs^2 M_TRT N_TRT) / cos^2(theta_d),
-//   N_p as marschner()'s, F_r at cos(theta_d) cos(phi / 2), F_t at cos(theta_d).
+//   M_p N_p from hairLobes(), F_r at cos(theta_d) cos(phi / 2), F_t at cos(theta_d).
 // g and k_a were fitted on the six committed views (docs/reference/figures.json, README).
 const float kPhysGamma = 0.7;    // g: the coat's albedo exponent
 const float kPhysAmbient = 0.7;  // k_a: the share of the ambient the coat keeps
@@ -166,22 +174,17 @@ vec3 physicalFur(vec3 N, vec3 T, vec3 P, vec3 c, float s) {
   const float alphaR = radians(-2.0);  // Cycles' default cuticle tilt
   const float f0 = 0.0465;             // ((1.55 - 1) / (1.55 + 1))^2
   HairAngles a = hairAngles(T, L, V);
-  float cosD = a.cosD, cosPhi = a.cosPhi, thetaH = a.thetaH;
-  float cosHalfPhi = sqrt(0.5 + 0.5 * cosPhi);
   // Fresnel at the R lobe's angle of incidence on the fibre, cos = cos(theta_d) cos(phi / 2).
-  float fr = f0 + (1.0 - f0) * pow(1.0 - cosD * cosHalfPhi, 5.0);
-  float ft = f0 + (1.0 - f0) * pow(1.0 - cosD, 5.0);
+  float fr = f0 + (1.0 - f0) * pow(1.0 - a.cosD * sqrt(0.5 + 0.5 * a.cosPhi), 5.0);
+  float ft = f0 + (1.0 - f0) * pow(1.0 - a.cosD, 5.0);
   vec3 lnc = log(max(c, vec3(1e-4)));
   vec3 sigmaA = lnc * lnc / (5.888 * 5.888);
   // theta_t: the refracted longitudinal angle, sin(theta_t) = sin(theta_d) / 1.55.
   float sinT = sin(a.thetaD) / 1.55;
   float cosT = sqrt(max(1.0 - sinT * sinT, 1e-4));
   vec3 tAbs = exp(-2.0 * sigmaA / cosT);
-  float nR = 0.25 * cosHalfPhi * fr;
-  float nTT = exp(-3.65 * cosPhi - 3.98) * (1.0 - ft) * (1.0 - ft);
-  float nTRT = exp(17.0 * cosPhi - 16.78) * (1.0 - ft) * (1.0 - ft) * ft;
-  vec3 S = vec3(hairLobe(beta, thetaH - alphaR) * nR) +
-           tAbs * (hairLobe(0.5 * beta, thetaH + 0.5 * alphaR) * nTT) +
-           tAbs * tAbs * (hairLobe(2.0 * beta, thetaH + 1.5 * alphaR) * nTRT);
-  return color + s * uLightColor * a.cosI * S / max(cosD * cosD, 0.04);
+  vec3 m = hairLobes(a, alphaR, beta);
+  float t2 = (1.0 - ft) * (1.0 - ft);
+  vec3 S = vec3(fr * m.x) + tAbs * (t2 * m.y) + tAbs * tAbs * (t2 * ft * m.z);
+  return color + s * uLightColor * a.cosI * S / max(a.cosD * a.cosD, 0.04);
 }

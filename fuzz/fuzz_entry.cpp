@@ -205,6 +205,8 @@ std::string groomExample() {
     g.clump.push_back(0.25f * static_cast<float>(v % 5));
     g.stiffness.emplace_back(0.125f * static_cast<float>(v % 9),
                              1.0f - 0.25f * static_cast<float>(v % 5));
+    g.segmentDirectionWeight.emplace_back(0.25f * static_cast<float>(v % 5),
+                                          0.125f * static_cast<float>(v % 9));
   }
   return fur::groomFileJson(groomMesh(), g);
 }

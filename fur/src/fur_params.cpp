@@ -120,6 +120,10 @@ void validateFurParams(FurParams& p, const std::string& source) {
     if (g.stiffness)
       for (int k = 0; k < 2; ++k)
         checkRange(source, str(at, "stiffness[", k, "]"), (*g.stiffness)[k], 0.0, 1.0);
+    if (g.segmentDirectionWeight)
+      for (int k = 0; k < 2; ++k)
+        checkRange(source, str(at, "segmentDirectionWeight[", k, "]"),
+                   (*g.segmentDirectionWeight)[k], 0.0, 1.0);
   }
   for (int k = 0; k < 3; ++k) checkRange(source, str("up[", k, "]"), p.up[k], -1e6, 1e6);
   const float upLength = p.up.norm();

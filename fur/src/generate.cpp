@@ -36,8 +36,10 @@ void FloatBuffer::resize(std::size_t n) {
 
 CoatShape makeCoatShape(const FurParams& params, const FurRoots& roots, int coat) {
   CoatShape c = makeCoatShape(params, coat);
-  c.comb = roots.coats[static_cast<std::size_t>(coat)].comb.empty() ? 0 : 1;
-  c.perHairFloppiness = roots.coats[static_cast<std::size_t>(coat)].floppiness.empty() ? 0 : 1;
+  const CoatRoots& cr = roots.coats[static_cast<std::size_t>(coat)];
+  c.comb = cr.comb.empty() ? 0 : 1;
+  c.perHairFloppiness = cr.floppiness.empty() ? 0 : 1;
+  c.perHairSegmentWeight = cr.segmentWeight.empty() ? 0 : 1;
   const std::uint64_t seed = coatSeed(roots.seed, coat);
   c.frizzSeed = std::bit_cast<std::int32_t>(static_cast<std::uint32_t>(seed ^ (seed >> 32)));
   return c;
@@ -386,6 +388,7 @@ void detail::generateFurWithDynamics(
     a.lengthScale = cr.lengthScale.empty() ? nullptr : cr.lengthScale.data();
     a.comb = cr.comb.empty() ? nullptr : cr.comb.data();
     a.floppiness = cr.floppiness.empty() ? nullptr : cr.floppiness.data();
+    a.segmentWeight = cr.segmentWeight.empty() ? nullptr : cr.segmentWeight.data();
     a.barycentric = roots.barycentric.data();
     a.twist = shape.twist ? ws.twist[ci].data() : nullptr;
     a.positions = emit ? hb.positions.data() : nullptr;
@@ -469,7 +472,8 @@ HairInput<float> rootInput(const skin::SkinMesh& skin, const FurRoots& roots,
   return interpolateRoot(
       roots.barycentric.data() + 4 * cr.tableIndex[r], records[0], records[1], records[2],
       cr.jitter.data() + 4 * r, cr.lengthScale.empty() ? 1.0f : cr.lengthScale[r],
-      cr.comb.empty() ? 0u : cr.comb[r], cr.floppiness.empty() ? 0.0f : cr.floppiness[r]);
+      cr.comb.empty() ? 0u : cr.comb[r], cr.floppiness.empty() ? 0.0f : cr.floppiness[r],
+      cr.segmentWeight.empty() ? 0.0f : cr.segmentWeight[r]);
 }
 
 void referenceHair(const skin::SkinMesh& skin, const FurRoots& roots, const FurParams& params,

@@ -1,6 +1,7 @@
 #include "pelage/fur/groom.h"
 
 #include <algorithm>
+#include <optional>
 
 #include "pelage/util/error.h"
 #include "pelage/util/image.h"
@@ -40,10 +41,12 @@ Groom loadGroomMaps(const GroomMapPaths& paths, const skin::SkinMesh& skin,
     const char* field = !paths.density.empty()  ? "maps.density"
                         : !paths.length.empty() ? "maps.length"
                                                 : "maps.color";
-    fieldError(field, ": model '", modelName,
-               "' has no texture coordinates, so groom maps cannot be placed on it (they need a "
-               "glTF model with TEXCOORD_0); groom it by regions instead (a preset's \"regions\": "
-               "lengthScale, lengthMm, densityScale, tint, stiffness per region or joint)");
+    fieldError(
+        field, ": model '", modelName,
+        "' has no texture coordinates, so groom maps cannot be placed on it (they need a "
+        "glTF model with TEXCOORD_0); groom it by regions instead (a preset's \"regions\": "
+        "lengthScale, lengthMm, densityScale, tint, stiffness, segmentDirectionWeight per region "
+        "or joint)");
   }
   m.density = loadMap(paths.density, "maps.density", false, skin::Filter::Nearest);
   m.length = loadMap(paths.length, "maps.length", false, skin::Filter::Linear);
@@ -132,15 +135,21 @@ VertexGroom groomFromRegions(const skin::SkinMesh& skin, const anatomy::Body& bo
           for (int k = 0; k < 3; ++k)
             g.tint[v][k] = blend(g.tint[v][k], g.tint[v][k] * reg.tint[k], w[v]);
     }
-    if (reg.stiffness) {
-      if (g.stiffness.empty())
-        g.stiffness.assign(nV, Eigen::Vector2f(params.coats[kOvercoat].stiffness,
-                                               params.coats[kUndercoat].stiffness));
+    // A per-coat value (stiffness, segment direction weight) moves from the coats' own.
+    const auto blendCoats = [&](std::vector<Eigen::Vector2f>& values,
+                                const std::optional<Eigen::Vector2f>& target, float overcoat,
+                                float undercoat) {
+      if (!target) return;
+      if (values.empty()) values.assign(nV, Eigen::Vector2f(overcoat, undercoat));
       for (std::size_t v = 0; v < nV; ++v)
         if (w[v] > 0.0f)
-          for (int k = 0; k < 2; ++k)
-            g.stiffness[v][k] = blend(g.stiffness[v][k], (*reg.stiffness)[k], w[v]);
-    }
+          for (int k = 0; k < 2; ++k) values[v][k] = blend(values[v][k], (*target)[k], w[v]);
+    };
+    const CoatParams& over = params.coats[kOvercoat];
+    const CoatParams& under = params.coats[kUndercoat];
+    blendCoats(g.stiffness, reg.stiffness, over.stiffness, under.stiffness);
+    blendCoats(g.segmentDirectionWeight, reg.segmentDirectionWeight, over.segmentDirectionWeight,
+               under.segmentDirectionWeight);
     if (matches) matches->push_back(std::move(m));
   }
   return g;

@@ -88,7 +88,8 @@ std::string groomFileJson(const skin::SkinMesh& skin, const VertexGroom& g) {
                    (g.tint.empty() || g.tint.size() == nV) &&
                    (g.comb.empty() || g.comb.size() == nV) &&
                    (g.clump.empty() || g.clump.size() == nV) &&
-                   (g.stiffness.empty() || g.stiffness.size() == nV),
+                   (g.stiffness.empty() || g.stiffness.size() == nV) &&
+                   (g.segmentDirectionWeight.empty() || g.segmentDirectionWeight.size() == nV),
                "groom arrays sized for another mesh");
   nlohmann::json j;
   j["format"] = kFormat;
@@ -118,6 +119,8 @@ std::string groomFileJson(const skin::SkinMesh& skin, const VertexGroom& g) {
   if (!g.comb.empty()) j["comb"] = rows(g.comb);
   if (!g.clump.empty()) j["clump"] = singles(g.clump);
   if (!g.stiffness.empty()) j["stiffness"] = rows(g.stiffness);
+  if (!g.segmentDirectionWeight.empty())
+    j["segmentDirectionWeight"] = rows(g.segmentDirectionWeight);
   return j.dump() + "\n";
 }
 
@@ -133,8 +136,8 @@ VertexGroom parseGroomFile(const std::string& text, const std::string& source,
   if (!j.has("format") || !j.at("format").json().is_string() || j.string("format") != kFormat)
     j.fail(str("not a groom file: expected \"format\": \"", kFormat,
                "\" (groom files come from pelage's groom output or Python's write_groom)"));
-  j.rejectUnknown(
-      {"format", "version", "mesh", "length", "density", "tint", "comb", "clump", "stiffness"});
+  j.rejectUnknown({"format", "version", "mesh", "length", "density", "tint", "comb", "clump",
+                   "stiffness", "segmentDirectionWeight"});
   j.integer("version", kGroomFileVersion, kGroomFileVersion);
   const JsonReader mesh = j.at("mesh");
   mesh.rejectUnknown({"vertices", "triangles", "hash"});
@@ -155,6 +158,8 @@ VertexGroom parseGroomFile(const std::string& text, const std::string& source,
     g.density = readValues(j, "density", n, 1, 0.0, static_cast<double>(kMaxGroomDensity));
   if (j.has("clump")) g.clump = readValues(j, "clump", n, 1, 0.0, 1.0);
   if (j.has("stiffness")) g.stiffness = readRows<2>(j, "stiffness", n, 0.0, 1.0);
+  if (j.has("segmentDirectionWeight"))
+    g.segmentDirectionWeight = readRows<2>(j, "segmentDirectionWeight", n, 0.0, 1.0);
   if (j.has("tint")) g.tint = readRows<3>(j, "tint", n, 0.0, static_cast<double>(kMaxGroomTint));
   if (j.has("comb")) {
     g.comb = readRows<3>(j, "comb", n, -1.0, 1.0);

@@ -27,6 +27,7 @@ struct CoatKernelArgs {
   const float* lengthScale = nullptr;          // nRoots (a length map), or null
   const std::uint32_t* comb = nullptr;         // nRoots (a groom's comb, packComb), or null
   const float* floppiness = nullptr;           // nRoots (a groom's stiffness), or null
+  const float* segmentWeight = nullptr;        // nRoots (a groom's direction weight), or null
   const float* barycentric = nullptr;          // 2048 x 4
   const float* twist = nullptr;                // 2048 x 16 (cos, sin per point) or null
   float* positions = nullptr;                  // drawn x P x 3

@@ -163,13 +163,18 @@ void runCoatRange(const CoatKernelArgs& a, std::int64_t begin, std::int64_t end)
         for (int l = 0; l < kFrameLanes; ++l) s[l] = a.lengthScale[roots[k * kFrameLanes + l]];
         inputs[k].length = inputs[k].length * B::loadFrame(s);
       }
-    // A groom's stiffness: each root's own floppiness (CoatRoots::floppiness).
-    if (a.floppiness)
+    // A groom's stiffness and segment direction weight: each root's own floppiness and w
+    // (CoatRoots::floppiness, ::segmentWeight).
+    const auto gatherPerRoot = [&](const float* values, auto member) {
+      if (!values) return;
       for (int k = 0; k < frameBlocks; ++k) {
         float f[kFrameLanes];
-        for (int l = 0; l < kFrameLanes; ++l) f[l] = a.floppiness[roots[k * kFrameLanes + l]];
-        inputs[k].floppiness = B::loadFrame(f);
+        for (int l = 0; l < kFrameLanes; ++l) f[l] = values[roots[k * kFrameLanes + l]];
+        inputs[k].*member = B::loadFrame(f);
       }
+    };
+    gatherPerRoot(a.floppiness, &HairInput<FrameF>::floppiness);
+    gatherPerRoot(a.segmentWeight, &HairInput<FrameF>::segmentWeight);
     // A groom's comb: each hair's first triangle edge and unpacked comb (interpolateRoot's).
     if (a.comb)
       for (int k = 0; k < frameBlocks; ++k) {

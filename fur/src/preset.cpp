@@ -137,9 +137,24 @@ LengthRegion parseRegion(const JsonReader& j) {
   return r;
 }
 
+// A region's per-coat value in [0, 1]: one number (both coats) or [overcoat, undercoat]; unset
+// where the region does not name it.
+std::optional<Eigen::Vector2f> coatPair(const JsonReader& j, const char* field) {
+  if (!j.has(field)) return std::nullopt;
+  const JsonReader s = j.at(field);
+  if (!s.isArray()) {
+    const auto both = static_cast<float>(s.asNumber(0.0, 1.0));
+    return Eigen::Vector2f(both, both);
+  }
+  if (s.size() != 2)
+    s.fail("expected a number in [0, 1] (both coats) or [overcoat, undercoat], each in [0, 1]");
+  return Eigen::Vector2f(static_cast<float>(s.at(0).asNumber(0.0, 1.0)),
+                         static_cast<float>(s.at(1).asNumber(0.0, 1.0)));
+}
+
 // "regions": [{"match": PATTERN, "lengthScale": s, "lengthMm": mm, "densityScale": d,
-// "tint": [r, g, b], "stiffness": s | [overcoat, undercoat]}, ...]; the list replaces the base
-// preset's.
+// "tint": [r, g, b], "stiffness": s | [overcoat, undercoat], "segmentDirectionWeight": w |
+// [overcoat, undercoat]}, ...]; the list replaces the base preset's.
 std::vector<FurRegion> parseFurRegions(const JsonReader& list) {
   if (!list.isArray())
     list.fail("expected an array of regions, e.g. [{\"match\": \"b_Tail*\", \"lengthScale\": 2}]");
@@ -149,9 +164,10 @@ std::vector<FurRegion> parseFurRegions(const JsonReader& list) {
   for (std::size_t i = 0; i < list.size(); ++i) {
     const JsonReader j = list.at(i);
     if (!j.isObject()) j.fail("expected an object {\"match\": PATTERN, ...}");
-    // Of the coat fields only the stiffness is per region yet (width, curl, direction weight and
-    // colour source are per coat).
-    j.rejectUnknown({"match", "lengthScale", "lengthMm", "densityScale", "tint", "stiffness"});
+    // Of the coat fields the stiffness and the segment direction weight are per region (width,
+    // curl and colour source are per coat).
+    j.rejectUnknown({"match", "lengthScale", "lengthMm", "densityScale", "tint", "stiffness",
+                     "segmentDirectionWeight"});
     FurRegion r;
     if (!j.has("match"))
       j.fail("missing 'match' (a region, material or joint name; '*' wildcards)");
@@ -166,19 +182,8 @@ std::vector<FurRegion> parseFurRegions(const JsonReader& list) {
       for (std::size_t k = 0; k < 3; ++k)
         r.tint[static_cast<int>(k)] = static_cast<float>(t.at(k).asNumber(0.0, 10.0));
     }
-    if (j.has("stiffness")) {
-      const JsonReader s = j.at("stiffness");
-      if (s.isArray()) {
-        if (s.size() != 2)
-          s.fail(
-              "expected a number in [0, 1] (both coats) or [overcoat, undercoat], each in [0, 1]");
-        r.stiffness = Eigen::Vector2f(static_cast<float>(s.at(0).asNumber(0.0, 1.0)),
-                                      static_cast<float>(s.at(1).asNumber(0.0, 1.0)));
-      } else {
-        const auto both = static_cast<float>(s.asNumber(0.0, 1.0));
-        r.stiffness = Eigen::Vector2f(both, both);
-      }
-    }
+    r.stiffness = coatPair(j, "stiffness");
+    r.segmentDirectionWeight = coatPair(j, "segmentDirectionWeight");
     out.push_back(std::move(r));
   }
   return out;
@@ -430,6 +435,9 @@ std::string furPresetJson(const FurParams& p) {
                                {"densityScale", g.densityScale},
                                {"tint", colorJson(g.tint)}};
       if (g.stiffness) region["stiffness"] = {g.stiffness->x(), g.stiffness->y()};
+      if (g.segmentDirectionWeight)
+        region["segmentDirectionWeight"] = {g.segmentDirectionWeight->x(),
+                                            g.segmentDirectionWeight->y()};
       list.push_back(std::move(region));
     }
     j["regions"] = list;

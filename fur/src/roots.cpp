@@ -403,6 +403,7 @@ FurRoots growRoots(const skin::SkinMesh& skin, const FurParams& params, const Gr
         !groom.vertex.clump.empty() && params.coats[static_cast<std::size_t>(c)].clump.on();
     if (clumpScaled) cr.clumpScale.resize(n);
     if (!groom.vertex.stiffness.empty()) cr.floppiness.resize(n);
+    if (!groom.vertex.segmentDirectionWeight.empty()) cr.segmentWeight.resize(n);
     parallelForChunks(nT, 4096, [&](std::int64_t tb, std::int64_t te) {
       for (std::int64_t t = tb; t < te; ++t) {
         const std::int64_t first = cr.triangleStart[static_cast<std::size_t>(t)];
@@ -431,16 +432,18 @@ FurRoots growRoots(const skin::SkinMesh& skin, const FurParams& params, const Gr
             };
             cr.clumpScale[ks] = b[0] * at(0) + b[1] * at(1) + b[2] * at(2);
           }
-          if (!cr.floppiness.empty()) {
-            // s1 + b2 (s2 - s1) + b3 (s3 - s1): exactly s where the three vertices agree, so a
-            // hair there droops as the coat of stiffness s does.
+          // s1 + b2 (s2 - s1) + b3 (s3 - s1) of a per-coat vertex value: exactly s where the
+          // three vertices agree, so a hair there grows as in a coat of that value.
+          const auto atRoot = [&](const std::vector<Eigen::Vector2f>& values) {
             const float* b = roots.barycentric.data() + 4 * cr.tableIndex[ks];
             const std::int32_t* v = skin.triangles.data() + 3 * t;
-            const auto at = [&](int i) {
-              return groom.vertex.stiffness[static_cast<std::size_t>(v[i])][c];
-            };
-            cr.floppiness[ks] = floppiness(at(0) + b[1] * (at(1) - at(0)) + b[2] * (at(2) - at(0)));
-          }
+            const auto at = [&](int i) { return values[static_cast<std::size_t>(v[i])][c]; };
+            return at(0) + b[1] * (at(1) - at(0)) + b[2] * (at(2) - at(0));
+          };
+          if (!cr.floppiness.empty())
+            cr.floppiness[ks] = floppiness(atRoot(groom.vertex.stiffness));
+          if (!cr.segmentWeight.empty())
+            cr.segmentWeight[ks] = atRoot(groom.vertex.segmentDirectionWeight);
           if (!cr.comb.empty())
             cr.comb[ks] = restComb(skin, rest, groom.vertex.comb, static_cast<std::int32_t>(t),
                                    roots.barycentric.data() + 4 * cr.tableIndex[ks]);

@@ -174,7 +174,8 @@ Dynamics dynamicsFrom(const py::object& d) {
 
 fur::VertexGroom vertexGroomFrom(int vertices, const py::object& length, const py::object& density,
                                  const py::object& tint, const py::object& comb,
-                                 const py::object& clump, const py::object& stiffness) {
+                                 const py::object& clump, const py::object& stiffness,
+                                 const py::object& segmentDirectionWeight) {
   const auto nV = static_cast<py::ssize_t>(vertices);
   const auto column = [&](const py::object& o, const char* name) {
     std::vector<float> out;
@@ -210,8 +211,15 @@ fur::VertexGroom vertexGroomFrom(int vertices, const py::object& length, const p
   g.tint = triples(tint, "tint", "RGB");
   g.comb = triples(comb, "comb", "direction times amount");
   g.clump = column(clump, "clump");
-  if (const auto a = rows(stiffness, "stiffness", 2, "(overcoat, undercoat) stiffness"))
-    for (py::ssize_t v = 0; v < nV; ++v) g.stiffness.emplace_back(a->at(v, 0), a->at(v, 1));
+  const auto pairs = [&](const py::object& o, const char* name, const char* what) {
+    std::vector<Eigen::Vector2f> out;
+    if (const auto a = rows(o, name, 2, what))
+      for (py::ssize_t v = 0; v < nV; ++v) out.emplace_back(a->at(v, 0), a->at(v, 1));
+    return out;
+  };
+  g.stiffness = pairs(stiffness, "stiffness", "(overcoat, undercoat) stiffness");
+  g.segmentDirectionWeight = pairs(segmentDirectionWeight, "segment_direction_weight",
+                                   "(overcoat, undercoat) segment direction weight");
   return g;
 }
 
@@ -230,9 +238,13 @@ py::dict groomDict(const fur::VertexGroom& g) {
   if (!g.comb.empty()) d["comb"] = triples(g.comb);
   if (!g.clump.empty())
     d["clump"] = py::array_t<float>({static_cast<py::ssize_t>(g.clump.size())}, g.clump.data());
-  if (!g.stiffness.empty())
-    d["stiffness"] = py::array_t<float>(
-        {static_cast<py::ssize_t>(g.stiffness.size()), py::ssize_t{2}}, g.stiffness.data()->data());
+  const auto pairs = [](const std::vector<Eigen::Vector2f>& v) {
+    return py::array_t<float>({static_cast<py::ssize_t>(v.size()), py::ssize_t{2}},
+                              v.data()->data());
+  };
+  if (!g.stiffness.empty()) d["stiffness"] = pairs(g.stiffness);
+  if (!g.segmentDirectionWeight.empty())
+    d["segment_direction_weight"] = pairs(g.segmentDirectionWeight);
   return d;
 }
 

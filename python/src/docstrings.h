@@ -49,6 +49,10 @@ Args:
     stiffness: None, or shape (vertices, 2): each coat's stiffness (overcoat, undercoat) [0, 1]
         at the vertex, in place of the coat's: gravity bends a hair as a coat of the stiffness
         interpolated at its root (floppiness 1 - stiffness, at least 0.02; sec. 3.5).
+    segment_direction_weight: None, or shape (vertices, 2): each coat's segment direction weight
+        w (overcoat, undercoat) [0, 1] at the vertex, in place of the coat's: a hair's weightless
+        direction is normalize((1 - w) n + w s) with the w interpolated at its root (0: along
+        the skin normal n, 1: along the body segment's direction s; sec. 3.4).
     strokes: None, or grooming strokes applied on top of the arrays (those they need and that
         are absent start from the model's lengths, density 1, tint 1, no comb): a strokes file's
         path, or its JSON as a dict, {"strokes": [{"tool": "length" | "density" | "color" | "comb",

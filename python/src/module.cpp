@@ -116,10 +116,11 @@ fur::FurParams furParams(const std::string& preset, const py::kwargs& fields) {
 // JSON as a dict) into a groom file, checked by its reader before anything is written.
 void writeGroom(const PyModel& m, const std::string& path, const py::object& length,
                 const py::object& density, const py::object& tint, const py::object& comb,
-                const py::object& clump, const py::object& stiffness, const py::object& strokes) {
+                const py::object& clump, const py::object& stiffness,
+                const py::object& segmentDirectionWeight, const py::object& strokes) {
   const skin::SkinMesh& skin = m.model->skin;
-  fur::VertexGroom g =
-      vertexGroomFrom(skin.numVertices(), length, density, tint, comb, clump, stiffness);
+  fur::VertexGroom g = vertexGroomFrom(skin.numVertices(), length, density, tint, comb, clump,
+                                       stiffness, segmentDirectionWeight);
   if (!strokes.is_none())
     fur::applyGroomStrokes(skin,
                            py::isinstance<py::str>(strokes)
@@ -576,7 +577,8 @@ PYBIND11_MODULE(_pelage, m) {
       .def("write_groom", &writeGroom, py::arg("path"), py::arg("length") = py::none(),
            py::arg("density") = py::none(), py::arg("tint") = py::none(),
            py::arg("comb") = py::none(), py::arg("clump") = py::none(),
-           py::arg("stiffness") = py::none(), py::arg("strokes") = py::none(), doc::kWriteGroomDoc)
+           py::arg("stiffness") = py::none(), py::arg("segment_direction_weight") = py::none(),
+           py::arg("strokes") = py::none(), doc::kWriteGroomDoc)
       .def("__repr__", [](const PyModel& s) {
         return "<pelage.Model " + s.model->name + ": " + std::to_string(s.model->body.size()) +
                " segments, " + std::to_string(s.model->skin.numTriangles()) + " triangles, " +
@@ -594,7 +596,7 @@ PYBIND11_MODULE(_pelage, m) {
           "groom", [](const PyFur& f) { return groomDict(f.fur->groom.vertex); },
           "The per-vertex groom the hairs grew from (dict of numpy arrays: "
           "'length' (nV,) metres, 'density' (nV,), 'tint' (nV, 3), 'comb' (nV, 3), 'clump' (nV,), "
-          "'stiffness' (nV, 2) (overcoat, undercoat); "
+          "'stiffness' (nV, 2) and 'segment_direction_weight' (nV, 2) (overcoat, undercoat); "
           "only those "
           "a groom file or the regions set).")
       .def_property_readonly(

@@ -121,30 +121,40 @@ def test_regions_and_groom_files(tmp_path):
         fox.fur(hairs=100, regions=[{"match": "b_Tial*"}])
 
 
+# A per-coat value by region and from numpy: (the preset's and groom file's field, write_groom's
+# keyword and Fur.groom's key, the default coats' (overcoat, undercoat), the tail's).
+PER_COAT_VALUES = [
+    ("stiffness", "stiffness", (0.3, 0.7), (0.9, 0.95)),
+    ("segmentDirectionWeight", "segment_direction_weight", (0.3, 0.3), (1.0, 0.5)),
+]
+
+
 @pytest.mark.skipif(not os.path.exists(os.path.join(SHARED, "Fox", "Fox.glb")),
                     reason="the shared glTF models are not here")
-def test_stiffness_by_region_and_from_numpy(tmp_path):
+@pytest.mark.parametrize("field,key,coats,tail", PER_COAT_VALUES)
+def test_per_coat_values_by_region_and_from_numpy(tmp_path, field, key, coats, tail):
     fox = pelage.load(os.path.join(SHARED, "Fox", "Fox.glb"))
     n = len(fox.skin()[0])
-    stiff_tail = fox.fur(hairs=3000, regions=[{"match": "b_Tail*", "stiffness": [0.9, 0.95]}])
-    assert stiff_tail.params["regions"][0]["stiffness"] == pytest.approx([0.9, 0.95])
-    stiffness = stiff_tail.groom["stiffness"]
-    assert stiffness.shape == (n, 2) and set(stiff_tail.groom) == {"stiffness"}
-    # From the coats' own (default: overcoat 0.3, undercoat 0.7) to the tail's.
-    assert stiffness[:, 0].min() == np.float32(0.3) and stiffness[:, 0].max() == np.float32(0.9)
-    assert stiffness[:, 1].min() == np.float32(0.7) and stiffness[:, 1].max() == np.float32(0.95)
+    groomed = fox.fur(hairs=3000, regions=[{"match": "b_Tail*", field: list(tail)}])
+    assert groomed.params["regions"][0][field] == pytest.approx(list(tail))
+    values = groomed.groom[key]
+    assert values.shape == (n, 2) and set(groomed.groom) == {key}
+    # From the coats' own to the tail's.
+    for c in range(2):
+        lo, hi = sorted((np.float32(coats[c]), np.float32(tail[c])))
+        assert values[:, c].min() == lo and values[:, c].max() == hi
     plain = fox.fur(hairs=3000)
-    assert not np.array_equal(stiff_tail.hairs().points, plain.hairs().points)
+    assert not np.array_equal(groomed.hairs().points, plain.hairs().points)
     # The same values from numpy, through a groom file: the same hairs, bit for bit.
-    path = str(tmp_path / "stiff.groom.json")
-    fox.write_groom(path, stiffness=stiffness)
+    path = str(tmp_path / "groomed.groom.json")
+    fox.write_groom(path, **{key: values})
     from_file = fox.fur(hairs=3000, groom=path)
-    assert np.array_equal(bits(from_file.groom["stiffness"]), bits(stiffness))
-    assert np.array_equal(bits(from_file.hairs().points), bits(stiff_tail.hairs().points))
-    with pytest.raises(ValueError, match=r"stiffness.*shape \(%d, 2\)" % n):
-        fox.write_groom(path, stiffness=stiffness[:, 0])
-    with pytest.raises(ValueError, match=r"stiffness\[0\].*\[0, 1\]"):
-        fox.write_groom(str(tmp_path / "bad.json"), stiffness=np.full((n, 2), 1.5))
+    assert np.array_equal(bits(from_file.groom[key]), bits(values))
+    assert np.array_equal(bits(from_file.hairs().points), bits(groomed.hairs().points))
+    with pytest.raises(ValueError, match=r"%s.*shape \(%d, 2\)" % (key, n)):
+        fox.write_groom(path, **{key: values[:, 0]})
+    with pytest.raises(ValueError, match=r"%s\[0\].*\[0, 1\]" % field):
+        fox.write_groom(str(tmp_path / "bad.json"), **{key: np.full((n, 2), 1.5)})
     assert not os.path.exists(tmp_path / "bad.json")
 
 

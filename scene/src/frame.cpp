@@ -71,20 +71,25 @@ bool clumpRootsDiffer(const fur::FurParams& a, const fur::FurParams& b) {
   return false;
 }
 
-// A region's stiffness blends from the coats' stiffness into the per-vertex values the roots'
-// floppiness is interpolated from (fur::groomFromRegions).
-bool regionStiffnessDiffers(const fur::FurParams& a, const fur::FurParams& b) {
-  const auto stiffRegions = [](const fur::FurParams& p) {
-    for (const fur::FurRegion& r : p.regions)
-      if (r.stiffness) return true;
+// A region's stiffness or segment direction weight blends from the coats' own into the per-vertex
+// values the roots' floppiness and w are interpolated from (fur::groomFromRegions).
+bool regionCoatValuesDiffer(const fur::FurParams& a, const fur::FurParams& b) {
+  const auto anyRegion = [&](auto field) {
+    for (const fur::FurParams* p : {&a, &b})
+      for (const fur::FurRegion& r : p->regions)
+        if (r.*field) return true;
     return false;
   };
-  if (!stiffRegions(a) && !stiffRegions(b)) return false;
-  for (int c = 0; c < fur::kCoatCount; ++c)
-    if (a.coats[static_cast<std::size_t>(c)].stiffness !=
-        b.coats[static_cast<std::size_t>(c)].stiffness)
-      return true;
-  return false;
+  const auto coatsDiffer = [&](auto field) {
+    for (int c = 0; c < fur::kCoatCount; ++c)
+      if (a.coats[static_cast<std::size_t>(c)].*field !=
+          b.coats[static_cast<std::size_t>(c)].*field)
+        return true;
+    return false;
+  };
+  return (anyRegion(&fur::FurRegion::stiffness) && coatsDiffer(&fur::CoatParams::stiffness)) ||
+         (anyRegion(&fur::FurRegion::segmentDirectionWeight) &&
+          coatsDiffer(&fur::CoatParams::segmentDirectionWeight));
 }
 }  // namespace
 
@@ -93,7 +98,7 @@ bool rootsDiffer(const fur::FurParams& a, const fur::FurParams& b) {
          a.undercoatShare != b.undercoatShare || a.seed != b.seed ||
          a.maps.density != b.maps.density || a.maps.length != b.maps.length ||
          a.regions != b.regions || a.groom != b.groom || clumpRootsDiffer(a, b) ||
-         regionStiffnessDiffers(a, b);
+         regionCoatValuesDiffer(a, b);
 }
 
 bool colorsDiffer(const fur::FurParams& a, const fur::FurParams& b) {

@@ -85,23 +85,35 @@ TEST(Groom, RegionsInListOrderOnTopOfAStart) {
       {"fur 'x'", "regions[3].match 'tail*'", "regions: body, left", "joints: a, b"});
 }
 
-TEST(Groom, RegionStiffnessBlendsFromTheCoatsStiffness) {
+TEST(Groom, RegionCoatValuesBlendFromTheCoats) {
+  // The stiffness and the segment direction weight move from each coat's own toward the region's
+  // by the vertex's weight in it, the later region on top.
   const Grid g;
   FurParams p;
   p.coats[kOvercoat].stiffness = 0.3f;
   p.coats[kUndercoat].stiffness = 0.7f;
-  p.regions = {{.match = "b", .stiffness = Eigen::Vector2f(0.9f, 0.9f)},
+  p.coats[kOvercoat].segmentDirectionWeight = 0.2f;
+  p.coats[kUndercoat].segmentDirectionWeight = 0.6f;
+  p.regions = {{.match = "b",
+                .stiffness = Eigen::Vector2f(0.9f, 0.9f),
+                .segmentDirectionWeight = Eigen::Vector2f(1.0f, 0.0f)},
                {.match = "left", .stiffness = Eigen::Vector2f(0.1f, 0.5f)}};
   const VertexGroom out = groomFromRegions(g.skin, g.body, p, "test");
   ASSERT_EQ(out.stiffness.size(), 25u);
+  ASSERT_EQ(out.segmentDirectionWeight.size(), 25u);
   EXPECT_TRUE(out.length.empty() && out.density.empty() && out.tint.empty());
   for (int v = 0; v < 25; ++v) {
     const auto vs = static_cast<std::size_t>(v);
     const float wb = g.x(v) / 0.04f;
-    Eigen::Vector2f expected(0.3f + wb * (0.9f - 0.3f), 0.7f + wb * (0.9f - 0.7f));
-    if (wb == 1.0f) expected = Eigen::Vector2f(0.9f, 0.9f);  // the region's exactly
-    if (g.x(v) < 0.015f) expected = Eigen::Vector2f(0.1f, 0.5f);
-    EXPECT_EQ(out.stiffness[vs], expected) << v;
+    Eigen::Vector2f stiffness(0.3f + wb * (0.9f - 0.3f), 0.7f + wb * (0.9f - 0.7f));
+    Eigen::Vector2f weight(0.2f + wb * (1.0f - 0.2f), 0.6f + wb * (0.0f - 0.6f));
+    if (wb == 1.0f) {  // the region's exactly
+      stiffness = Eigen::Vector2f(0.9f, 0.9f);
+      weight = Eigen::Vector2f(1.0f, 0.0f);
+    }
+    if (g.x(v) < 0.015f) stiffness = Eigen::Vector2f(0.1f, 0.5f);
+    EXPECT_EQ(out.stiffness[vs], stiffness) << v;
+    EXPECT_EQ(out.segmentDirectionWeight[vs], weight) << v;
   }
 }
 
@@ -116,6 +128,7 @@ TEST(Groom, FileRoundTripsBitIdenticallyAndRefusesAnotherMesh) {
     v.tint.emplace_back(u(rng), u(rng) * 10.0f, 1.0f / 3.0f);
     v.clump.push_back(u(rng));
     v.stiffness.emplace_back(u(rng), 1.0f / 7.0f);
+    v.segmentDirectionWeight.emplace_back(1.0f / 3.0f, u(rng));
   }
   const std::string file = testing::TempDir() + "grid.groom.json";
   writeGroomFile(file, g.skin, v);
@@ -127,6 +140,10 @@ TEST(Groom, FileRoundTripsBitIdenticallyAndRefusesAnotherMesh) {
   EXPECT_EQ(std::memcmp(back.clump.data(), v.clump.data(), 25 * sizeof(float)), 0);
   ASSERT_EQ(back.stiffness.size(), 25u);
   EXPECT_EQ(std::memcmp(back.stiffness.data(), v.stiffness.data(), 25 * sizeof(Eigen::Vector2f)),
+            0);
+  ASSERT_EQ(back.segmentDirectionWeight.size(), 25u);
+  EXPECT_EQ(std::memcmp(back.segmentDirectionWeight.data(), v.segmentDirectionWeight.data(),
+                        25 * sizeof(Eigen::Vector2f)),
             0);
   EXPECT_EQ(groomFileJson(g.skin, back), test::readText(file));
   // The same counts but another shape: the hash tells them apart.
@@ -170,6 +187,12 @@ TEST(Groom, FileValuesAreChecked) {
   text.replace(text.find("[0.5,0.25]"), 10, "[0.5]");
   test::expectInputError([&] { parseGroomFile(text, "f.json", g.skin, "grid"); },
                          {"stiffness[0]", "2 numbers"});
+  VertexGroom sw;
+  sw.segmentDirectionWeight.assign(25, Eigen::Vector2f(0.5f, 0.25f));
+  text = groomFileJson(g.skin, sw);
+  text.replace(text.rfind("[0.5,0.25]"), 10, "[0.5,-0.25]");
+  test::expectInputError([&] { parseGroomFile(text, "f.json", g.skin, "grid"); },
+                         {"f.json", "segmentDirectionWeight[24]", "2 numbers", "[0, 1]"});
   test::expectInputError([&] { parseGroomFile("{}", "f.json", g.skin, "grid"); },
                          {"f.json", "not a groom file"});
   test::expectInputError([&] { parseGroomFile("[1,", "f.json", g.skin, "grid"); }, {"f.json"});
@@ -219,62 +242,82 @@ TEST(Groom, HairsOnAGroomMatchTheReferenceOnEveryPathAndThreadCount) {
     groom.vertex.length.push_back(z < -0.07f ? 0.0f : s.furLengths()[v] * (1.5f + 10.0f * z));
     groom.vertex.density.push_back(z > 0.0f ? 2.0f : 0.5f);
     groom.vertex.stiffness.emplace_back(0.5f + 5.0f * z, 1.0f - (0.5f + 5.0f * z));
+    groom.vertex.segmentDirectionWeight.emplace_back(0.5f - 5.0f * z, 0.5f + 5.0f * z);
   }
   test::checkStylesAgainstReference(s, d, 6000, Eigen::Vector3f(0.0f, 0.0f, 0.1f), groom);
 }
 
-TEST(Groom, AStiffnessGroomDroopsEachHairAsACoatOfItsStiffness) {
-  // A groom of one stiffness everywhere gives, bit for bit, the hairs of coats of that stiffness
-  // (each root's floppiness is the coat's); halving it elsewhere changes only those hairs.
+// A groom of one per-coat value everywhere (VertexGroom::*field = `value` for (overcoat,
+// undercoat)) gives, bit for bit, the hairs of coats of that value (CoatParams::*coatField; each
+// root's own, CoatRoots::*perRoot, is the coat's); the plain coats' value on the lower half
+// changes only the upper hairs.
+void expectGroomGrowsAsCoatsOfItsValue(std::vector<Eigen::Vector2f> VertexGroom::*field,
+                                       float CoatParams::*coatField,
+                                       std::vector<float> CoatRoots::*perRoot,
+                                       const Eigen::Vector2f& value) {
   const skin::SkinMesh s = test::makeSphere(0.1f, 16, 32);
   skin::DeformedSkin d;
   skin::restSkin(s, d);
   FurParams plain = loadFurPreset("default");
   plain.setHairCount(4000);
   plain.culling.enabled = false;
-  FurParams stiff = plain;
-  stiff.coats[kOvercoat].stiffness = 0.85f;
-  stiff.coats[kUndercoat].stiffness = 0.05f;
+  FurParams coats = plain;
+  coats.coats[kOvercoat].*coatField = value.x();
+  coats.coats[kUndercoat].*coatField = value.y();
   Groom groom;
-  groom.vertex.stiffness.assign(static_cast<std::size_t>(s.numVertices()),
-                                Eigen::Vector2f(0.85f, 0.05f));
+  (groom.vertex.*field).assign(static_cast<std::size_t>(s.numVertices()), value);
   const FurRoots groomed = growRoots(s, plain, groom);
-  const FurRoots ungroomed = growRoots(s, stiff);
-  ASSERT_EQ(groomed.coats[kOvercoat].floppiness.size(),
+  const FurRoots ungroomed = growRoots(s, coats);
+  ASSERT_EQ((groomed.coats[kOvercoat].*perRoot).size(),
             static_cast<std::size_t>(groomed.coats[kOvercoat].size()));
-  EXPECT_TRUE(ungroomed.coats[kOvercoat].floppiness.empty());
+  EXPECT_TRUE((ungroomed.coats[kOvercoat].*perRoot).empty());
   EXPECT_TRUE(test::sameHairs(test::furFrame(s, groomed, plain, d),
-                              test::furFrame(s, ungroomed, stiff, d)));
+                              test::furFrame(s, ungroomed, coats, d)));
   EXPECT_FALSE(test::sameHairs(test::furFrame(s, groomed, plain, d),
                                test::furFrame(s, ungroomed, plain, d)));
-  // Stiff (0.85) only on the upper half: hairs whose three vertices are all below keep the
-  // plain coat's shape exactly; those all above are the stiff coat's.
+  // The value only on the upper half: hairs whose three vertices are all below keep the plain
+  // coat's shape exactly; those all above are the groomed coat's.
   for (int v = 0; v < s.numVertices(); ++v)
     if (s.restPositions()[3 * v + 2] < 0.0f)
-      groom.vertex.stiffness[static_cast<std::size_t>(v)] =
-          Eigen::Vector2f(plain.coats[kOvercoat].stiffness, plain.coats[kUndercoat].stiffness);
+      (groom.vertex.*field)[static_cast<std::size_t>(v)] =
+          Eigen::Vector2f(plain.coats[kOvercoat].*coatField, plain.coats[kUndercoat].*coatField);
   const FurRoots half = growRoots(s, plain, groom);
   const FurFrame mixed = test::furFrame(s, half, plain, d);
   const FurFrame allPlain = test::furFrame(s, ungroomed, plain, d);
-  const FurFrame allStiff = test::furFrame(s, ungroomed, stiff, d);
-  const HairBuffers& m = mixed.coats[kOvercoat];
-  const std::size_t n = static_cast<std::size_t>(m.layout.pointsPerHair()) * 3;
-  int below = 0, above = 0;
-  for (std::int64_t h = 0; h < m.drawn; ++h) {
-    const std::int32_t t = half.coats[kOvercoat].triangle[static_cast<std::size_t>(h)];
-    int up = 0;
-    for (int k = 0; k < 3; ++k) up += s.restPositions()[3 * s.triangles[3 * t + k] + 2] >= 0.0f;
-    const FurFrame* same = up == 0 ? &allPlain : up == 3 ? &allStiff : nullptr;
-    if (!same) continue;
-    (up == 0 ? below : above) += 1;
-    EXPECT_EQ(
-        0, std::memcmp(m.positions.data() + h * static_cast<std::int64_t>(n),
-                       same->coats[kOvercoat].positions.data() + h * static_cast<std::int64_t>(n),
-                       n * sizeof(float)))
-        << h;
+  const FurFrame allGroomed = test::furFrame(s, ungroomed, coats, d);
+  for (int c = 0; c < kCoatCount; ++c) {
+    const auto cs = static_cast<std::size_t>(c);
+    const HairBuffers& m = mixed.coats[cs];
+    const std::size_t n = static_cast<std::size_t>(m.layout.pointsPerHair()) * 3;
+    int below = 0, above = 0;
+    for (std::int64_t h = 0; h < m.drawn; ++h) {
+      const std::int32_t t = half.coats[cs].triangle[static_cast<std::size_t>(h)];
+      int up = 0;
+      for (int k = 0; k < 3; ++k) up += s.restPositions()[3 * s.triangles[3 * t + k] + 2] >= 0.0f;
+      const FurFrame* same = up == 0 ? &allPlain : up == 3 ? &allGroomed : nullptr;
+      if (!same) continue;
+      (up == 0 ? below : above) += 1;
+      EXPECT_EQ(0, std::memcmp(m.positions.data() + h * static_cast<std::int64_t>(n),
+                               same->coats[cs].positions.data() + h * static_cast<std::int64_t>(n),
+                               n * sizeof(float)))
+          << "coat " << c << " hair " << h;
+    }
+    EXPECT_GT(below, c == kOvercoat ? 1000 : 200) << "coat " << c;
+    EXPECT_GT(above, c == kOvercoat ? 1000 : 200) << "coat " << c;
   }
-  EXPECT_GT(below, 1000);
-  EXPECT_GT(above, 1000);
+}
+
+TEST(Groom, AStiffnessGroomDroopsEachHairAsACoatOfItsStiffness) {
+  expectGroomGrowsAsCoatsOfItsValue(&VertexGroom::stiffness, &CoatParams::stiffness,
+                                    &CoatRoots::floppiness, Eigen::Vector2f(0.85f, 0.05f));
+}
+
+TEST(Groom, ADirectionWeightGroomTurnsEachHairAsACoatOfItsWeight) {
+  // Sec. 3.4's w per hair: the default coats' w is 0.3; 0.9 and 0.6 lean the hairs further
+  // toward the sphere's segment direction (+x).
+  expectGroomGrowsAsCoatsOfItsValue(&VertexGroom::segmentDirectionWeight,
+                                    &CoatParams::segmentDirectionWeight, &CoatRoots::segmentWeight,
+                                    Eigen::Vector2f(0.9f, 0.6f));
 }
 
 }  // namespace

@@ -49,7 +49,7 @@ CoatShape shapeFor(HairStyle style, float stiffness, float weight = 0.0f,
 
 HairFrame<float> frameOf(const CoatShape& c, const V& root, const V& n, const V& s, float length,
                          const V& xi = {0, 0, 0}) {
-  HairInput<float> in{root, n, s, length, xi, 0.0f, {0, 0, 0}, 0.0f, 0.0f, 0.0f};
+  HairInput<float> in{root, n, s, length, xi, 0.0f, {0, 0, 0}, 0.0f, 0.0f, 0.0f, 0.0f};
   HairFrame<float> f;
   hairFrame(c, in, f);
   return f;
@@ -361,8 +361,8 @@ TEST(HairMath, HelixKeepsTheEndsAndWindsAtTheGivenRadius) {
   const CoatShape curly = makeCoatShape(p, 0);
   p.coats[0].curlRadius = 0.0f;
   const CoatShape plain = makeCoatShape(p, 0);
-  HairInput<float> in{v3(0, 0, 0), v3(0, 0, 1), v3(1, 0, 0), 0.05f, v3(0, 0, 0),
-                      0.3f,        v3(0, 0, 0), 0.0f,        0.0f,  0.0f};
+  HairInput<float> in{v3(0, 0, 0), v3(0, 0, 1), v3(1, 0, 0), 0.05f, v3(0, 0, 0), 0.3f,
+                      v3(0, 0, 0), 0.0f,        0.0f,        0.0f,  0.0f};
   HairFrame<float> f;
   hairFrame(curly, in, f);
   Collect a, b;
@@ -400,8 +400,8 @@ TEST(HairMath, TubeRingsSurroundTheCurveWithOutwardNormals) {
   p.coats[0].tubeSides = 5;
   p.coats[0].width = {2.0f, 0.1f};
   const CoatShape c = makeCoatShape(p, 0);
-  HairInput<float> in{v3(0, 0, 0), v3(0, 0, 1), v3(1, 0, 0), 0.05f, v3(0, 0, 0),
-                      0.0f,        v3(0, 0, 0), 0.0f,        0.0f,  0.0f};
+  HairInput<float> in{v3(0, 0, 0), v3(0, 0, 1), v3(1, 0, 0), 0.05f, v3(0, 0, 0), 0.0f,
+                      v3(0, 0, 0), 0.0f,        0.0f,        0.0f,  0.0f};
   HairFrame<float> f;
   hairFrame(c, in, f);
   Collect curve, tube;

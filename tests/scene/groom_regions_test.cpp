@@ -316,6 +316,10 @@ TEST(GroomRegions, ErrorsNameThePresetFileTheRegionAndTheField) {
   test::writeText(file, R"({"regions": [{"match": "b_Tail*", "stiffness": [0.5]}]})");
   test::expectInputError([&] { fur::loadFurPreset(file); },
                          {file, "regions[0].stiffness", "[overcoat, undercoat]"});
+  test::writeText(file,
+                  R"({"regions": [{"match": "b_Tail*", "segmentDirectionWeight": [0.5, 2]}]})");
+  test::expectInputError([&] { fur::loadFurPreset(file); },
+                         {file, "regions[0].segmentDirectionWeight[1]", "[0, 1]"});
   // Coat fields a region cannot set yet are refused by name.
   test::writeText(file, R"({"regions": [{"match": "b_Tail*", "curlTurns": 2}]})");
   test::expectInputError([&] { fur::loadFurPreset(file); }, {file, "regions[0]", "curlTurns"});
@@ -344,71 +348,104 @@ TEST(GroomRegions, PresetRoundTripAndRegrowth) {
                 .lengthMm = 30.0f,
                 .densityScale = 1.5f,
                 .tint = {0.5f, 0.25f, 1.0f}},
-               {.match = "b_Head*", .stiffness = Eigen::Vector2f(0.25f, 0.75f)}};
+               {.match = "b_Head*", .stiffness = Eigen::Vector2f(0.25f, 0.75f)},
+               {.match = "b_Leg*", .segmentDirectionWeight = Eigen::Vector2f(0.5f, 1.0f)}};
   const fur::FurParams back = fur::parseFurPreset(fur::furPresetJson(p), "round trip");
   EXPECT_EQ(back.regions, p.regions);
   fur::FurParams q = p;
   q.regions[0].lengthScale = 1.5f;
   EXPECT_TRUE(scene::rootsDiffer(p, q));
-  // The coats' stiffness is where a stiffness region blends from: the roots' floppiness changes.
+  // The coats' stiffness and w are where such regions blend from: the roots' own values change.
+  for (float fur::CoatParams::*field :
+       {&fur::CoatParams::stiffness, &fur::CoatParams::segmentDirectionWeight}) {
+    q = p;
+    q.coats[fur::kUndercoat].*field = 0.5f;
+    EXPECT_TRUE(scene::rootsDiffer(p, q));
+  }
+  // Without a region of that value the coats' apply per frame: no regrowth.
   q = p;
-  q.coats[fur::kUndercoat].stiffness = 0.5f;
-  EXPECT_TRUE(scene::rootsDiffer(p, q));
-  q.regions.pop_back();
+  q.regions.pop_back();  // the stiffness region stays
   fur::FurParams r = q;
+  r.coats[fur::kOvercoat].segmentDirectionWeight = 0.9f;
+  EXPECT_FALSE(scene::rootsDiffer(q, r));
+  q.regions.pop_back();
+  r = q;
   r.coats[fur::kUndercoat].stiffness = 0.25f;
+  r.coats[fur::kOvercoat].segmentDirectionWeight = 0.9f;
   EXPECT_FALSE(scene::rootsDiffer(q, r));
 }
 
-TEST(GroomRegions, FoxStiffTailDroopsAsAStiffCoatUnchangedAwayBlendedBetween) {
+// The Fox with `region` on b_Tail* setting a per-coat value to `value` for both coats: hairs whose
+// three vertices have tail weight 1 grow (ending direction e, sec. 3.5) exactly as in coats of
+// that value (CoatParams::*coatField), hairs with none exactly as the plain coats', and the
+// overcoat roots' own value (CoatRoots::*perRoot) moves monotonically with the tail weight between
+// (rising when `rising`).
+void expectFoxTailGrowsAsCoatsOfItsValue(const fur::FurRegion& region,
+                                         float fur::CoatParams::*coatField, float value,
+                                         std::vector<float> fur::CoatRoots::*perRoot, bool rising) {
   const scene::Model* m = fox();
   if (!m) GTEST_SKIP() << "shared Fox model absent";
   const fur::FurParams plain = foxParams();
   fur::FurParams groomed = plain;
-  groomed.regions = {{.match = "b_Tail*", .stiffness = Eigen::Vector2f(0.95f, 0.95f)}};
-  fur::FurParams stiff = plain;
-  for (auto& c : stiff.coats) c.stiffness = 0.95f;
+  groomed.regions = {region};
+  fur::FurParams coats = plain;
+  for (auto& c : coats.coats) c.*coatField = value;
   const scene::Fur a = scene::growFur(*m, plain, "test");
   const scene::Fur b = scene::growFur(*m, groomed, "test");
   ASSERT_EQ(a.roots.coats[0].triangle, b.roots.coats[0].triangle);
   ASSERT_EQ(a.roots.coats[0].tableIndex, b.roots.coats[0].tableIndex);
+  ASSERT_EQ((b.roots.coats[0].*perRoot).size(), b.roots.coats[0].triangle.size());
   skin::DeformedSkin rest;
   skin::restSkin(m->skin, rest);
   const fur::CoatShape plainShape = fur::makeCoatShape(plain, a.roots, 0);
-  const fur::CoatShape stiffShape = fur::makeCoatShape(stiff, a.roots, 0);
+  const fur::CoatShape coatsShape = fur::makeCoatShape(coats, a.roots, 0);
   const fur::CoatShape groomedShape = fur::makeCoatShape(groomed, b.roots, 0);
-  ASSERT_TRUE(groomedShape.perHairFloppiness);
-  const auto droop = [&](const fur::CoatShape& shape, const fur::FurRoots& roots, std::int64_t k) {
+  const auto ending = [&](const fur::CoatShape& shape, const fur::FurRoots& roots, std::int64_t k) {
     fur::HairFrame<float> f;
     fur::hairFrame(shape, fur::rootInput(m->skin, roots, rest, 0, k), f);
     return Eigen::Vector3f(f.e.x, f.e.y, f.e.z);
   };
   const std::vector<float> tail = fur::regionWeights(m->skin, m->body, "b_Tail*");
   int inTail = 0, away = 0, between = 0;
-  std::vector<std::pair<float, float>> blend;  // (tail weight at the root, floppiness)
+  std::vector<std::pair<float, float>> blend;  // (tail weight at the root, the root's value)
   for (std::int64_t k = 0; k < b.roots.coats[0].size(); ++k) {
     const RootWeights t = rootWeights(*m, b.roots, k, tail);
-    const Eigen::Vector3f e = droop(groomedShape, b.roots, k);
-    const float f = b.roots.coats[0].floppiness[static_cast<std::size_t>(k)];
+    const Eigen::Vector3f e = ending(groomedShape, b.roots, k);
     if (t.v[0] == 1.0f && t.v[1] == 1.0f && t.v[2] == 1.0f) {
-      EXPECT_EQ(e, droop(stiffShape, a.roots, k)) << "root " << k;
+      EXPECT_EQ(e, ending(coatsShape, a.roots, k)) << "root " << k;
       ++inTail;
     } else if (std::max({t.v[0], t.v[1], t.v[2]}) == 0.0f) {
-      EXPECT_EQ(e, droop(plainShape, a.roots, k)) << "root " << k;
+      EXPECT_EQ(e, ending(plainShape, a.roots, k)) << "root " << k;
       ++away;
     } else {
-      blend.emplace_back(t.blend, f);
+      blend.emplace_back(t.blend, (b.roots.coats[0].*perRoot)[static_cast<std::size_t>(k)]);
       ++between;
     }
   }
   EXPECT_GT(inTail, 200);
   EXPECT_GT(away, 5000);
   EXPECT_GT(between, 100);
-  // Floppiness falls from the coat's (0.7) toward the tail's (0.05) as the tail weight grows.
   std::sort(blend.begin(), blend.end());
-  for (std::size_t i = 1; i < blend.size(); ++i)
-    EXPECT_LE(blend[i].second, blend[i - 1].second + 1e-6f) << "the blend is not monotone";
-  EXPECT_FLOAT_EQ(fur::floppiness(plain.coats[0].stiffness), 0.7f);
+  for (std::size_t i = 1; i < blend.size(); ++i) {
+    const float step = blend[i].second - blend[i - 1].second;
+    EXPECT_GE(rising ? step : -step, -1e-6f) << "the blend is not monotone";
+  }
+}
+
+TEST(GroomRegions, FoxStiffTailDroopsAsAStiffCoatUnchangedAwayBlendedBetween) {
+  // Floppiness falls from the overcoat's (0.7) toward the tail's (0.05) as the tail weight grows.
+  EXPECT_FLOAT_EQ(fur::floppiness(foxParams().coats[0].stiffness), 0.7f);
+  expectFoxTailGrowsAsCoatsOfItsValue(
+      {.match = "b_Tail*", .stiffness = Eigen::Vector2f(0.95f, 0.95f)}, &fur::CoatParams::stiffness,
+      0.95f, &fur::CoatRoots::floppiness, false);
+}
+
+TEST(GroomRegions, FoxTailAlongTheBoneTurnsAsACoatOfThatWeight) {
+  // Sec. 3.4's w from the overcoat's 0.3 to 1 on the tail (hairs along the tail's bones).
+  EXPECT_FLOAT_EQ(foxParams().coats[0].segmentDirectionWeight, 0.3f);
+  expectFoxTailGrowsAsCoatsOfItsValue(
+      {.match = "b_Tail*", .segmentDirectionWeight = Eigen::Vector2f(1.0f, 1.0f)},
+      &fur::CoatParams::segmentDirectionWeight, 1.0f, &fur::CoatRoots::segmentWeight, true);
 }
 
 }  // namespace

@@ -154,11 +154,13 @@ TEST_P(GpuFurParity, MatchesTheCpuModel) {
     fur.groom.vertex.clump.resize(fur.groom.vertex.comb.size());
     for (std::size_t v = 0; v < fur.groom.vertex.clump.size(); ++v)
       fur.groom.vertex.clump[v] = model.skin.restPositions()[3 * v] > 0.0f ? 1.0f : 0.5f;
-    // And each coat's stiffness per vertex (groom.h), varying along x: per-hair floppiness.
+    // And each coat's stiffness and segment direction weight per vertex (groom.h), varying along
+    // x: per-hair floppiness and w.
     for (std::size_t v = 0; v < fur.groom.vertex.clump.size(); ++v) {
       const float x = model.skin.restPositions()[3 * v];
       const float s = std::clamp(0.5f + 1.5f * x, 0.0f, 1.0f);
       fur.groom.vertex.stiffness.emplace_back(s, 1.0f - s);
+      fur.groom.vertex.segmentDirectionWeight.emplace_back(1.0f - s, s);
     }
     const std::vector<std::int32_t> triangles = fur.roots.coats[0].triangle;
     fur.roots = fur::growRoots(model.skin, fur.params, fur.groom);
@@ -168,6 +170,7 @@ TEST_P(GpuFurParity, MatchesTheCpuModel) {
       ASSERT_GT(cr.clumpCentres.size(), 20u);
       ASSERT_FALSE(cr.clumpScale.empty());
       ASSERT_FALSE(cr.floppiness.empty());
+      ASSERT_FALSE(cr.segmentWeight.empty());
     }
   }
   ASSERT_GT(fur.roots.coats[0].size(), 5000);

@@ -143,7 +143,8 @@ struct GpuFur::Impl {
     float twistAmount = -1.0f;
     std::uint64_t twistSeed = 0;
     std::vector<float> twistTable;
-    // Per root (uploadRoots: clump slot and scale, floppiness; empty when the coat needs none),
+    // Per root (uploadRoots: clump slot and scale, floppiness, segment direction weight; empty
+    // when the coat needs none),
     // and clumping's centre strand points of this frame (grown as needed).
     Buffer rootExtras, clumpCentres;
     bool hasRootExtras = false;
@@ -224,10 +225,11 @@ struct GpuFur::Impl {
       g.tables = makeBuffer(kTableFloats * 4, nullptr);
       glNamedBufferSubData(g.tables.get(), 0, kTwistFloatsAt * 4, r.barycentric.data());
       g.twistAmount = -1.0f;
-      // Per root, as the shader's RootExtras: (clump slot, clump scale bits, floppiness bits, 0);
+      // Per root, as the shader's RootExtras: (clump slot, clump scale bits, floppiness bits,
+      // segment direction weight bits);
       // a root in a clump other than its own (generateFur's test) gets its slot, others -1.
       std::vector<std::int32_t> extras;
-      if (!cr.clumpSlot.empty() || !cr.floppiness.empty()) {
+      if (!cr.clumpSlot.empty() || !cr.floppiness.empty() || !cr.segmentWeight.empty()) {
         extras.assign(static_cast<std::size_t>(4 * g.rootCount), 0);
         for (std::int64_t j = 0; j < g.rootCount; ++j) {
           const auto k = static_cast<std::size_t>(j);
@@ -238,6 +240,8 @@ struct GpuFur::Impl {
               std::bit_cast<std::int32_t>(cr.clumpScale.empty() ? 1.0f : cr.clumpScale[k]);
           extras[4 * k + 2] =
               std::bit_cast<std::int32_t>(cr.floppiness.empty() ? 0.0f : cr.floppiness[k]);
+          extras[4 * k + 3] =
+              std::bit_cast<std::int32_t>(cr.segmentWeight.empty() ? 0.0f : cr.segmentWeight[k]);
         }
       }
       g.rootExtras = makeBuffer(static_cast<GLsizeiptr>(extras.size() * 4), extras.data());

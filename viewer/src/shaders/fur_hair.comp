@@ -15,7 +15,7 @@ layout(std430, binding = 5) readonly buffer Jitter { vec4 jitter[]; };          
 // The coat's tables: the barycentric table (2048 x (b1, b2, b3, 0)), then from TWIST_FLOATS_AT
 // the twist table (2048 x 8 x (cos, sin)).
 layout(std430, binding = 6) readonly buffer Tables { float tables[]; };
-layout(std430, binding = 7) readonly buffer RootExtras { ivec4 rootExtras[]; };      // window: (clump slot or -1, clump scale bits, floppiness bits, 0)
+layout(std430, binding = 7) readonly buffer RootExtras { ivec4 rootExtras[]; };      // window: (clump slot or -1, clump scale bits, floppiness bits, segment direction weight bits)
 layout(std430, binding = 8) readonly buffer Positions { float positions[]; };        // nV x 3, deformed
 layout(std430, binding = 9) readonly buffer Normals { float normals[]; };            // nV x 3
 layout(std430, binding = 10) readonly buffer VertexData { float vertexData[]; };     // nV x 3 directions, then nV lengths
@@ -34,7 +34,7 @@ uniform int uStrandStride;  // 1, or M for tubes
 uniform bool uColors;       // per-hair colours: copy each drawn hair's root and tip colour
 uniform int uVertexCount;   // nV (where VertexData's lengths start)
 uniform bool uClump;        // the coat clumps (RootExtras' clump and ClumpCentres are its)
-uniform bool uRootExtras;   // RootExtras is bound (the coat clumps or has per-hair floppiness)
+uniform bool uRootExtras;   // RootExtras is bound (the coat clumps or has per-hair floppiness or w)
 uniform float uClumpWeights[MAX_CURVE_POINTS];  // fur::clumpWeights: s_k
 
 int gOut = 0;    // first float of this hair's points in the chunk
@@ -120,6 +120,7 @@ void main() {
   }
   ivec4 extras = uRootExtras ? rootExtras[local] : ivec4(-1, 0, 0, 0);
   if (cs.perHairFloppiness != 0) hin.floppiness = intBitsToFloat(extras.z);
+  if (cs.perHairSegmentWeight != 0) hin.segmentWeight = intBitsToFloat(extras.w);
   ivec2 clump = uClump ? extras.xy : ivec2(-1, 0);
   gLater = clump.x >= 0;
   buildHair(hin);

@@ -58,7 +58,8 @@ struct HairInput {
   vec3 combEdge;  // the groom's comb (cs.comb): the triangle's first edge v2 - v1,
   float combX;    // and the root's comb in the tangent frame it spans
   float combY;
-  float floppiness;  // the root's own (cs.perHairFloppiness: a groom's stiffness)
+  float floppiness;     // the root's own (cs.perHairFloppiness: a groom's stiffness)
+  float segmentWeight;  // the root's own (cs.perHairSegmentWeight: a groom's direction weight)
   float twistCos[POLYLINE_POINTS];
   float twistSin[POLYLINE_POINTS];
 };
@@ -92,6 +93,7 @@ HairInput interpolateRoot(vec3 b, vec3 p1, vec3 p2, vec3 p3, float len1, float l
   hin.combX = float((comb << 16) >> 16) / 32767.0;
   hin.combY = float(comb >> 16) / 32767.0;
   hin.floppiness = cs.floppiness;
+  hin.segmentWeight = cs.segmentWeight;
   return hin;
 }
 
@@ -228,7 +230,7 @@ void emitPoint(int i, vec3 p, vec3 n);
 void buildHair(HairInput hin) {
   vec3 root = hin.root;
   vec3 n = skinNormal(hin);
-  vec3 d = weightlessDirection(n, hin.directionSum, cs.segmentWeight);
+  vec3 d = weightlessDirection(n, hin.directionSum, hin.segmentWeight);
   if (cs.comb != 0) d = combedDirection(n, d, hin);
   float L = hairLength(hin.length, root);
   vec3 dTilde = perturbedDirection(d, hin.xi);

@@ -138,6 +138,9 @@ struct FurRegion {
   // The stiffness of (overcoat, undercoat) there, [0, 1] each (the coat's floppiness, sec. 3.5,
   // per hair); unset: keep.
   std::optional<Eigen::Vector2f> stiffness = std::nullopt;
+  // The segment direction weight w of (overcoat, undercoat) there, [0, 1] each (sec. 3.4:
+  // d = normalize((1 - w) n + w s), per hair); unset: keep.
+  std::optional<Eigen::Vector2f> segmentDirectionWeight = std::nullopt;
   bool operator==(const FurRegion&) const = default;
 };
 inline constexpr std::size_t kMaxFurRegions = 256;

@@ -43,6 +43,10 @@ inline constexpr float kMaxCombLength2 = 1.0f + 1e-5f;
 //  stiffness: each coat's stiffness at the vertex (overcoat, undercoat), [0, 1], replacing the
 //    coat's: a hair's floppiness (sec. 3.5) is floppiness() of the stiffness interpolated at its
 //    root at rest (roots.h CoatRoots::floppiness), so gravity bends it as a coat of that stiffness.
+//  segmentDirectionWeight: each coat's segment direction weight w at the vertex (overcoat,
+//    undercoat), [0, 1], replacing the coat's: a hair's weightless direction (sec. 3.4)
+//    d = normalize((1 - w) n + w s) takes the w interpolated at its root at rest
+//    (CoatRoots::segmentWeight).
 struct VertexGroom {
   std::vector<float> length;
   std::vector<float> density;
@@ -50,9 +54,10 @@ struct VertexGroom {
   std::vector<Eigen::Vector3f> comb;
   std::vector<float> clump;
   std::vector<Eigen::Vector2f> stiffness;
+  std::vector<Eigen::Vector2f> segmentDirectionWeight;
   bool empty() const {
     return length.empty() && density.empty() && tint.empty() && comb.empty() && clump.empty() &&
-           stiffness.empty();
+           stiffness.empty() && segmentDirectionWeight.empty();
   }
 };
 
@@ -105,12 +110,13 @@ VertexGroom groomFromRegions(const skin::SkinMesh& skin, const anatomy::Body& bo
 //   {"format": "pelage groom", "version": 1,
 //    "mesh": {"vertices": nV, "triangles": nT, "hash": "16 hex digits"},
 //    "length": [nV metres], "density": [nV], "tint": [nV x [r, g, b]], "comb": [nV x [x, y, z]],
-//    "clump": [nV], "stiffness": [nV x [overcoat, undercoat]]}
+//    "clump": [nV], "stiffness": [nV x [overcoat, undercoat]],
+//    "segmentDirectionWeight": [nV x [overcoat, undercoat]]}
 // (each array optional; floats written with round-trip precision, so a file reads back
 // bit-identically). The hash (meshHash) keys the file to the skin's vertex and triangle order and
 // rest positions; loading it on another mesh is an error naming both meshes. Values: length
-// [0, 10] m, density [0, 100], tint [0, 10] each, comb of length <= 1, clump and stiffness
-// [0, 1], all finite.
+// [0, 10] m, density [0, 100], tint [0, 10] each, comb of length <= 1, clump, stiffness and
+// segment direction weight [0, 1], all finite.
 inline constexpr int kGroomFileVersion = 1;
 
 // FNV-1a 64 over the vertex and triangle counts, the triangles' vertex indices and the rest

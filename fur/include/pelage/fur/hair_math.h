@@ -155,6 +155,8 @@ inline constexpr int kMaxTubeSides = 32;    // M
 //  comb: the coat's roots carry a groom's comb (CoatRoots::comb; combedDirection);
 //  perHairFloppiness: the coat's roots carry their own floppiness (CoatRoots::floppiness, a
 //    groom's stiffness; HairInput::floppiness replaces `floppiness`);
+//  perHairSegmentWeight: the coat's roots carry their own segment direction weight
+//    (CoatRoots::segmentWeight; HairInput::segmentWeight replaces `segmentWeight`);
 //  frizz*: the frizz (fur_params.h Frizz; addFrizz): frizz = strand points with frizz (0: off),
 //    frizzRing = points per strand point (a tube's M, else 1), frizzSeed = the coat seed's 32 bits;
 //    per strand point k: frizzWeight = amplitude (m) t_k^tipWeight, frizzCell = floor(t_k freq),
@@ -177,6 +179,7 @@ inline constexpr int kMaxTubeSides = 32;    // M
   SCALAR(std::int32_t, int, curl)                                       \
   SCALAR(std::int32_t, int, comb)                                       \
   SCALAR(std::int32_t, int, perHairFloppiness)                          \
+  SCALAR(std::int32_t, int, perHairSegmentWeight)                       \
   SCALAR(std::int32_t, int, frizz)                                      \
   SCALAR(std::int32_t, int, frizzRing)                                  \
   SCALAR(std::int32_t, int, frizzSeed)                                  \
@@ -250,7 +253,8 @@ struct HairInput {
   // v2 - v1, and the root's comb in the tangent frame it spans (unpackComb).
   Vec3<T> combEdge;
   T combX, combY;
-  T floppiness;  // the root's own (read only when CoatShape::perHairFloppiness)
+  T floppiness;     // the root's own (read only when CoatShape::perHairFloppiness)
+  T segmentWeight;  // the root's own (read only when CoatShape::perHairSegmentWeight)
 };
 
 // The polyline normal twist of one hair (sec. 3.7), per point: cos and sin of the random angle.
@@ -305,11 +309,13 @@ inline void unpackComb(std::uint32_t packed, float& x, float& y) {
 // (kVertexRecordFloats each) with the barycentric entry b = (b1, b2, b3), and the root's jitter
 // j = (xi x, y, z, helix phase); a length map's value at the root multiplies the interpolated
 // length (1 without one: x * 1 = x exactly); `comb` is the root's packed comb (0: none);
-// `floppiness` the root's own (CoatRoots::floppiness; read only where the coat has them). The
-// scalar form of every kernel's gather (and of the GPU's interpolateRoot in hair_math.glsl).
+// `floppiness` and `segmentWeight` the root's own (CoatRoots::floppiness, ::segmentWeight; read
+// only where the coat has them). The scalar form of every kernel's gather (and of the GPU's
+// interpolateRoot in hair_math.glsl).
 inline HairInput<float> interpolateRoot(const float* b, const float* v1, const float* v2,
                                         const float* v3, const float* j, float lengthScale = 1.0f,
-                                        std::uint32_t comb = 0, float floppiness = 0.0f) {
+                                        std::uint32_t comb = 0, float floppiness = 0.0f,
+                                        float segmentWeight = 0.0f) {
   const auto mix = [&](int k) { return barycentricMix(b[0], b[1], b[2], v1[k], v2[k], v3[k]); };
   HairInput<float> in{};
   in.root = {mix(0), mix(1), mix(2)};
@@ -321,6 +327,7 @@ inline HairInput<float> interpolateRoot(const float* b, const float* v1, const f
   in.combEdge = {v2[0] - v1[0], v2[1] - v1[1], v2[2] - v1[2]};
   unpackComb(comb, in.combX, in.combY);
   in.floppiness = floppiness;
+  in.segmentWeight = segmentWeight;
   return in;
 }
 
@@ -351,10 +358,10 @@ inline T hairLength(const CoatShape& c, const T& interpolated, const Vec3<T>& h)
 // Sec. 3.4: the weightless hair direction d = normalize((1 - w) n + w s), s = normalize(sum b_i
 // s_i); d = n where the root has no segment direction (s = 0) or the blend vanishes.
 template <class T>
-inline Vec3<T> weightlessDirection(const Vec3<T>& n, const Vec3<T>& directionSum, float w) {
+inline Vec3<T> weightlessDirection(const Vec3<T>& n, const Vec3<T>& directionSum, const T& w) {
   const auto hasS = greater(dot(directionSum, directionSum), T(1e-12f));
   const Vec3<T> s = normalizeOr(directionSum, n, 1e-12f);
-  const Vec3<T> blend = n * T(1.0f - w) + s * T(w);
+  const Vec3<T> blend = n * (T(1.0f) - w) + s * w;
   return pick(hasS, normalizeOr(blend, n, 1e-12f), n);
 }
 
@@ -496,7 +503,8 @@ template <class T>
 inline void hairFrame(const CoatShape& c, const HairInput<T>& in, HairFrame<T>& f) {
   f.root = in.root;
   f.normal = skinNormal(c, in);
-  Vec3<T> d = weightlessDirection(f.normal, in.directionSum, c.segmentWeight);
+  Vec3<T> d = weightlessDirection(f.normal, in.directionSum,
+                                  c.perHairSegmentWeight ? in.segmentWeight : T(c.segmentWeight));
   if (c.comb) d = combedDirection(f.normal, d, in);
   f.length = hairLength(c, in.length, in.root);
   f.dTilde = perturbedDirection(c, d, in.xi);

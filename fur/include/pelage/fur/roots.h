@@ -52,6 +52,10 @@ struct CoatRoots {
   // interpolated at the root at rest (groom.h VertexGroom::stiffness); empty without one (the
   // coat's floppiness for every hair).
   std::vector<float> floppiness;
+  // nRoots: the hair's segment direction weight w (sec. 3.4) from the groom's per-vertex weights
+  // of this coat interpolated at the root at rest (VertexGroom::segmentDirectionWeight); empty
+  // without them (the coat's w for every hair).
+  std::vector<float> segmentWeight;
   double expectedHairs = 0.0;  // N_coat, before random rounding
   std::int64_t size() const { return static_cast<std::int64_t>(triangle.size()); }
 };

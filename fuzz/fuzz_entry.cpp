@@ -207,6 +207,8 @@ std::string groomExample() {
                              1.0f - 0.25f * static_cast<float>(v % 5));
     g.segmentDirectionWeight.emplace_back(0.25f * static_cast<float>(v % 5),
                                           0.125f * static_cast<float>(v % 9));
+    g.curlRadius.emplace_back(0.0625f * static_cast<float>(v % 9), 0.25f);
+    g.curlTurns.emplace_back(2.5f * static_cast<float>(v % 9), 0.5f * static_cast<float>(v % 3));
   }
   return fur::groomFileJson(groomMesh(), g);
 }

@@ -40,8 +40,8 @@ void checkCoat(const std::string& source, const std::string& name, const CoatPar
   checkRange(source, name + ".tubeSides", c.tubeSides, 3, 32);
   checkRange(source, name + ".width.root", c.width.rootMm, 0.001, 20.0);
   checkRange(source, name + ".width.tip", c.width.tipMm, 0.0, 20.0);
-  checkRange(source, name + ".curl.radius", c.curlRadius, 0.0, 0.5);
-  checkRange(source, name + ".curl.turns", c.curlTurns, 0.0, 20.0);
+  checkRange(source, name + ".curl.radius", c.curlRadius, 0.0, kMaxCurlRadius);
+  checkRange(source, name + ".curl.turns", c.curlTurns, 0.0, kMaxCurlTurns);
   checkRange(source, name + ".frizz.amplitude", c.frizz.amplitudeMm, 0.0, 100.0);
   checkRange(source, name + ".frizz.frequency", c.frizz.frequency, 0.1, 64.0);
   checkRange(source, name + ".frizz.tipWeight", c.frizz.tipWeight, 1.0, 8.0);
@@ -117,13 +117,16 @@ void validateFurParams(FurParams& p, const std::string& source) {
     checkRange(source, at + "lengthMm", g.lengthMm, 0.0, 10000.0);
     checkRange(source, at + "densityScale", g.densityScale, 0.0, 100.0);
     for (int k = 0; k < 3; ++k) checkRange(source, str(at, "tint[", k, "]"), g.tint[k], 0.0, 10.0);
-    if (g.stiffness)
-      for (int k = 0; k < 2; ++k)
-        checkRange(source, str(at, "stiffness[", k, "]"), (*g.stiffness)[k], 0.0, 1.0);
-    if (g.segmentDirectionWeight)
-      for (int k = 0; k < 2; ++k)
-        checkRange(source, str(at, "segmentDirectionWeight[", k, "]"),
-                   (*g.segmentDirectionWeight)[k], 0.0, 1.0);
+    const auto checkPair = [&](const std::optional<Eigen::Vector2f>& v, const char* field,
+                               double hi) {
+      if (v)
+        for (int k = 0; k < 2; ++k)
+          checkRange(source, str(at, field, "[", k, "]"), (*v)[k], 0.0, hi);
+    };
+    checkPair(g.stiffness, "stiffness", 1.0);
+    checkPair(g.segmentDirectionWeight, "segmentDirectionWeight", 1.0);
+    checkPair(g.curlRadius, "curl.radius", kMaxCurlRadius);
+    checkPair(g.curlTurns, "curl.turns", kMaxCurlTurns);
   }
   for (int k = 0; k < 3; ++k) checkRange(source, str("up[", k, "]"), p.up[k], -1e6, 1e6);
   const float upLength = p.up.norm();

@@ -40,9 +40,20 @@ CoatShape makeCoatShape(const FurParams& params, const FurRoots& roots, int coat
   c.comb = cr.comb.empty() ? 0 : 1;
   c.perHairFloppiness = cr.floppiness.empty() ? 0 : 1;
   c.perHairSegmentWeight = cr.segmentWeight.empty() ? 0 : 1;
+  // A groom's curl winds each hair by its own helix (curve and tube styles, as the coat's).
+  c.perHairCurl =
+      !cr.curlRadius.empty() && usesCurveParams(params.coats[static_cast<std::size_t>(coat)].style);
+  if (c.perHairCurl) c.curl = 1;
   const std::uint64_t seed = coatSeed(roots.seed, coat);
   c.frizzSeed = std::bit_cast<std::int32_t>(static_cast<std::uint32_t>(seed ^ (seed >> 32)));
   return c;
+}
+
+HairLayout coatLayout(const FurParams& params, const FurRoots& roots, int coat) {
+  const auto ci = static_cast<std::size_t>(coat);
+  HairLayout l = hairLayout(params.coats[ci]);
+  if (!roots.coats[ci].curlRadius.empty() && usesCurveParams(l.style)) l.curl = true;
+  return l;
 }
 
 CoatShape makeCoatShape(const FurParams& params, int coat) {
@@ -96,9 +107,8 @@ CoatShape makeCoatShape(const FurParams& params, int coat) {
   // Sec. 3.8: Bezier weights of R + c1 L n_p + c2 L e at t_k = k / (K - 1).
   const int K = std::clamp(cp.curvePoints, 2, kMaxCurvePoints);
   c.curvePoints = K;
-  c.curl = cp.curlRadius > 0.0f && (cp.style == HairStyle::Curve || cp.style == HairStyle::Tube);
+  c.curl = cp.curlRadius > 0.0f && usesCurveParams(cp.style);
   c.curlRadius = c.curl ? cp.curlRadius : 0.0f;
-  const double turns = static_cast<double>(cp.curlTurns);
   for (int k = 0; k < K; ++k) {
     const double t = k / double(K - 1);
     c.curveC1[k] = static_cast<float>((1 - t) * (1 - t) * t);
@@ -107,8 +117,8 @@ CoatShape makeCoatShape(const FurParams& params, int coat) {
     c.curveDc2[k] = static_cast<float>(4 * t - 3 * t * t);
     const bool end = k == 0 || k == K - 1;
     c.curlEnvelope[k] = end ? 0.0f : static_cast<float>(std::sin(kPi * t));
-    c.curlCos[k] = static_cast<float>(std::cos(2 * kPi * turns * t));
-    c.curlSin[k] = static_cast<float>(std::sin(2 * kPi * turns * t));
+    c.curlT[k] = static_cast<float>(t);
+    helixTurn(cp.curlTurns, c.curlT[k], c.curlSin[k], c.curlCos[k]);
     // The tube's radius: half the coat's width (the one taper, StrandWidth::metersAt).
     c.tubeRadius[k] = 0.5f * cp.width.metersAt(static_cast<float>(t));
   }
@@ -159,7 +169,7 @@ void prepareFurFrame(const FurRoots& roots, const FurParams& params, FurFrame& f
   std::array<std::size_t, kCoatCount> floats{};
   for (int c = 0; c < kCoatCount; ++c) {
     const auto ci = static_cast<std::size_t>(c);
-    frame.coats[ci].layout = hairLayout(params.coats[ci]);
+    frame.coats[ci].layout = coatLayout(params, roots, c);
     floats[ci] = static_cast<std::size_t>(roots.coats[ci].size()) *
                  static_cast<std::size_t>(frame.coats[ci].layout.pointsPerHair()) * 3;
   }
@@ -325,7 +335,7 @@ void generateClumpCentres(const skin::SkinMesh& skin, const FurRoots& roots,
     }
     const CoatShape shape = makeCoatShape(params, roots, c);
     if (shape.twist) ensureTwist(params, c, coatSeed(roots.seed, c), ws);
-    computeClumpCentres(skin, roots, deformed, c, shape, hairLayout(params.coats[ci]), nullptr, ws);
+    computeClumpCentres(skin, roots, deformed, c, shape, coatLayout(params, roots, c), nullptr, ws);
   }
 }
 
@@ -349,8 +359,7 @@ void detail::generateFurWithDynamics(
   bool sized = true;
   for (int c = 0; c < kCoatCount; ++c) {
     const HairBuffers& hb = frame.coats[static_cast<std::size_t>(c)];
-    const auto& cp = params.coats[static_cast<std::size_t>(c)];
-    sized = sized && hb.layout == hairLayout(cp) &&
+    sized = sized && hb.layout == coatLayout(params, roots, c) &&
             hb.hairIds.size() ==
                 static_cast<std::size_t>(roots.coats[static_cast<std::size_t>(c)].size());
   }
@@ -389,6 +398,8 @@ void detail::generateFurWithDynamics(
     a.comb = cr.comb.empty() ? nullptr : cr.comb.data();
     a.floppiness = cr.floppiness.empty() ? nullptr : cr.floppiness.data();
     a.segmentWeight = cr.segmentWeight.empty() ? nullptr : cr.segmentWeight.data();
+    a.curlRadius = cr.curlRadius.empty() ? nullptr : cr.curlRadius.data();
+    a.curlTurns = cr.curlTurns.empty() ? nullptr : cr.curlTurns.data();
     a.barycentric = roots.barycentric.data();
     a.twist = shape.twist ? ws.twist[ci].data() : nullptr;
     a.positions = emit ? hb.positions.data() : nullptr;
@@ -469,11 +480,14 @@ HairInput<float> rootInput(const skin::SkinMesh& skin, const FurRoots& roots,
     rec[4] = n.x(), rec[5] = n.y(), rec[6] = n.z(), rec[7] = 0.0f;
     rec[8] = s.x(), rec[9] = s.y(), rec[10] = s.z(), rec[11] = 0.0f;
   }
+  const float curlValues[2] = {cr.curlRadius.empty() ? 0.0f : cr.curlRadius[r],
+                               cr.curlTurns.empty() ? 0.0f : cr.curlTurns[r]};
+  const float* curl = cr.curlRadius.empty() ? nullptr : curlValues;
   return interpolateRoot(
       roots.barycentric.data() + 4 * cr.tableIndex[r], records[0], records[1], records[2],
       cr.jitter.data() + 4 * r, cr.lengthScale.empty() ? 1.0f : cr.lengthScale[r],
       cr.comb.empty() ? 0u : cr.comb[r], cr.floppiness.empty() ? 0.0f : cr.floppiness[r],
-      cr.segmentWeight.empty() ? 0.0f : cr.segmentWeight[r]);
+      cr.segmentWeight.empty() ? 0.0f : cr.segmentWeight[r], curl);
 }
 
 void referenceHair(const skin::SkinMesh& skin, const FurRoots& roots, const FurParams& params,
@@ -502,7 +516,7 @@ void referenceHair(const skin::SkinMesh& skin, const FurRoots& roots, const FurP
       cr.clumpSlot.empty() ? -1 : cr.clumpSlot[static_cast<std::size_t>(rootIndex)];
   if (coatClumps(params, roots, coat) && slot >= 0 &&
       cr.clumpCentres[static_cast<std::size_t>(slot)] != rootIndex) {
-    const HairLayout layout = hairLayout(params.coats[ci]);
+    const HairLayout layout = coatLayout(params, roots, coat);
     const int K = layout.strandPoints;
     std::vector<float> p, n, centre(static_cast<std::size_t>(3 * K));
     paperHair(cr.clumpCentres[static_cast<std::size_t>(slot)], p, n);

@@ -41,12 +41,12 @@ Groom loadGroomMaps(const GroomMapPaths& paths, const skin::SkinMesh& skin,
     const char* field = !paths.density.empty()  ? "maps.density"
                         : !paths.length.empty() ? "maps.length"
                                                 : "maps.color";
-    fieldError(
-        field, ": model '", modelName,
-        "' has no texture coordinates, so groom maps cannot be placed on it (they need a "
-        "glTF model with TEXCOORD_0); groom it by regions instead (a preset's \"regions\": "
-        "lengthScale, lengthMm, densityScale, tint, stiffness, segmentDirectionWeight per region "
-        "or joint)");
+    fieldError(field, ": model '", modelName,
+               "' has no texture coordinates, so groom maps cannot be placed on it (they need a "
+               "glTF model with TEXCOORD_0); groom it by regions instead (a preset's \"regions\": "
+               "lengthScale, lengthMm, densityScale, tint, stiffness, segmentDirectionWeight, curl "
+               "per region "
+               "or joint)");
   }
   m.density = loadMap(paths.density, "maps.density", false, skin::Filter::Nearest);
   m.length = loadMap(paths.length, "maps.length", false, skin::Filter::Linear);
@@ -150,6 +150,8 @@ VertexGroom groomFromRegions(const skin::SkinMesh& skin, const anatomy::Body& bo
     blendCoats(g.stiffness, reg.stiffness, over.stiffness, under.stiffness);
     blendCoats(g.segmentDirectionWeight, reg.segmentDirectionWeight, over.segmentDirectionWeight,
                under.segmentDirectionWeight);
+    blendCoats(g.curlRadius, reg.curlRadius, over.curlRadius, under.curlRadius);
+    blendCoats(g.curlTurns, reg.curlTurns, over.curlTurns, under.curlTurns);
     if (matches) matches->push_back(std::move(m));
   }
   return g;

@@ -89,7 +89,9 @@ std::string groomFileJson(const skin::SkinMesh& skin, const VertexGroom& g) {
                    (g.comb.empty() || g.comb.size() == nV) &&
                    (g.clump.empty() || g.clump.size() == nV) &&
                    (g.stiffness.empty() || g.stiffness.size() == nV) &&
-                   (g.segmentDirectionWeight.empty() || g.segmentDirectionWeight.size() == nV),
+                   (g.segmentDirectionWeight.empty() || g.segmentDirectionWeight.size() == nV) &&
+                   (g.curlRadius.empty() || g.curlRadius.size() == nV) &&
+                   (g.curlTurns.empty() || g.curlTurns.size() == nV),
                "groom arrays sized for another mesh");
   nlohmann::json j;
   j["format"] = kFormat;
@@ -121,6 +123,8 @@ std::string groomFileJson(const skin::SkinMesh& skin, const VertexGroom& g) {
   if (!g.stiffness.empty()) j["stiffness"] = rows(g.stiffness);
   if (!g.segmentDirectionWeight.empty())
     j["segmentDirectionWeight"] = rows(g.segmentDirectionWeight);
+  if (!g.curlRadius.empty()) j["curlRadius"] = rows(g.curlRadius);
+  if (!g.curlTurns.empty()) j["curlTurns"] = rows(g.curlTurns);
   return j.dump() + "\n";
 }
 
@@ -137,7 +141,7 @@ VertexGroom parseGroomFile(const std::string& text, const std::string& source,
     j.fail(str("not a groom file: expected \"format\": \"", kFormat,
                "\" (groom files come from pelage's groom output or Python's write_groom)"));
   j.rejectUnknown({"format", "version", "mesh", "length", "density", "tint", "comb", "clump",
-                   "stiffness", "segmentDirectionWeight"});
+                   "stiffness", "segmentDirectionWeight", "curlRadius", "curlTurns"});
   j.integer("version", kGroomFileVersion, kGroomFileVersion);
   const JsonReader mesh = j.at("mesh");
   mesh.rejectUnknown({"vertices", "triangles", "hash"});
@@ -160,6 +164,10 @@ VertexGroom parseGroomFile(const std::string& text, const std::string& source,
   if (j.has("stiffness")) g.stiffness = readRows<2>(j, "stiffness", n, 0.0, 1.0);
   if (j.has("segmentDirectionWeight"))
     g.segmentDirectionWeight = readRows<2>(j, "segmentDirectionWeight", n, 0.0, 1.0);
+  if (j.has("curlRadius"))
+    g.curlRadius = readRows<2>(j, "curlRadius", n, 0.0, static_cast<double>(kMaxCurlRadius));
+  if (j.has("curlTurns"))
+    g.curlTurns = readRows<2>(j, "curlTurns", n, 0.0, static_cast<double>(kMaxCurlTurns));
   if (j.has("tint")) g.tint = readRows<3>(j, "tint", n, 0.0, static_cast<double>(kMaxGroomTint));
   if (j.has("comb")) {
     g.comb = readRows<3>(j, "comb", n, -1.0, 1.0);

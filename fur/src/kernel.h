@@ -28,6 +28,8 @@ struct CoatKernelArgs {
   const std::uint32_t* comb = nullptr;         // nRoots (a groom's comb, packComb), or null
   const float* floppiness = nullptr;           // nRoots (a groom's stiffness), or null
   const float* segmentWeight = nullptr;        // nRoots (a groom's direction weight), or null
+  const float* curlRadius = nullptr;           // nRoots (a groom's curl), or null
+  const float* curlTurns = nullptr;            // nRoots (with curlRadius), or null
   const float* barycentric = nullptr;          // 2048 x 4
   const float* twist = nullptr;                // 2048 x 16 (cos, sin per point) or null
   float* positions = nullptr;                  // drawn x P x 3

@@ -84,8 +84,8 @@ CoatParams parseCoat(const JsonReader& j, const CoatParams& defaults) {
   }
   if (auto curl = j.find("curl")) {
     curl->rejectUnknown({"radius", "turns"});
-    c.curlRadius = num(*curl, "radius", c.curlRadius, 0.0, 0.5);
-    c.curlTurns = num(*curl, "turns", c.curlTurns, 0.0, 20.0);
+    c.curlRadius = num(*curl, "radius", c.curlRadius, 0.0, kMaxCurlRadius);
+    c.curlTurns = num(*curl, "turns", c.curlTurns, 0.0, kMaxCurlTurns);
   }
   if (auto frizz = j.find("frizz")) {
     frizz->rejectUnknown({"amplitude", "frequency", "tipWeight"});
@@ -137,24 +137,26 @@ LengthRegion parseRegion(const JsonReader& j) {
   return r;
 }
 
-// A region's per-coat value in [0, 1]: one number (both coats) or [overcoat, undercoat]; unset
+// A region's per-coat value in [0, hi]: one number (both coats) or [overcoat, undercoat]; unset
 // where the region does not name it.
-std::optional<Eigen::Vector2f> coatPair(const JsonReader& j, const char* field) {
+std::optional<Eigen::Vector2f> coatPair(const JsonReader& j, const char* field, double hi = 1.0) {
   if (!j.has(field)) return std::nullopt;
   const JsonReader s = j.at(field);
   if (!s.isArray()) {
-    const auto both = static_cast<float>(s.asNumber(0.0, 1.0));
+    const auto both = static_cast<float>(s.asNumber(0.0, hi));
     return Eigen::Vector2f(both, both);
   }
   if (s.size() != 2)
-    s.fail("expected a number in [0, 1] (both coats) or [overcoat, undercoat], each in [0, 1]");
-  return Eigen::Vector2f(static_cast<float>(s.at(0).asNumber(0.0, 1.0)),
-                         static_cast<float>(s.at(1).asNumber(0.0, 1.0)));
+    s.fail(str("expected a number in [0, ", hi,
+               "] (both coats) or [overcoat, undercoat], each in [0, ", hi, "]"));
+  return Eigen::Vector2f(static_cast<float>(s.at(0).asNumber(0.0, hi)),
+                         static_cast<float>(s.at(1).asNumber(0.0, hi)));
 }
 
 // "regions": [{"match": PATTERN, "lengthScale": s, "lengthMm": mm, "densityScale": d,
 // "tint": [r, g, b], "stiffness": s | [overcoat, undercoat], "segmentDirectionWeight": w |
-// [overcoat, undercoat]}, ...]; the list replaces the base preset's.
+// [overcoat, undercoat], "curl": {"radius": r | [o, u], "turns": t | [o, u]}}, ...]; the list
+// replaces the base preset's.
 std::vector<FurRegion> parseFurRegions(const JsonReader& list) {
   if (!list.isArray())
     list.fail("expected an array of regions, e.g. [{\"match\": \"b_Tail*\", \"lengthScale\": 2}]");
@@ -164,10 +166,10 @@ std::vector<FurRegion> parseFurRegions(const JsonReader& list) {
   for (std::size_t i = 0; i < list.size(); ++i) {
     const JsonReader j = list.at(i);
     if (!j.isObject()) j.fail("expected an object {\"match\": PATTERN, ...}");
-    // Of the coat fields the stiffness and the segment direction weight are per region (width,
-    // curl and colour source are per coat).
+    // Of the coat fields the stiffness, the segment direction weight and the curl are per region
+    // (width and colour source are per coat).
     j.rejectUnknown({"match", "lengthScale", "lengthMm", "densityScale", "tint", "stiffness",
-                     "segmentDirectionWeight"});
+                     "segmentDirectionWeight", "curl"});
     FurRegion r;
     if (!j.has("match"))
       j.fail("missing 'match' (a region, material or joint name; '*' wildcards)");
@@ -184,6 +186,15 @@ std::vector<FurRegion> parseFurRegions(const JsonReader& list) {
     }
     r.stiffness = coatPair(j, "stiffness");
     r.segmentDirectionWeight = coatPair(j, "segmentDirectionWeight");
+    if (j.has("curl")) {
+      const JsonReader curl = j.at("curl");
+      if (!curl.isObject())
+        curl.fail(
+            "expected {\"radius\": r, \"turns\": t}, each one number or [overcoat, undercoat]");
+      curl.rejectUnknown({"radius", "turns"});
+      r.curlRadius = coatPair(curl, "radius", kMaxCurlRadius);
+      r.curlTurns = coatPair(curl, "turns", kMaxCurlTurns);
+    }
     out.push_back(std::move(r));
   }
   return out;
@@ -438,6 +449,8 @@ std::string furPresetJson(const FurParams& p) {
       if (g.segmentDirectionWeight)
         region["segmentDirectionWeight"] = {g.segmentDirectionWeight->x(),
                                             g.segmentDirectionWeight->y()};
+      if (g.curlRadius) region["curl"]["radius"] = {g.curlRadius->x(), g.curlRadius->y()};
+      if (g.curlTurns) region["curl"]["turns"] = {g.curlTurns->x(), g.curlTurns->y()};
       list.push_back(std::move(region));
     }
     j["regions"] = list;

@@ -404,6 +404,12 @@ FurRoots growRoots(const skin::SkinMesh& skin, const FurParams& params, const Gr
     if (clumpScaled) cr.clumpScale.resize(n);
     if (!groom.vertex.stiffness.empty()) cr.floppiness.resize(n);
     if (!groom.vertex.segmentDirectionWeight.empty()) cr.segmentWeight.resize(n);
+    const CoatParams& coat = params.coats[static_cast<std::size_t>(c)];
+    const bool curled = !groom.vertex.curlRadius.empty() || !groom.vertex.curlTurns.empty();
+    if (curled) {
+      cr.curlRadius.assign(n, coat.curlRadius);
+      cr.curlTurns.assign(n, coat.curlTurns);
+    }
     parallelForChunks(nT, 4096, [&](std::int64_t tb, std::int64_t te) {
       for (std::int64_t t = tb; t < te; ++t) {
         const std::int64_t first = cr.triangleStart[static_cast<std::size_t>(t)];
@@ -444,6 +450,10 @@ FurRoots growRoots(const skin::SkinMesh& skin, const FurParams& params, const Gr
             cr.floppiness[ks] = floppiness(atRoot(groom.vertex.stiffness));
           if (!cr.segmentWeight.empty())
             cr.segmentWeight[ks] = atRoot(groom.vertex.segmentDirectionWeight);
+          if (curled && !groom.vertex.curlRadius.empty())
+            cr.curlRadius[ks] = atRoot(groom.vertex.curlRadius);
+          if (curled && !groom.vertex.curlTurns.empty())
+            cr.curlTurns[ks] = atRoot(groom.vertex.curlTurns);
           if (!cr.comb.empty())
             cr.comb[ks] = restComb(skin, rest, groom.vertex.comb, static_cast<std::int32_t>(t),
                                    roots.barycentric.data() + 4 * cr.tableIndex[ks]);

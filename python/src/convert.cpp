@@ -175,7 +175,8 @@ Dynamics dynamicsFrom(const py::object& d) {
 fur::VertexGroom vertexGroomFrom(int vertices, const py::object& length, const py::object& density,
                                  const py::object& tint, const py::object& comb,
                                  const py::object& clump, const py::object& stiffness,
-                                 const py::object& segmentDirectionWeight) {
+                                 const py::object& segmentDirectionWeight,
+                                 const py::object& curlRadius, const py::object& curlTurns) {
   const auto nV = static_cast<py::ssize_t>(vertices);
   const auto column = [&](const py::object& o, const char* name) {
     std::vector<float> out;
@@ -220,6 +221,8 @@ fur::VertexGroom vertexGroomFrom(int vertices, const py::object& length, const p
   g.stiffness = pairs(stiffness, "stiffness", "(overcoat, undercoat) stiffness");
   g.segmentDirectionWeight = pairs(segmentDirectionWeight, "segment_direction_weight",
                                    "(overcoat, undercoat) segment direction weight");
+  g.curlRadius = pairs(curlRadius, "curl_radius", "(overcoat, undercoat) curl radius");
+  g.curlTurns = pairs(curlTurns, "curl_turns", "(overcoat, undercoat) curl turns");
   return g;
 }
 
@@ -245,6 +248,8 @@ py::dict groomDict(const fur::VertexGroom& g) {
   if (!g.stiffness.empty()) d["stiffness"] = pairs(g.stiffness);
   if (!g.segmentDirectionWeight.empty())
     d["segment_direction_weight"] = pairs(g.segmentDirectionWeight);
+  if (!g.curlRadius.empty()) d["curl_radius"] = pairs(g.curlRadius);
+  if (!g.curlTurns.empty()) d["curl_turns"] = pairs(g.curlTurns);
   return d;
 }
 

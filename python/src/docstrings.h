@@ -53,6 +53,10 @@ Args:
         w (overcoat, undercoat) [0, 1] at the vertex, in place of the coat's: a hair's weightless
         direction is normalize((1 - w) n + w s) with the w interpolated at its root (0: along
         the skin normal n, 1: along the body segment's direction s; sec. 3.4).
+    curl_radius, curl_turns: None, or shape (vertices, 2): each coat's helix (overcoat,
+        undercoat) at the vertex, radius [0, 0.5] (a fraction of the hair's length) and turns
+        [0, 20], in place of the coat's: a curve or tube hair winds with the values interpolated
+        at its root (either alone keeps the coat's other; sec. 3.8).
     strokes: None, or grooming strokes applied on top of the arrays (those they need and that
         are absent start from the model's lengths, density 1, tint 1, no comb): a strokes file's
         path, or its JSON as a dict, {"strokes": [{"tool": "length" | "density" | "color" | "comb",

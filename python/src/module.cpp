@@ -117,10 +117,11 @@ fur::FurParams furParams(const std::string& preset, const py::kwargs& fields) {
 void writeGroom(const PyModel& m, const std::string& path, const py::object& length,
                 const py::object& density, const py::object& tint, const py::object& comb,
                 const py::object& clump, const py::object& stiffness,
-                const py::object& segmentDirectionWeight, const py::object& strokes) {
+                const py::object& segmentDirectionWeight, const py::object& curlRadius,
+                const py::object& curlTurns, const py::object& strokes) {
   const skin::SkinMesh& skin = m.model->skin;
   fur::VertexGroom g = vertexGroomFrom(skin.numVertices(), length, density, tint, comb, clump,
-                                       stiffness, segmentDirectionWeight);
+                                       stiffness, segmentDirectionWeight, curlRadius, curlTurns);
   if (!strokes.is_none())
     fur::applyGroomStrokes(skin,
                            py::isinstance<py::str>(strokes)
@@ -578,6 +579,7 @@ PYBIND11_MODULE(_pelage, m) {
            py::arg("density") = py::none(), py::arg("tint") = py::none(),
            py::arg("comb") = py::none(), py::arg("clump") = py::none(),
            py::arg("stiffness") = py::none(), py::arg("segment_direction_weight") = py::none(),
+           py::arg("curl_radius") = py::none(), py::arg("curl_turns") = py::none(),
            py::arg("strokes") = py::none(), doc::kWriteGroomDoc)
       .def("__repr__", [](const PyModel& s) {
         return "<pelage.Model " + s.model->name + ": " + std::to_string(s.model->body.size()) +
@@ -596,7 +598,8 @@ PYBIND11_MODULE(_pelage, m) {
           "groom", [](const PyFur& f) { return groomDict(f.fur->groom.vertex); },
           "The per-vertex groom the hairs grew from (dict of numpy arrays: "
           "'length' (nV,) metres, 'density' (nV,), 'tint' (nV, 3), 'comb' (nV, 3), 'clump' (nV,), "
-          "'stiffness' (nV, 2) and 'segment_direction_weight' (nV, 2) (overcoat, undercoat); "
+          "'stiffness', 'segment_direction_weight', 'curl_radius' and 'curl_turns' (nV, 2) "
+          "(overcoat, undercoat); "
           "only those "
           "a groom file or the regions set).")
       .def_property_readonly(

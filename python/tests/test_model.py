@@ -160,6 +160,35 @@ def test_per_coat_values_by_region_and_from_numpy(tmp_path, field, key, coats, t
 
 @pytest.mark.skipif(not os.path.exists(os.path.join(SHARED, "Fox", "Fox.glb")),
                     reason="the shared glTF models are not here")
+def test_curl_by_region_and_from_numpy(tmp_path):
+    fox = pelage.load(os.path.join(SHARED, "Fox", "Fox.glb"))
+    n = len(fox.skin()[0])
+    curve = {"style": "curve", "curl": {"turns": 3}}
+    curly = fox.fur(hairs=3000, overcoat=curve, undercoat=curve,
+                    regions=[{"match": "b_Tail*", "curl": {"radius": [0.2, 0.1]}}])
+    assert curly.params["regions"][0]["curl"] == {"radius": pytest.approx([0.2, 0.1])}
+    assert set(curly.groom) == {"curl_radius"}
+    radius = curly.groom["curl_radius"]
+    assert radius.shape == (n, 2)
+    assert radius[:, 0].min() == 0 and radius[:, 0].max() == np.float32(0.2)
+    straight = fox.fur(hairs=3000, overcoat=curve, undercoat=curve)
+    assert not np.array_equal(curly.hairs().points, straight.hairs().points)
+    # From numpy through a groom file, radius and turns: the same hairs, bit for bit.
+    turns = np.full((n, 2), 3.0, dtype=np.float32)
+    path = str(tmp_path / "curl.groom.json")
+    fox.write_groom(path, curl_radius=radius, curl_turns=turns)
+    from_file = fox.fur(hairs=3000, overcoat=curve, undercoat=curve, groom=path)
+    assert np.array_equal(bits(from_file.groom["curl_turns"]), bits(turns))
+    assert np.array_equal(bits(from_file.hairs().points), bits(curly.hairs().points))
+    with pytest.raises(ValueError, match=r"curlRadius\[0\].*\[0, 0.5\]"):
+        fox.write_groom(str(tmp_path / "bad.json"), curl_radius=np.full((n, 2), 0.6))
+    with pytest.raises(ValueError, match=r"curl_turns.*shape \(%d, 2\)" % n):
+        fox.write_groom(path, curl_turns=turns[:, 0])
+    assert not os.path.exists(tmp_path / "bad.json")
+
+
+@pytest.mark.skipif(not os.path.exists(os.path.join(SHARED, "Fox", "Fox.glb")),
+                    reason="the shared glTF models are not here")
 def test_subdivision_levels():
     path = os.path.join(SHARED, "Fox", "Fox.glb")
     tris = {s: len(pelage.load(path, subdivide=s).skin()[2]) for s in (0, 1, "auto")}

@@ -98,7 +98,7 @@ void buildDrawList(const Model& model, const FrameState& frame, const Fur* fur,
     const fur::CoatParams& cp = fur->params.coats[ci];
     FurDrawItem item;
     item.coat = c;
-    item.layout = fur::hairLayout(cp);
+    item.layout = fur::coatLayout(fur->params, fur->roots, c);
     const fur::CoatColors& colors = fur->colors.coats[ci];
     item.material = linearMaterial(cp.material);
     item.perHairColor = colors.perHair;

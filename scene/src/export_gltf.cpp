@@ -31,7 +31,7 @@ struct CoatPart {
   std::int64_t segments = 0;  // hairs * (K - 1)
 };
 
-std::vector<CoatPart> coatParts(const fur::FurParams& params, const FrameState& state) {
+std::vector<CoatPart> coatParts(const FrameState& state) {
   std::vector<CoatPart> parts;
   if (!state.cpuFur) return parts;
   for (int c = 0; c < fur::kCoatCount; ++c) {
@@ -39,7 +39,7 @@ std::vector<CoatPart> coatParts(const fur::FurParams& params, const FrameState& 
     if (b.drawn == 0) continue;
     CoatPart p;
     p.coat = c;
-    p.layout = fur::hairLayout(params.coats[static_cast<std::size_t>(c)]);
+    p.layout = b.layout;
     p.hairs = b.drawn;
     p.vertices = b.drawn * p.layout.strandPoints;
     p.segments = b.drawn * (p.layout.strandPoints - 1);
@@ -114,11 +114,11 @@ nlohmann::json material(const std::string& name, const Eigen::Vector3f& color) {
 
 }  // namespace
 
-GlbCounts glbCounts(const Model& model, const fur::FurParams& params, const FrameState& state) {
+GlbCounts glbCounts(const Model& model, const FrameState& state) {
   GlbCounts n;
   n.skinVertices = model.skin.numVertices();
   n.skinTriangles = model.skin.numTriangles();
-  for (const CoatPart& p : coatParts(params, state)) {
+  for (const CoatPart& p : coatParts(state)) {
     const auto c = static_cast<std::size_t>(p.coat);
     n.hairs[c] = p.hairs;
     n.hairVertices[c] = p.vertices;
@@ -136,8 +136,8 @@ GlbCounts writeFrameGlb(const std::string& path, const Model& model, const Fur& 
   const std::size_t nV = static_cast<std::size_t>(skin.numVertices());
   PELAGE_CHECK(state.skin.positions.size() == nV && state.skin.normals.size() == nV,
                "frame not evaluated");
-  const std::vector<CoatPart> parts = coatParts(params, state);
-  GlbCounts counts = glbCounts(model, params, state);
+  const std::vector<CoatPart> parts = coatParts(state);
+  GlbCounts counts = glbCounts(model, state);
 
   // Buffer layout: skin positions, normals, indices; then per coat positions, indices, colours,
   // widths.

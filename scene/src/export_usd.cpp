@@ -232,7 +232,7 @@ void UsdaWriter::addFrame(int frame, const FrameState& state) {
       CoatOut co;
       co.coat = c;
       co.name = c == fur::kOvercoat ? "overcoat" : "undercoat";
-      co.layout = fur::hairLayout(m.params->coats[static_cast<std::size_t>(c)]);
+      co.layout = b.layout;
       co.shape = fur::makeCoatShape(*m.params, c);
       co.curves = b.drawn;
       co.points = std::make_unique<Spool>(m.path, co.name + "-points");

@@ -71,8 +71,9 @@ bool clumpRootsDiffer(const fur::FurParams& a, const fur::FurParams& b) {
   return false;
 }
 
-// A region's stiffness or segment direction weight blends from the coats' own into the per-vertex
-// values the roots' floppiness and w are interpolated from (fur::groomFromRegions).
+// A region's stiffness, segment direction weight or curl blends from the coats' own into the
+// per-vertex values the roots' floppiness, w and helix are interpolated from
+// (fur::groomFromRegions).
 bool regionCoatValuesDiffer(const fur::FurParams& a, const fur::FurParams& b) {
   const auto anyRegion = [&](auto field) {
     for (const fur::FurParams* p : {&a, &b})
@@ -87,9 +88,14 @@ bool regionCoatValuesDiffer(const fur::FurParams& a, const fur::FurParams& b) {
         return true;
     return false;
   };
+  // A region's curl radius or turns alone keeps the coats' other value per root too.
+  const bool curlRegions =
+      anyRegion(&fur::FurRegion::curlRadius) || anyRegion(&fur::FurRegion::curlTurns);
   return (anyRegion(&fur::FurRegion::stiffness) && coatsDiffer(&fur::CoatParams::stiffness)) ||
          (anyRegion(&fur::FurRegion::segmentDirectionWeight) &&
-          coatsDiffer(&fur::CoatParams::segmentDirectionWeight));
+          coatsDiffer(&fur::CoatParams::segmentDirectionWeight)) ||
+         (curlRegions &&
+          (coatsDiffer(&fur::CoatParams::curlRadius) || coatsDiffer(&fur::CoatParams::curlTurns)));
 }
 }  // namespace
 

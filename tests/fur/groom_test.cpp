@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <functional>
 #include <random>
 
 #include "../test_support.h"
@@ -97,10 +98,14 @@ TEST(Groom, RegionCoatValuesBlendFromTheCoats) {
   p.regions = {{.match = "b",
                 .stiffness = Eigen::Vector2f(0.9f, 0.9f),
                 .segmentDirectionWeight = Eigen::Vector2f(1.0f, 0.0f)},
-               {.match = "left", .stiffness = Eigen::Vector2f(0.1f, 0.5f)}};
+               {.match = "left",
+                .stiffness = Eigen::Vector2f(0.1f, 0.5f),
+                .curlRadius = Eigen::Vector2f(0.25f, 0.5f)}};
   const VertexGroom out = groomFromRegions(g.skin, g.body, p, "test");
   ASSERT_EQ(out.stiffness.size(), 25u);
   ASSERT_EQ(out.segmentDirectionWeight.size(), 25u);
+  ASSERT_EQ(out.curlRadius.size(), 25u);
+  EXPECT_TRUE(out.curlTurns.empty());
   EXPECT_TRUE(out.length.empty() && out.density.empty() && out.tint.empty());
   for (int v = 0; v < 25; ++v) {
     const auto vs = static_cast<std::size_t>(v);
@@ -112,6 +117,10 @@ TEST(Groom, RegionCoatValuesBlendFromTheCoats) {
       weight = Eigen::Vector2f(1.0f, 0.0f);
     }
     if (g.x(v) < 0.015f) stiffness = Eigen::Vector2f(0.1f, 0.5f);
+    // The coats' radius is 0: the left region's (weight 1 there) or none.
+    const Eigen::Vector2f radius =
+        g.x(v) < 0.015f ? Eigen::Vector2f(0.25f, 0.5f) : Eigen::Vector2f::Zero();
+    EXPECT_EQ(out.curlRadius[vs], radius) << v;
     EXPECT_EQ(out.stiffness[vs], stiffness) << v;
     EXPECT_EQ(out.segmentDirectionWeight[vs], weight) << v;
   }
@@ -129,6 +138,8 @@ TEST(Groom, FileRoundTripsBitIdenticallyAndRefusesAnotherMesh) {
     v.clump.push_back(u(rng));
     v.stiffness.emplace_back(u(rng), 1.0f / 7.0f);
     v.segmentDirectionWeight.emplace_back(1.0f / 3.0f, u(rng));
+    v.curlRadius.emplace_back(0.5f * u(rng), 0.1f);
+    v.curlTurns.emplace_back(20.0f * u(rng), 1.0f / 7.0f);
   }
   const std::string file = testing::TempDir() + "grid.groom.json";
   writeGroomFile(file, g.skin, v);
@@ -141,10 +152,12 @@ TEST(Groom, FileRoundTripsBitIdenticallyAndRefusesAnotherMesh) {
   ASSERT_EQ(back.stiffness.size(), 25u);
   EXPECT_EQ(std::memcmp(back.stiffness.data(), v.stiffness.data(), 25 * sizeof(Eigen::Vector2f)),
             0);
-  ASSERT_EQ(back.segmentDirectionWeight.size(), 25u);
-  EXPECT_EQ(std::memcmp(back.segmentDirectionWeight.data(), v.segmentDirectionWeight.data(),
-                        25 * sizeof(Eigen::Vector2f)),
-            0);
+  for (auto field :
+       {&VertexGroom::segmentDirectionWeight, &VertexGroom::curlRadius, &VertexGroom::curlTurns}) {
+    ASSERT_EQ((back.*field).size(), 25u);
+    EXPECT_EQ(std::memcmp((back.*field).data(), (v.*field).data(), 25 * sizeof(Eigen::Vector2f)),
+              0);
+  }
   EXPECT_EQ(groomFileJson(g.skin, back), test::readText(file));
   // The same counts but another shape: the hash tells them apart.
   const skin::SkinMesh moved = test::makeGrid(4, 0.011f, 0.01f);
@@ -193,6 +206,18 @@ TEST(Groom, FileValuesAreChecked) {
   text.replace(text.rfind("[0.5,0.25]"), 10, "[0.5,-0.25]");
   test::expectInputError([&] { parseGroomFile(text, "f.json", g.skin, "grid"); },
                          {"f.json", "segmentDirectionWeight[24]", "2 numbers", "[0, 1]"});
+  VertexGroom curl;
+  curl.curlRadius.assign(25, Eigen::Vector2f(0.5f, 0.25f));
+  curl.curlTurns.assign(25, Eigen::Vector2f(20.0f, 2.0f));
+  text = groomFileJson(g.skin, curl);
+  const std::string goodCurl = text;
+  text.replace(text.find("[0.5,0.25]"), 10, "[0.75,0.25]");
+  test::expectInputError([&] { parseGroomFile(text, "f.json", g.skin, "grid"); },
+                         {"f.json", "curlRadius[0]", "[0, 0.5]"});
+  text = goodCurl;
+  text.replace(text.find("[20.0,2.0]"), 10, "[20.5,2.0]");
+  test::expectInputError([&] { parseGroomFile(text, "f.json", g.skin, "grid"); },
+                         {"f.json", "curlTurns[0]", "[0, 20]"});
   test::expectInputError([&] { parseGroomFile("{}", "f.json", g.skin, "grid"); },
                          {"f.json", "not a groom file"});
   test::expectInputError([&] { parseGroomFile("[1,", "f.json", g.skin, "grid"); }, {"f.json"});
@@ -243,24 +268,29 @@ TEST(Groom, HairsOnAGroomMatchTheReferenceOnEveryPathAndThreadCount) {
     groom.vertex.density.push_back(z > 0.0f ? 2.0f : 0.5f);
     groom.vertex.stiffness.emplace_back(0.5f + 5.0f * z, 1.0f - (0.5f + 5.0f * z));
     groom.vertex.segmentDirectionWeight.emplace_back(0.5f - 5.0f * z, 0.5f + 5.0f * z);
+    // A helix on both coats (the undercoat's own is 0.2 radius, 2.5 turns), turns varying.
+    groom.vertex.curlRadius.emplace_back(z > 0.0f ? 0.1f : 0.0f, 0.2f);
+    groom.vertex.curlTurns.emplace_back(2.0f + 20.0f * z, 2.5f + 30.0f * z);
   }
   test::checkStylesAgainstReference(s, d, 6000, Eigen::Vector3f(0.0f, 0.0f, 0.1f), groom);
 }
 
 // A groom of one per-coat value everywhere (VertexGroom::*field = `value` for (overcoat,
-// undercoat)) gives, bit for bit, the hairs of coats of that value (CoatParams::*coatField; each
-// root's own, CoatRoots::*perRoot, is the coat's); the plain coats' value on the lower half
-// changes only the upper hairs.
+// undercoat); the default preset's coats, as `prepare` changes them) gives, bit for bit, the hairs
+// of coats of that value (CoatParams::*coatField; each root's own, CoatRoots::*perRoot, is the
+// coat's); the plain coats' value on the lower half changes only the upper hairs.
 void expectGroomGrowsAsCoatsOfItsValue(std::vector<Eigen::Vector2f> VertexGroom::*field,
                                        float CoatParams::*coatField,
                                        std::vector<float> CoatRoots::*perRoot,
-                                       const Eigen::Vector2f& value) {
+                                       const Eigen::Vector2f& value,
+                                       const std::function<void(FurParams&)>& prepare = {}) {
   const skin::SkinMesh s = test::makeSphere(0.1f, 16, 32);
   skin::DeformedSkin d;
   skin::restSkin(s, d);
   FurParams plain = loadFurPreset("default");
   plain.setHairCount(4000);
   plain.culling.enabled = false;
+  if (prepare) prepare(plain);
   FurParams coats = plain;
   coats.coats[kOvercoat].*coatField = value.x();
   coats.coats[kUndercoat].*coatField = value.y();
@@ -318,6 +348,26 @@ TEST(Groom, ADirectionWeightGroomTurnsEachHairAsACoatOfItsWeight) {
   expectGroomGrowsAsCoatsOfItsValue(&VertexGroom::segmentDirectionWeight,
                                     &CoatParams::segmentDirectionWeight, &CoatRoots::segmentWeight,
                                     Eigen::Vector2f(0.9f, 0.6f));
+}
+
+TEST(Groom, ACurlGroomWindsEachHairAsACoatOfItsHelix) {
+  // Sec. 3.8's helix per hair (curve and tube coats): a radius groom on straight coats with
+  // 2.5 turns, and a turns groom on coats of radius 0.1; each alone keeps the coats' other.
+  const auto styled = [](HairStyle style, float radius, float turns) {
+    return [=](FurParams& p) {
+      for (CoatParams& c : p.coats) {
+        c.style = style;
+        c.curlRadius = radius;
+        c.curlTurns = turns;
+      }
+    };
+  };
+  expectGroomGrowsAsCoatsOfItsValue(&VertexGroom::curlRadius, &CoatParams::curlRadius,
+                                    &CoatRoots::curlRadius, Eigen::Vector2f(0.15f, 0.3f),
+                                    styled(HairStyle::Curve, 0.0f, 2.5f));
+  expectGroomGrowsAsCoatsOfItsValue(&VertexGroom::curlTurns, &CoatParams::curlTurns,
+                                    &CoatRoots::curlTurns, Eigen::Vector2f(3.0f, 1.5f),
+                                    styled(HairStyle::Tube, 0.1f, 0.0f));
 }
 
 }  // namespace

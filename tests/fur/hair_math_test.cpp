@@ -47,9 +47,22 @@ CoatShape shapeFor(HairStyle style, float stiffness, float weight = 0.0f,
   return makeCoatShape(p, 0);
 }
 
+// One hair's inputs at its root (no groom values: those are zero).
+HairInput<float> inputOf(const V& root, const V& n, const V& s, float length, const V& xi,
+                         float phase) {
+  HairInput<float> in{};
+  in.root = root;
+  in.normalSum = n;
+  in.directionSum = s;
+  in.length = length;
+  in.xi = xi;
+  in.phase = phase;
+  return in;
+}
+
 HairFrame<float> frameOf(const CoatShape& c, const V& root, const V& n, const V& s, float length,
                          const V& xi = {0, 0, 0}) {
-  HairInput<float> in{root, n, s, length, xi, 0.0f, {0, 0, 0}, 0.0f, 0.0f, 0.0f, 0.0f};
+  const HairInput<float> in = inputOf(root, n, s, length, xi, 0.0f);
   HairFrame<float> f;
   hairFrame(c, in, f);
   return f;
@@ -361,8 +374,8 @@ TEST(HairMath, HelixKeepsTheEndsAndWindsAtTheGivenRadius) {
   const CoatShape curly = makeCoatShape(p, 0);
   p.coats[0].curlRadius = 0.0f;
   const CoatShape plain = makeCoatShape(p, 0);
-  HairInput<float> in{v3(0, 0, 0), v3(0, 0, 1), v3(1, 0, 0), 0.05f, v3(0, 0, 0), 0.3f,
-                      v3(0, 0, 0), 0.0f,        0.0f,        0.0f,  0.0f};
+  const HairInput<float> in =
+      inputOf(v3(0, 0, 0), v3(0, 0, 1), v3(1, 0, 0), 0.05f, v3(0, 0, 0), 0.3f);
   HairFrame<float> f;
   hairFrame(curly, in, f);
   Collect a, b;
@@ -400,8 +413,8 @@ TEST(HairMath, TubeRingsSurroundTheCurveWithOutwardNormals) {
   p.coats[0].tubeSides = 5;
   p.coats[0].width = {2.0f, 0.1f};
   const CoatShape c = makeCoatShape(p, 0);
-  HairInput<float> in{v3(0, 0, 0), v3(0, 0, 1), v3(1, 0, 0), 0.05f, v3(0, 0, 0), 0.0f,
-                      v3(0, 0, 0), 0.0f,        0.0f,        0.0f,  0.0f};
+  const HairInput<float> in =
+      inputOf(v3(0, 0, 0), v3(0, 0, 1), v3(1, 0, 0), 0.05f, v3(0, 0, 0), 0.0f);
   HairFrame<float> f;
   hairFrame(c, in, f);
   Collect curve, tube;

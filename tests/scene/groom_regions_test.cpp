@@ -320,6 +320,14 @@ TEST(GroomRegions, ErrorsNameThePresetFileTheRegionAndTheField) {
                   R"({"regions": [{"match": "b_Tail*", "segmentDirectionWeight": [0.5, 2]}]})");
   test::expectInputError([&] { fur::loadFurPreset(file); },
                          {file, "regions[0].segmentDirectionWeight[1]", "[0, 1]"});
+  test::writeText(file, R"({"regions": [{"match": "b_Tail*", "curl": {"radius": 0.6}}]})");
+  test::expectInputError([&] { fur::loadFurPreset(file); },
+                         {file, "regions[0].curl.radius", "[0, 0.5]"});
+  test::writeText(file, R"({"regions": [{"match": "b_Tail*", "curl": {"turns": [1, 2, 3]}}]})");
+  test::expectInputError([&] { fur::loadFurPreset(file); },
+                         {file, "regions[0].curl.turns", "[overcoat, undercoat]"});
+  test::writeText(file, R"({"regions": [{"match": "b_Tail*", "curl": {"radus": 0.1}}]})");
+  test::expectInputError([&] { fur::loadFurPreset(file); }, {file, "regions[0].curl", "radus"});
   // Coat fields a region cannot set yet are refused by name.
   test::writeText(file, R"({"regions": [{"match": "b_Tail*", "curlTurns": 2}]})");
   test::expectInputError([&] { fur::loadFurPreset(file); }, {file, "regions[0]", "curlTurns"});
@@ -349,22 +357,26 @@ TEST(GroomRegions, PresetRoundTripAndRegrowth) {
                 .densityScale = 1.5f,
                 .tint = {0.5f, 0.25f, 1.0f}},
                {.match = "b_Head*", .stiffness = Eigen::Vector2f(0.25f, 0.75f)},
-               {.match = "b_Leg*", .segmentDirectionWeight = Eigen::Vector2f(0.5f, 1.0f)}};
+               {.match = "b_Leg*", .segmentDirectionWeight = Eigen::Vector2f(0.5f, 1.0f)},
+               {.match = "b_Neck*", .curlTurns = Eigen::Vector2f(3.0f, 0.5f)}};
   const fur::FurParams back = fur::parseFurPreset(fur::furPresetJson(p), "round trip");
   EXPECT_EQ(back.regions, p.regions);
   fur::FurParams q = p;
   q.regions[0].lengthScale = 1.5f;
   EXPECT_TRUE(scene::rootsDiffer(p, q));
-  // The coats' stiffness and w are where such regions blend from: the roots' own values change.
+  // The coats' stiffness, w and helix are where such regions blend from: the roots' own values
+  // change.
   for (float fur::CoatParams::*field :
-       {&fur::CoatParams::stiffness, &fur::CoatParams::segmentDirectionWeight}) {
+       {&fur::CoatParams::stiffness, &fur::CoatParams::segmentDirectionWeight,
+        &fur::CoatParams::curlRadius, &fur::CoatParams::curlTurns}) {
     q = p;
     q.coats[fur::kUndercoat].*field = 0.5f;
     EXPECT_TRUE(scene::rootsDiffer(p, q));
   }
   // Without a region of that value the coats' apply per frame: no regrowth.
   q = p;
-  q.regions.pop_back();  // the stiffness region stays
+  q.regions.pop_back();  // the curl region goes
+  q.regions.pop_back();  // and the w region; the stiffness region stays
   fur::FurParams r = q;
   r.coats[fur::kOvercoat].segmentDirectionWeight = 0.9f;
   EXPECT_FALSE(scene::rootsDiffer(q, r));
@@ -372,6 +384,7 @@ TEST(GroomRegions, PresetRoundTripAndRegrowth) {
   r = q;
   r.coats[fur::kUndercoat].stiffness = 0.25f;
   r.coats[fur::kOvercoat].segmentDirectionWeight = 0.9f;
+  r.coats[fur::kOvercoat].curlTurns = 2.0f;
   EXPECT_FALSE(scene::rootsDiffer(q, r));
 }
 

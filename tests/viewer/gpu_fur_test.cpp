@@ -161,6 +161,9 @@ TEST_P(GpuFurParity, MatchesTheCpuModel) {
       const float s = std::clamp(0.5f + 1.5f * x, 0.0f, 1.0f);
       fur.groom.vertex.stiffness.emplace_back(s, 1.0f - s);
       fur.groom.vertex.segmentDirectionWeight.emplace_back(1.0f - s, s);
+      // And a helix per vertex (curve and tube coats wind by it).
+      fur.groom.vertex.curlRadius.emplace_back(0.3f * s, 0.1f);
+      fur.groom.vertex.curlTurns.emplace_back(1.0f + 4.0f * s, 2.5f);
     }
     const std::vector<std::int32_t> triangles = fur.roots.coats[0].triangle;
     fur.roots = fur::growRoots(model.skin, fur.params, fur.groom);
@@ -171,6 +174,7 @@ TEST_P(GpuFurParity, MatchesTheCpuModel) {
       ASSERT_FALSE(cr.clumpScale.empty());
       ASSERT_FALSE(cr.floppiness.empty());
       ASSERT_FALSE(cr.segmentWeight.empty());
+      ASSERT_FALSE(cr.curlRadius.empty());
     }
   }
   ASSERT_GT(fur.roots.coats[0].size(), 5000);

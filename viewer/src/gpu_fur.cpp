@@ -143,11 +143,13 @@ struct GpuFur::Impl {
     float twistAmount = -1.0f;
     std::uint64_t twistSeed = 0;
     std::vector<float> twistTable;
-    // Per root (uploadRoots: clump slot and scale, floppiness, segment direction weight; empty
-    // when the coat needs none),
+    // Per root (uploadRoots: clump slot and scale, floppiness, segment direction weight, and a
+    // second ivec4 with the helix where the roots carry a groom's curl; empty when the coat needs
+    // none),
     // and clumping's centre strand points of this frame (grown as needed).
     Buffer rootExtras, clumpCentres;
     bool hasRootExtras = false;
+    int extrasStride = 1;  // ivec4s per root in rootExtras
     std::int64_t clumpCentreBytes = 0;
   };
   std::array<Coat, fur::kCoatCount> coats;
@@ -226,22 +228,28 @@ struct GpuFur::Impl {
       glNamedBufferSubData(g.tables.get(), 0, kTwistFloatsAt * 4, r.barycentric.data());
       g.twistAmount = -1.0f;
       // Per root, as the shader's RootExtras: (clump slot, clump scale bits, floppiness bits,
-      // segment direction weight bits);
+      // segment direction weight bits), then (curl radius bits, curl turns bits, 0, 0) where the
+      // roots carry a groom's curl;
       // a root in a clump other than its own (generateFur's test) gets its slot, others -1.
       std::vector<std::int32_t> extras;
-      if (!cr.clumpSlot.empty() || !cr.floppiness.empty() || !cr.segmentWeight.empty()) {
-        extras.assign(static_cast<std::size_t>(4 * g.rootCount), 0);
+      const bool curled = !cr.curlRadius.empty();
+      g.extrasStride = curled ? 2 : 1;
+      if (!cr.clumpSlot.empty() || !cr.floppiness.empty() || !cr.segmentWeight.empty() || curled) {
+        const auto stride = static_cast<std::size_t>(4 * g.extrasStride);
+        extras.assign(stride * static_cast<std::size_t>(g.rootCount), 0);
         for (std::int64_t j = 0; j < g.rootCount; ++j) {
           const auto k = static_cast<std::size_t>(j);
+          std::int32_t* x = extras.data() + stride * k;
           const std::int32_t slot = cr.clumpSlot.empty() ? -1 : cr.clumpSlot[k];
           const bool centre = slot < 0 || cr.clumpCentres[static_cast<std::size_t>(slot)] == j;
-          extras[4 * k] = centre ? -1 : slot;
-          extras[4 * k + 1] =
-              std::bit_cast<std::int32_t>(cr.clumpScale.empty() ? 1.0f : cr.clumpScale[k]);
-          extras[4 * k + 2] =
-              std::bit_cast<std::int32_t>(cr.floppiness.empty() ? 0.0f : cr.floppiness[k]);
-          extras[4 * k + 3] =
-              std::bit_cast<std::int32_t>(cr.segmentWeight.empty() ? 0.0f : cr.segmentWeight[k]);
+          x[0] = centre ? -1 : slot;
+          x[1] = std::bit_cast<std::int32_t>(cr.clumpScale.empty() ? 1.0f : cr.clumpScale[k]);
+          x[2] = std::bit_cast<std::int32_t>(cr.floppiness.empty() ? 0.0f : cr.floppiness[k]);
+          x[3] = std::bit_cast<std::int32_t>(cr.segmentWeight.empty() ? 0.0f : cr.segmentWeight[k]);
+          if (curled) {
+            x[4] = std::bit_cast<std::int32_t>(cr.curlRadius[k]);
+            x[5] = std::bit_cast<std::int32_t>(cr.curlTurns[k]);
+          }
         }
       }
       g.rootExtras = makeBuffer(static_cast<GLsizeiptr>(extras.size() * 4), extras.data());
@@ -318,8 +326,8 @@ void GpuFur::generate(int coat, const fur::HairLayout& layout, bool tangents,
   PELAGE_CHECK(coat >= 0 && coat < fur::kCoatCount && m.params, "generate before beginFrame");
   Impl::Coat& g = m.coats[static_cast<std::size_t>(coat)];
   const fur::CoatShape shape = fur::makeCoatShape(*m.params, *m.roots, coat);
-  PELAGE_CHECK(layout == fur::hairLayout(m.params->coats[static_cast<std::size_t>(coat)]),
-               "a layout of ", layout.pointsPerHair(), " points for a coat of ", shape.points);
+  PELAGE_CHECK(layout == fur::coatLayout(*m.params, *m.roots, coat), "a layout of ",
+               layout.pointsPerHair(), " points for a coat of ", shape.points);
   out.reserve(g.rootCount, layout, m.maxBinding);
   glNamedBufferSubData(g.shape.get(), 0, sizeof shape, &shape);
   if (shape.twist) m.ensureTwist(coat);
@@ -399,6 +407,7 @@ void GpuFur::generate(int coat, const fur::HairLayout& layout, bool tangents,
   // (Unused bindings still need a buffer bound.)
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 11, clumps ? g.clumpCentres.get() : g.tables.get());
   glUniform1i(uniform(hp, "uRootExtras"), g.hasRootExtras ? 1 : 0);
+  glUniform1i(uniform(hp, "uExtrasStride"), g.extrasStride);
   if (!g.hasRootExtras) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, g.tables.get());
   if (!g.perHairColor) {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 16, g.tables.get());
@@ -406,8 +415,9 @@ void GpuFur::generate(int coat, const fur::HairLayout& layout, bool tangents,
   }
   const std::int64_t P = layout.pointsPerHair();
   const std::int64_t pointBytes = P * 3 * static_cast<std::int64_t>(sizeof(float));
-  // Roots per window: the root data and jitter (16 bytes per root) are the widest root inputs.
-  std::int64_t window = m.maxBinding / 16;
+  // Roots per window: the root data and jitter (16 bytes per root) are the widest root inputs but
+  // for the extras of a groom's curl (32).
+  std::int64_t window = m.maxBinding / (16 * g.extrasStride);
   window -= window % std::max<std::int64_t>(m.alignment, 256);
   PELAGE_CHECK(window > 0, "binding size ", m.maxBinding, " too small");
   for (const HairChunk& chunk : out.chunks()) {
@@ -430,7 +440,8 @@ void GpuFur::generate(int coat, const fur::HairLayout& layout, bool tangents,
       if (g.perHairColor)
         glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 16, g.colors.get(), first * 8, count * 8);
       if (g.hasRootExtras)
-        glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 7, g.rootExtras.get(), first * 16, count * 16);
+        glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 7, g.rootExtras.get(),
+                          first * 16 * g.extrasStride, count * 16 * g.extrasStride);
       glUniform1i(uniform(hp, "uWindowFirst"), static_cast<GLint>(first));
       glUniform1i(uniform(hp, "uWindowCount"), static_cast<GLint>(count));
       dispatch1d(count, 64, m.options.maxGroupsPerDimension);

@@ -15,7 +15,7 @@ layout(std430, binding = 5) readonly buffer Jitter { vec4 jitter[]; };          
 // The coat's tables: the barycentric table (2048 x (b1, b2, b3, 0)), then from TWIST_FLOATS_AT
 // the twist table (2048 x 8 x (cos, sin)).
 layout(std430, binding = 6) readonly buffer Tables { float tables[]; };
-layout(std430, binding = 7) readonly buffer RootExtras { ivec4 rootExtras[]; };      // window: (clump slot or -1, clump scale bits, floppiness bits, segment direction weight bits)
+layout(std430, binding = 7) readonly buffer RootExtras { ivec4 rootExtras[]; };      // window: (clump slot or -1, clump scale bits, floppiness bits, segment direction weight bits) [, (curl radius bits, curl turns bits, 0, 0)]
 layout(std430, binding = 8) readonly buffer Positions { float positions[]; };        // nV x 3, deformed
 layout(std430, binding = 9) readonly buffer Normals { float normals[]; };            // nV x 3
 layout(std430, binding = 10) readonly buffer VertexData { float vertexData[]; };     // nV x 3 directions, then nV lengths
@@ -34,7 +34,8 @@ uniform int uStrandStride;  // 1, or M for tubes
 uniform bool uColors;       // per-hair colours: copy each drawn hair's root and tip colour
 uniform int uVertexCount;   // nV (where VertexData's lengths start)
 uniform bool uClump;        // the coat clumps (RootExtras' clump and ClumpCentres are its)
-uniform bool uRootExtras;   // RootExtras is bound (the coat clumps or has per-hair floppiness or w)
+uniform bool uRootExtras;   // RootExtras is bound (the coat clumps or has per-hair floppiness, w or curl)
+uniform int uExtrasStride;  // ivec4s per root in RootExtras: 2 where the roots carry a groom's curl
 uniform float uClumpWeights[MAX_CURVE_POINTS];  // fur::clumpWeights: s_k
 
 int gOut = 0;    // first float of this hair's points in the chunk
@@ -118,7 +119,13 @@ void main() {
     hin.twistCos[i] = cs2.x;
     hin.twistSin[i] = cs2.y;
   }
-  ivec4 extras = uRootExtras ? rootExtras[local] : ivec4(-1, 0, 0, 0);
+  // A groom's curl: a second ivec4 per root (uExtrasStride 2), read by curve and tube coats.
+  ivec4 extras = uRootExtras ? rootExtras[uExtrasStride * local] : ivec4(-1, 0, 0, 0);
+  if (cs.perHairCurl != 0) {
+    ivec4 curl = rootExtras[2 * local + 1];
+    hin.curlRadius = intBitsToFloat(curl.x);
+    hin.curlTurns = intBitsToFloat(curl.y);
+  }
   if (cs.perHairFloppiness != 0) hin.floppiness = intBitsToFloat(extras.z);
   if (cs.perHairSegmentWeight != 0) hin.segmentWeight = intBitsToFloat(extras.w);
   ivec2 clump = uClump ? extras.xy : ivec2(-1, 0);

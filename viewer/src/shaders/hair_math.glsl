@@ -47,6 +47,12 @@ void sinCosTurns(float u, out float s, out float c) {
   c = q1 ? 0.0 - sa : (q2 ? 0.0 - ca : (q3 ? sa : ca));
 }
 
+// Sec. 3.8's helix angle 2 pi turns t: its sine and cosine (hair_math.h: helixTurn).
+void helixTurn(float turns, float t, out float s, out float c) {
+  float u = turns * t;
+  sinCosTurns(u - floor(u), s, c);
+}
+
 // Inputs of one hair, interpolated at its root (sec. 3.2).
 struct HairInput {
   vec3 root;
@@ -60,6 +66,8 @@ struct HairInput {
   float combY;
   float floppiness;     // the root's own (cs.perHairFloppiness: a groom's stiffness)
   float segmentWeight;  // the root's own (cs.perHairSegmentWeight: a groom's direction weight)
+  float curlRadius;     // the root's own helix (cs.perHairCurl: a groom's curl)
+  float curlTurns;
   float twistCos[POLYLINE_POINTS];
   float twistSin[POLYLINE_POINTS];
 };
@@ -94,6 +102,8 @@ HairInput interpolateRoot(vec3 b, vec3 p1, vec3 p2, vec3 p3, float len1, float l
   hin.combY = float(comb >> 16) / 32767.0;
   hin.floppiness = cs.floppiness;
   hin.segmentWeight = cs.segmentWeight;
+  hin.curlRadius = cs.curlRadius;
+  hin.curlTurns = 0.0;
   return hin;
 }
 
@@ -203,15 +213,18 @@ vec3 polylineNormal(int i, vec3 u1, vec3 u2, float q, float cosDE) {
 // Sec. 3.8: n_p = the skin normal projected into the hair plane, normalised.
 vec3 curveStartDirection(vec3 n, vec3 b, vec3 dTilde) { return normalizeOr(n - b * dot3(n, b), dTilde, 1e-12); }
 
-// Sec. 3.8: the cubic Bezier (R, R + L/3 n_p, R + 2/3 (E - R), E) at t_k, plus the helix.
+// Sec. 3.8: the cubic Bezier (R, R + L/3 n_p, R + 2/3 (E - R), E) at t_k, plus the helix (the
+// coat's turns, or the hair's own `turns` with cs.perHairCurl).
 vec3 curvePoint(int k, vec3 root, vec3 lnp, vec3 le, vec3 np, vec3 e, vec3 b, float curlLength,
-                float phaseSin, float phaseCos) {
+                float phaseSin, float phaseCos, float turns) {
   vec3 base = (root + lnp * cs.curveC1[k]) + le * cs.curveC2[k];
   if (cs.curl == 0) return base;
   vec3 tangent = np * cs.curveDc1[k] + e * cs.curveDc2[k];
   vec3 n1 = normalizeOr(cross(b, tangent), np, 1e-12);
-  float cosA = cs.curlCos[k] * phaseCos - cs.curlSin[k] * phaseSin;
-  float sinA = cs.curlSin[k] * phaseCos + cs.curlCos[k] * phaseSin;
+  float turnSin = cs.curlSin[k], turnCos = cs.curlCos[k];
+  if (cs.perHairCurl != 0) helixTurn(turns, cs.curlT[k], turnSin, turnCos);
+  float cosA = turnCos * phaseCos - turnSin * phaseSin;
+  float sinA = turnSin * phaseCos + turnCos * phaseSin;
   float radius = curlLength * cs.curlEnvelope[k];
   return base + (n1 * cosA + b * sinA) * radius;
 }
@@ -266,11 +279,11 @@ void buildHair(HairInput hin) {
   vec3 lnp = np * L;
   float phaseSin = 0.0, phaseCos = 1.0;
   if (cs.curl != 0) sinCosTurns(hin.phase, phaseSin, phaseCos);
-  float curlLength = L * cs.curlRadius;
+  float curlLength = L * hin.curlRadius;
   int K = cs.curvePoints;
   if (cs.style == STYLE_CURVE) {
     // Sec. 3.8: "Our implementation currently uses the skin normal as the shading normal."
-    for (int k = 0; k < K; ++k) emitPoint(k, curvePoint(k, root, lnp, le, np, e, b, curlLength, phaseSin, phaseCos), n);
+    for (int k = 0; k < K; ++k) emitPoint(k, curvePoint(k, root, lnp, le, np, e, b, curlLength, phaseSin, phaseCos, hin.curlTurns), n);
     return;
   }
   // Tube: rings around the tessellated curve; tangents by differences of neighbouring points.
@@ -278,7 +291,7 @@ void buildHair(HairInput hin) {
   int M = cs.tubeSides;
   vec3 prev = root;
   vec3 cur = root;
-  vec3 next = curvePoint(1, root, lnp, le, np, e, b, curlLength, phaseSin, phaseCos);
+  vec3 next = curvePoint(1, root, lnp, le, np, e, b, curlLength, phaseSin, phaseCos, hin.curlTurns);
   for (int k = 0; k < K; ++k) {
     vec3 tangent = k == 0 ? next - cur : (k == K - 1 ? cur - prev : next - prev);
     vec3 tUnit = normalizeOr(tangent, dTilde, 1e-30);
@@ -290,7 +303,7 @@ void buildHair(HairInput hin) {
     if (k + 1 < K) {
       prev = cur;
       cur = next;
-      if (k + 2 < K) next = curvePoint(k + 2, root, lnp, le, np, e, b, curlLength, phaseSin, phaseCos);
+      if (k + 2 < K) next = curvePoint(k + 2, root, lnp, le, np, e, b, curlLength, phaseSin, phaseCos, hin.curlTurns);
     }
   }
 }

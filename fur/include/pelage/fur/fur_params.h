@@ -92,6 +92,10 @@ struct Clump {
   bool on() const { return density > 0.0f && strength > 0.0f; }
 };
 
+// The helix's ranges (CoatParams::curlRadius, curlTurns; regions and groom files too).
+inline constexpr float kMaxCurlRadius = 0.5f;
+inline constexpr float kMaxCurlTurns = 20.0f;
+
 // One coat (sec. 3.1): "different material characteristics, stiffness, randomness, and hair style".
 struct CoatParams {
   HairStyle style = HairStyle::Polyline;
@@ -141,6 +145,11 @@ struct FurRegion {
   // The segment direction weight w of (overcoat, undercoat) there, [0, 1] each (sec. 3.4:
   // d = normalize((1 - w) n + w s), per hair); unset: keep.
   std::optional<Eigen::Vector2f> segmentDirectionWeight = std::nullopt;
+  // The helix (sec. 3.8's curve and tube styles) of (overcoat, undercoat) there: radius as a
+  // fraction of the length [0, 0.5] and turns along the hair [0, 20] (CoatParams::curlRadius,
+  // curlTurns, per hair); unset: keep.
+  std::optional<Eigen::Vector2f> curlRadius = std::nullopt;
+  std::optional<Eigen::Vector2f> curlTurns = std::nullopt;
   bool operator==(const FurRegion&) const = default;
 };
 inline constexpr std::size_t kMaxFurRegions = 256;

@@ -135,6 +135,15 @@ inline void sinCosTurns(const T& u, T& s, T& c) {
   c = pick(q1, T(0.0f) - sa, pick(q2, T(0.0f) - ca, pick(q3, sa, ca)));
 }
 
+// Sec. 3.8's helix angle 2 pi turns t at curve parameter t: its sine and cosine (sinCosTurns of the
+// fraction of a turn). The coat's table (makeCoatShape: curlCos, curlSin) and a hair's own turns
+// (a groom's curl) take the same steps, so equal turns wind equal hairs bit for bit.
+template <class T>
+inline void helixTurn(const T& turns, float t, T& s, T& c) {
+  const T u = turns * T(t);
+  sinCosTurns(u - floorOf(u), s, c);
+}
+
 // ---- Per-coat constants ----------------------------------------------------------------------
 inline constexpr int kPolylinePoints = 8;   // sec. 3.7: "eight control points"
 inline constexpr int kMaxCurvePoints = 64;  // K
@@ -157,6 +166,8 @@ inline constexpr int kMaxTubeSides = 32;    // M
 //    groom's stiffness; HairInput::floppiness replaces `floppiness`);
 //  perHairSegmentWeight: the coat's roots carry their own segment direction weight
 //    (CoatRoots::segmentWeight; HairInput::segmentWeight replaces `segmentWeight`);
+//  perHairCurl: the coat's roots carry their own helix (CoatRoots::curlRadius, ::curlTurns;
+//    HairInput's replace `curlRadius` and the curlCos/curlSin table: helixTurn at curlT);
 //  frizz*: the frizz (fur_params.h Frizz; addFrizz): frizz = strand points with frizz (0: off),
 //    frizzRing = points per strand point (a tube's M, else 1), frizzSeed = the coat seed's 32 bits;
 //    per strand point k: frizzWeight = amplitude (m) t_k^tipWeight, frizzCell = floor(t_k freq),
@@ -168,7 +179,8 @@ inline constexpr int kMaxTubeSides = 32;    // M
 //    uses segment 1), with alpha_i^2, beta_i^2 and 2 alpha_i beta_i;
 //  curve*: the curve (sec. 3.8): C(t_k) = R + c1_k L n_p + c2_k L e with the Bernstein sums
 //    c1 = (1-t)^2 t, c2 = 2 (1-t) t^2 + t^3; tangent weights dc1 = (1-t)(1-3t), dc2 = 4t - 3t^2;
-//  curl*: the helix, radius curlRadius * L * sin(pi t_k), angle 2 pi (turns t_k + phase);
+//  curl*: the helix, radius curlRadius * L * sin(pi t_k), angle 2 pi (turns t_k + phase), curlT
+//    the t_k of the angle (float);
 //  tube*, ring*: M ring directions and the tube radius at each curve point.
 #define PELAGE_COAT_SHAPE_MEMBERS(SCALAR, ARRAY)                        \
   SCALAR(HairStyle, int, style)                                         \
@@ -180,6 +192,7 @@ inline constexpr int kMaxTubeSides = 32;    // M
   SCALAR(std::int32_t, int, comb)                                       \
   SCALAR(std::int32_t, int, perHairFloppiness)                          \
   SCALAR(std::int32_t, int, perHairSegmentWeight)                       \
+  SCALAR(std::int32_t, int, perHairCurl)                                \
   SCALAR(std::int32_t, int, frizz)                                      \
   SCALAR(std::int32_t, int, frizzRing)                                  \
   SCALAR(std::int32_t, int, frizzSeed)                                  \
@@ -210,6 +223,7 @@ inline constexpr int kMaxTubeSides = 32;    // M
   ARRAY(float, float, curlEnvelope, ::pelage::fur::kMaxCurvePoints)     \
   ARRAY(float, float, curlCos, ::pelage::fur::kMaxCurvePoints)          \
   ARRAY(float, float, curlSin, ::pelage::fur::kMaxCurvePoints)          \
+  ARRAY(float, float, curlT, ::pelage::fur::kMaxCurvePoints)            \
   ARRAY(float, float, tubeRadius, ::pelage::fur::kMaxCurvePoints)       \
   ARRAY(float, float, frizzWeight, ::pelage::fur::kMaxCurvePoints)      \
   ARRAY(float, float, frizzCell, ::pelage::fur::kMaxCurvePoints)        \
@@ -255,6 +269,8 @@ struct HairInput {
   T combX, combY;
   T floppiness;     // the root's own (read only when CoatShape::perHairFloppiness)
   T segmentWeight;  // the root's own (read only when CoatShape::perHairSegmentWeight)
+  T curlRadius;     // the root's own helix (read only when CoatShape::perHairCurl)
+  T curlTurns;
 };
 
 // The polyline normal twist of one hair (sec. 3.7), per point: cos and sin of the random angle.
@@ -275,6 +291,7 @@ struct HairFrame {
   Vec3<T> planeNormal;
   T length;
   T phase;
+  T curlRadius, curlTurns;  // the hair's own helix (CoatShape::perHairCurl)
 };
 
 // Van Gelder & Wilhelms 1997, sec. 3.2: h = b1 v1 + b2 v2 + b3 v3 (one component).
@@ -309,13 +326,13 @@ inline void unpackComb(std::uint32_t packed, float& x, float& y) {
 // (kVertexRecordFloats each) with the barycentric entry b = (b1, b2, b3), and the root's jitter
 // j = (xi x, y, z, helix phase); a length map's value at the root multiplies the interpolated
 // length (1 without one: x * 1 = x exactly); `comb` is the root's packed comb (0: none);
-// `floppiness` and `segmentWeight` the root's own (CoatRoots::floppiness, ::segmentWeight; read
-// only where the coat has them). The scalar form of every kernel's gather (and of the GPU's
+// `floppiness`, `segmentWeight` and `curl` (radius, turns) the root's own (CoatRoots; read only
+// where the coat has them). The scalar form of every kernel's gather (and of the GPU's
 // interpolateRoot in hair_math.glsl).
 inline HairInput<float> interpolateRoot(const float* b, const float* v1, const float* v2,
                                         const float* v3, const float* j, float lengthScale = 1.0f,
                                         std::uint32_t comb = 0, float floppiness = 0.0f,
-                                        float segmentWeight = 0.0f) {
+                                        float segmentWeight = 0.0f, const float* curl = nullptr) {
   const auto mix = [&](int k) { return barycentricMix(b[0], b[1], b[2], v1[k], v2[k], v3[k]); };
   HairInput<float> in{};
   in.root = {mix(0), mix(1), mix(2)};
@@ -328,6 +345,8 @@ inline HairInput<float> interpolateRoot(const float* b, const float* v1, const f
   unpackComb(comb, in.combX, in.combY);
   in.floppiness = floppiness;
   in.segmentWeight = segmentWeight;
+  in.curlRadius = curl ? curl[0] : 0.0f;
+  in.curlTurns = curl ? curl[1] : 0.0f;
   return in;
 }
 
@@ -462,17 +481,21 @@ inline Vec3<T> curveStartDirection(const Vec3<T>& n, const Vec3<T>& b, const Vec
 // Sec. 3.8: the cubic Bezier P0 = R, P1 = R + (L/3) n_p, P2 = R + (2/3)(E - R), P3 = E, at t_k:
 // C = R + c1_k L n_p + c2_k L e (lnp = L n_p, le = L e); plus the helix ("the nurbs technique
 // permits ... a helical curve"): C += curlRadius L sin(pi t) (cos(A) N1 + sin(A) B),
-// A = 2 pi (turns t + phase), N1 = normalize(B x C'(t)) the in-plane normal of the curve.
+// A = 2 pi (turns t + phase), N1 = normalize(B x C'(t)) the in-plane normal of the curve; turns
+// and radius the coat's, or the hair's own (perHairCurl: `turns`).
 template <class T>
 inline Vec3<T> curvePoint(const CoatShape& c, int k, const Vec3<T>& root, const Vec3<T>& lnp,
                           const Vec3<T>& le, const Vec3<T>& np, const Vec3<T>& e, const Vec3<T>& b,
-                          const T& curlLength, const T& phaseSin, const T& phaseCos) {
+                          const T& curlLength, const T& phaseSin, const T& phaseCos,
+                          const T& turns) {
   const Vec3<T> base = (root + lnp * T(c.curveC1[k])) + le * T(c.curveC2[k]);
   if (!c.curl) return base;
   const Vec3<T> tangent = np * T(c.curveDc1[k]) + e * T(c.curveDc2[k]);
   const Vec3<T> n1 = normalizeOr(cross(b, tangent), np, 1e-12f);
-  const T cosA = T(c.curlCos[k]) * phaseCos - T(c.curlSin[k]) * phaseSin;
-  const T sinA = T(c.curlSin[k]) * phaseCos + T(c.curlCos[k]) * phaseSin;
+  T turnSin = T(c.curlSin[k]), turnCos = T(c.curlCos[k]);
+  if (c.perHairCurl) helixTurn(turns, c.curlT[k], turnSin, turnCos);
+  const T cosA = turnCos * phaseCos - turnSin * phaseSin;
+  const T sinA = turnSin * phaseCos + turnCos * phaseSin;
   const T radius = curlLength * T(c.curlEnvelope[k]);
   return base + (n1 * cosA + b * sinA) * radius;
 }
@@ -513,6 +536,8 @@ inline void hairFrame(const CoatShape& c, const HairInput<T>& in, HairFrame<T>& 
   f.planeNormal = c.style == HairStyle::Line ? Vec3<T>{T(0.0f), T(0.0f), T(0.0f)}
                                              : hairPlaneNormal(f.dTilde, f.e, f.normal);
   f.phase = in.phase;
+  f.curlRadius = c.perHairCurl ? in.curlRadius : T(0.0f);
+  f.curlTurns = c.perHairCurl ? in.curlTurns : T(0.0f);
 }
 
 // Sec. 3.6: a straight line from the root to the ending point, shaded with the skin normal.
@@ -561,7 +586,7 @@ inline CurveTerms<T> curveTerms(const CoatShape& c, const HairFrame<T>& f) {
   t.np = curveStartDirection(f.normal, f.planeNormal, f.dTilde);
   t.lnp = t.np * f.length;
   t.le = f.e * f.length;
-  t.curlLength = f.length * T(c.curlRadius);
+  t.curlLength = f.length * (c.perHairCurl ? f.curlRadius : T(c.curlRadius));
   t.phaseSin = T(0.0f);
   t.phaseCos = T(1.0f);
   if (c.curl) sinCosTurns(f.phase, t.phaseSin, t.phaseCos);
@@ -571,7 +596,7 @@ template <class T>
 inline Vec3<T> curvePointAt(const CoatShape& c, int k, const HairFrame<T>& f,
                             const CurveTerms<T>& t) {
   return curvePoint(c, k, f.root, t.lnp, t.le, t.np, f.e, f.planeNormal, t.curlLength, t.phaseSin,
-                    t.phaseCos);
+                    t.phaseCos, f.curlTurns);
 }
 
 // Sec. 3.8 nurbs curve: K points; "Our implementation currently uses the skin normal as the shading

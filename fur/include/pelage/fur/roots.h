@@ -56,6 +56,11 @@ struct CoatRoots {
   // of this coat interpolated at the root at rest (VertexGroom::segmentDirectionWeight); empty
   // without them (the coat's w for every hair).
   std::vector<float> segmentWeight;
+  // nRoots each: the hair's helix radius (a fraction of its length) and turns (sec. 3.8) from the
+  // groom's per-vertex curl of this coat interpolated at the root at rest (VertexGroom::curlRadius,
+  // ::curlTurns; the coat's value where the groom has only the other); empty without either (the
+  // coat's helix for every hair).
+  std::vector<float> curlRadius, curlTurns;
   double expectedHairs = 0.0;  // N_coat, before random rounding
   std::int64_t size() const { return static_cast<std::int64_t>(triangle.size()); }
 };

@@ -32,7 +32,7 @@ struct GlbCounts {
 bool isCompleteGlb(const std::string& path);
 
 // The counts writeFrameGlb would write for `state`.
-GlbCounts glbCounts(const Model& model, const fur::FurParams& params, const FrameState& state);
+GlbCounts glbCounts(const Model& model, const FrameState& state);
 
 // Writes `state` (evaluated frame with CPU hairs of `fur`, colours filled) to `path`. InputError
 // naming the file if it cannot be written (unwritable directory, disk full) or would exceed glTF

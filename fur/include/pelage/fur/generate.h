@@ -96,14 +96,6 @@ struct FurWorkspace {
   std::array<std::vector<float>, kCoatCount> clumpCentres;
 };
 
-// The per-coat constants of hair_math.h for coat `coat` of `params`.
-CoatShape makeCoatShape(const FurParams& params, int coat);
-// The same, with what the coat's roots carry (CoatShape::comb: a groom's comb).
-CoatShape makeCoatShape(const FurParams& params, const FurRoots& roots, int coat);
-// The layout of a coat's hairs as grown: hairLayout(coat), curled (HairLayout::curl) where the
-// roots carry a groom's curl on a curve or tube coat. What frames, exports and the GPU size by.
-HairLayout coatLayout(const FurParams& params, const FurRoots& roots, int coat);
-
 // Fills `table` (2048 x 8 x 2) with the polyline twist (cos, sin) of coat seed `seed` and normal
 // randomize r.
 void makeTwistTable(std::uint64_t seed, float normalRandomize, std::vector<float>& table);

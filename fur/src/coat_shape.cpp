@@ -117,4 +117,19 @@ CoatShape makeCoatShape(const FurParams& params, int coat) {
   return c;
 }
 
+CoatShape makeCoatShape(const FurParams& params, const FurRoots& roots, int coat) {
+  CoatShape c = makeCoatShape(params, coat);
+  const CoatRoots& cr = roots.coats[static_cast<std::size_t>(coat)];
+  c.comb = cr.comb.empty() ? 0 : 1;
+  c.perHairFloppiness = cr.floppiness.empty() ? 0 : 1;
+  c.perHairSegmentWeight = cr.segmentWeight.empty() ? 0 : 1;
+  // A groom's curl winds each hair by its own helix (curve and tube styles, as the coat's).
+  c.perHairCurl =
+      !cr.curlRadius.empty() && usesCurveParams(params.coats[static_cast<std::size_t>(coat)].style);
+  if (c.perHairCurl) c.curl = 1;
+  const std::uint64_t seed = coatSeed(roots.seed, coat);
+  c.frizzSeed = std::bit_cast<std::int32_t>(static_cast<std::uint32_t>(seed ^ (seed >> 32)));
+  return c;
+}
+
 }  // namespace pelage::fur

@@ -34,21 +34,6 @@ void FloatBuffer::resize(std::size_t n) {
   size_ = n;
 }
 
-CoatShape makeCoatShape(const FurParams& params, const FurRoots& roots, int coat) {
-  CoatShape c = makeCoatShape(params, coat);
-  const CoatRoots& cr = roots.coats[static_cast<std::size_t>(coat)];
-  c.comb = cr.comb.empty() ? 0 : 1;
-  c.perHairFloppiness = cr.floppiness.empty() ? 0 : 1;
-  c.perHairSegmentWeight = cr.segmentWeight.empty() ? 0 : 1;
-  // A groom's curl winds each hair by its own helix (curve and tube styles, as the coat's).
-  c.perHairCurl =
-      !cr.curlRadius.empty() && usesCurveParams(params.coats[static_cast<std::size_t>(coat)].style);
-  if (c.perHairCurl) c.curl = 1;
-  const std::uint64_t seed = coatSeed(roots.seed, coat);
-  c.frizzSeed = std::bit_cast<std::int32_t>(static_cast<std::uint32_t>(seed ^ (seed >> 32)));
-  return c;
-}
-
 void makeTwistTable(std::uint64_t seed, float normalRandomize, std::vector<float>& table) {
   table.resize(static_cast<std::size_t>(kBarycentricTableSize) * kPolylinePoints * 2);
   // Van Gelder & Wilhelms 1997, sec. 3.7: "each shading normal is rotated through a random angle,

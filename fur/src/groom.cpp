@@ -45,8 +45,7 @@ Groom loadGroomMaps(const GroomMapPaths& paths, const skin::SkinMesh& skin,
                "' has no texture coordinates, so groom maps cannot be placed on it (they need a "
                "glTF model with TEXCOORD_0); groom it by regions instead (a preset's \"regions\": "
                "lengthScale, lengthMm, densityScale, tint, stiffness, segmentDirectionWeight, curl "
-               "per region "
-               "or joint)");
+               "per region or joint)");
   }
   m.density = loadMap(paths.density, "maps.density", false, skin::Filter::Nearest);
   m.length = loadMap(paths.length, "maps.length", false, skin::Filter::Linear);
@@ -135,7 +134,8 @@ VertexGroom groomFromRegions(const skin::SkinMesh& skin, const anatomy::Body& bo
           for (int k = 0; k < 3; ++k)
             g.tint[v][k] = blend(g.tint[v][k], g.tint[v][k] * reg.tint[k], w[v]);
     }
-    // A per-coat value (stiffness, segment direction weight) moves from the coats' own.
+    // A per-coat value (stiffness, segment direction weight, curl radius and turns) moves from
+    // the coats' own.
     const auto blendCoats = [&](std::vector<Eigen::Vector2f>& values,
                                 const std::optional<Eigen::Vector2f>& target, float overcoat,
                                 float undercoat) {

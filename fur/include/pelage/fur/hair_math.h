@@ -182,7 +182,9 @@ struct HairFrame {
   Vec3<T> planeNormal;
   T length;
   T phase;
-  T curlRadius, curlTurns;  // the hair's own helix (CoatShape::perHairCurl)
+  // The helix radius (the coat's, or the hair's own with CoatShape::perHairCurl, as the GPU's
+  // HairInput) and the hair's own turns (read only with perHairCurl).
+  T curlRadius, curlTurns;
 };
 
 // Van Gelder & Wilhelms 1997, sec. 3.2: h = b1 v1 + b2 v2 + b3 v3 (one component).
@@ -427,7 +429,7 @@ inline void hairFrame(const CoatShape& c, const HairInput<T>& in, HairFrame<T>& 
   f.planeNormal = c.style == HairStyle::Line ? Vec3<T>{T(0.0f), T(0.0f), T(0.0f)}
                                              : hairPlaneNormal(f.dTilde, f.e, f.normal);
   f.phase = in.phase;
-  f.curlRadius = c.perHairCurl ? in.curlRadius : T(0.0f);
+  f.curlRadius = c.perHairCurl ? in.curlRadius : T(c.curlRadius);
   f.curlTurns = c.perHairCurl ? in.curlTurns : T(0.0f);
 }
 
@@ -477,7 +479,7 @@ inline CurveTerms<T> curveTerms(const CoatShape& c, const HairFrame<T>& f) {
   t.np = curveStartDirection(f.normal, f.planeNormal, f.dTilde);
   t.lnp = t.np * f.length;
   t.le = f.e * f.length;
-  t.curlLength = f.length * (c.perHairCurl ? f.curlRadius : T(c.curlRadius));
+  t.curlLength = f.length * f.curlRadius;
   t.phaseSin = T(0.0f);
   t.phaseCos = T(1.0f);
   if (c.curl) sinCosTurns(f.phase, t.phaseSin, t.phaseCos);

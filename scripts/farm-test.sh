@@ -162,6 +162,28 @@ check_completed() {
   fi
 }
 
+# Waits for job $1 (at most $2 seconds) and checks that every task of it completed.
+finish_job() {
+  wait_job "$1" "$2"
+  check_completed "$1"
+}
+
+# Submits docs/render-farm/$1 as an array job of tasks 0..$2 (one CPU each), the NAME=VALUE pairs
+# after them in its environment; prints its id.
+array_job() {
+  local script=$1 last=$2
+  shift 2
+  (cd docs/render-farm && env "$@" sbatch --parsable --export=ALL --array=0-"$last" \
+    --cpus-per-task=1 --mem=1500M --output="$work/logs/job-%A_%a.log" "$script")
+}
+
+# Submits command $4 as a one-CPU job (memory $3, log job-$2-ID.log) that runs once job $1 completed;
+# prints its id.
+after_job() {
+  sbatch --parsable --dependency=afterok:"$1" --cpus-per-task=1 --mem="$3" \
+    --output="$work/logs/job-$2-%j.log" --wrap "$4"
+}
+
 # Frames of $1 byte-identical to $2's (the same names, 24 of them).
 compare_frames() {
   local got=$1 ref=$2 n=0 f
@@ -180,17 +202,11 @@ frames=23  # 0..23: 24 frames
 
 # ---- 1. The render array and the dependent video ---------------------------------------------
 start=$(now)
-job=$(cd docs/render-farm &&
-  FIRST=0 LAST=$frames OUT="$work/out/array" PELAGE="$bin" PELAGE_ARGS="$args" \
-    sbatch --parsable --export=ALL --array=0-3 --cpus-per-task=1 --mem=1500M \
-    --output="$work/logs/job-%A_%a.log" render.slurm)
-video=$(sbatch --parsable --dependency=afterok:"$job" --cpus-per-task=1 --mem=1500M \
-  --output="$work/logs/job-video-%j.log" \
-  --wrap "$bin render $args --frames 0:$frames --out $work/out/array --resume --quiet --video $work/out/walk.mp4")
-wait_job "$job" 600
-wait_job "$video" 300
-check_completed "$job"
-check_completed "$video"
+job=$(array_job render.slurm 3 FIRST=0 LAST=$frames OUT="$work/out/array" PELAGE="$bin" PELAGE_ARGS="$args")
+video=$(after_job "$job" video 1500M \
+  "$bin render $args --frames 0:$frames --out $work/out/array --resume --quiet --video $work/out/walk.mp4")
+finish_job "$job" 600
+finish_job "$video" 300
 n=$(compare_frames "$work/out/array" "$work/out/reference")
 [[ -s "$work/out/walk.mp4" ]] || fail "the video job left no $work/out/walk.mp4"
 echo "farm-test: 1. render.slurm array job $job (4 tasks) + video job $video: $n frames" \
@@ -200,10 +216,7 @@ echo "farm-test: 1. render.slurm array job $job (4 tasks) + video job $video: $n
 # ---- 2. A task cancelled part-way, requeued, resumed ------------------------------------------
 start=$(now)
 out=$work/out/requeue
-job=$(cd docs/render-farm &&
-  FIRST=0 LAST=$frames OUT="$out" PELAGE="$bin" PELAGE_ARGS="$args" \
-    sbatch --parsable --export=ALL --array=0-3 --cpus-per-task=1 --mem=1500M \
-    --output="$work/logs/job-%A_%a.log" render.slurm)
+job=$(array_job render.slurm 3 FIRST=0 LAST=$frames OUT="$out" PELAGE="$bin" PELAGE_ARGS="$args")
 # Task 0 renders frames 0..5: cancel it once it has written some of them but not all.
 cancelled=0
 for _ in $(seq 1200); do
@@ -224,8 +237,7 @@ done
 scontrol requeue "${job}_0" || fail "scontrol requeue ${job}_0 failed"
 # Slurm holds a requeued job back (BeginTime two minutes on); a retry need not wait here.
 scontrol update JobId="${job}_0" StartTime=now || fail "cannot release the requeued ${job}_0"
-wait_job "$job" 600
-check_completed "$job"
+finish_job "$job" 600
 n=$(compare_frames "$out" "$work/out/reference")
 skipped=$(grep -ho 'skipped [0-9]* complete' "$work/logs/job-${job}_0.log" | tail -n 1 || true)
 echo "farm-test: 2. array job $job: task ${job}_0 cancelled after $cancelled of its 6 frames," \
@@ -237,17 +249,11 @@ sweep=stiffness=0.1:0.9:5
 sweep_args="monkey --clip tumble --frames 0:30 --hairs 20000"
 "$bin" --threads 2 analyze $sweep_args --sweep "$sweep" --out "$work/out/sweep-reference.csv" --quiet
 start=$(now)
-job=$(cd docs/render-farm &&
-  SWEEP=$sweep OUT="$work/out/sweep" PELAGE="$bin" PELAGE_ARGS="$sweep_args" \
-    sbatch --parsable --export=ALL --array=0-4 --cpus-per-task=1 --mem=1500M \
-    --output="$work/logs/job-%A_%a.log" sweep.slurm)
-merge=$(sbatch --parsable --dependency=afterok:"$job" --cpus-per-task=1 --mem=500M \
-  --output="$work/logs/job-merge-%j.log" \
-  --wrap "$bin analyze --merge \$(ls $work/out/sweep/part_*.csv) --out $work/out/sweep.csv")
-wait_job "$job" 600
-wait_job "$merge" 120
-check_completed "$job"
-check_completed "$merge"
+job=$(array_job sweep.slurm 4 SWEEP="$sweep" OUT="$work/out/sweep" PELAGE="$bin" PELAGE_ARGS="$sweep_args")
+merge=$(after_job "$job" merge 500M \
+  "$bin analyze --merge \$(ls $work/out/sweep/part_*.csv) --out $work/out/sweep.csv")
+finish_job "$job" 600
+finish_job "$merge" 120
 cmp -s "$work/out/sweep.csv" "$work/out/sweep-reference.csv" ||
   fail "the merged sweep differs from one process's: $(diff "$work/out/sweep.csv" "$work/out/sweep-reference.csv" | head -5)"
 echo "farm-test: 3. sweep.slurm array job $job (5 values of $sweep) + merge job $merge: sweep.csv" \

@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "pelage/fur/roots.h"
+#include "pelage/util/enum_names.h"
 #include "pelage/util/error.h"
 #include "pelage/util/log.h"
 
@@ -22,13 +23,11 @@ void checkColor(const std::string& source, const std::string& field, const Eigen
   for (int k = 0; k < 3; ++k) checkRange(source, str(field, "[", k, "]"), c[k], 0.0, 1.0);
 }
 
-constexpr std::array<std::pair<ColorSource, std::string_view>, 5> kColorSources{{
-    {ColorSource::Material, "material"},
-    {ColorSource::Creature, "creature"},
-    {ColorSource::Texture, "texture"},
-    {ColorSource::Vertex, "vertex"},
-    {ColorSource::Map, "map"},
-}};
+constexpr auto kColorSources = makeEnumNames<ColorSource>({{ColorSource::Material, "material"},
+                                                           {ColorSource::Creature, "creature"},
+                                                           {ColorSource::Texture, "texture"},
+                                                           {ColorSource::Vertex, "vertex"},
+                                                           {ColorSource::Map, "map"}});
 
 void checkCoat(const std::string& source, const std::string& name, const CoatParams& c) {
   checkRange(source, name + ".stiffness", c.stiffness, 0.0, 1.0);
@@ -64,21 +63,14 @@ void checkCoat(const std::string& source, const std::string& name, const CoatPar
 }  // namespace
 
 std::string_view colorSourceName(ColorSource source) {
-  for (const auto& [s, name] : kColorSources)
-    if (s == source) return name;
-  return "material";
+  return kColorSources.name(source);
 }
 
 ColorSource parseColorSource(std::string_view name, const std::string& where) {
-  std::string list;
-  for (const auto& [s, n] : kColorSources) {
-    if (n == name) return s;
-    list += (list.empty() ? "" : ", ") + std::string(n);
-  }
-  inputError(where, ": unknown colour source '", excerpt(name), "' (accepted: ", list, ")");
+  if (const auto s = kColorSources.find(name)) return *s;
+  inputError(where, ": unknown colour source '", excerpt(name),
+             "' (accepted: ", kColorSources.list(), ")");
 }
-
-namespace {}  // namespace
 
 void validateFurParams(FurParams& p, const std::string& source) {
   checkRange(source, "hairs", p.hairs, 0.0, std::numeric_limits<double>::max());

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "pelage/skin/deform.h"
+#include "pelage/util/enum_names.h"
 #include "pelage/util/error.h"
 #include "pelage/util/json_reader.h"
 #include "pelage/util/parallel.h"
@@ -17,7 +18,12 @@ namespace {
 
 using Vec3 = Eigen::Vector3f;
 
-constexpr const char* kToolNames[] = {"length", "density", "color", "comb", "cut", "clump"};
+constexpr auto kToolNames = makeEnumNames<BrushTool>({{BrushTool::Length, "length"},
+                                                      {BrushTool::Density, "density"},
+                                                      {BrushTool::Color, "color"},
+                                                      {BrushTool::Comb, "comb"},
+                                                      {BrushTool::Cut, "cut"},
+                                                      {BrushTool::Clump, "clump"}});
 constexpr const char* kAxes[] = {"x", "y", "z"};
 
 // Distance from p to the polyline through `points` (a single point: to it), and the direction
@@ -100,11 +106,10 @@ std::vector<GroomStroke> strokesFrom(const JsonReader& root) {
     j.rejectUnknown({"tool", "points", "radius", "strength", "color", "length", "mirror"});
     GroomStroke& s = strokes[k];
     const std::string tool = j.string("tool");
-    const auto known = std::find(std::begin(kToolNames), std::end(kToolNames), tool);
-    if (known == std::end(kToolNames))
-      j.at("tool").fail(
-          str("unknown brush '", tool, "' (accepted: length, density, color, comb, cut, clump)"));
-    s.tool = static_cast<BrushTool>(known - std::begin(kToolNames));
+    const auto known = kToolNames.find(tool);
+    if (!known)
+      j.at("tool").fail(str("unknown brush '", tool, "' (accepted: ", kToolNames.list(), ")"));
+    s.tool = *known;
     const JsonReader points = j.at("points");
     if (points.size() < 1 || points.size() > kMaxStrokePoints)
       points.fail(str(points.size(), " points; accepted: 1 to ", kMaxStrokePoints));
@@ -163,7 +168,7 @@ std::vector<GroomStroke> strokesFrom(const JsonReader& root) {
 }  // namespace
 
 const char* brushToolName(BrushTool tool) {
-  return kToolNames[static_cast<int>(tool)];
+  return kToolNames.name(tool).data();
 }
 
 StrengthRange brushStrengthRange(BrushTool tool) {

@@ -2,33 +2,30 @@
 
 #include "pelage/fur/fur_params.h"
 #include "pelage/fur/hair_math.h"
+#include "pelage/util/enum_names.h"
 #include "pelage/util/error.h"
 
 namespace pelage::fur {
 
+namespace {
+
+constexpr auto kStyleNames = makeEnumNames<HairStyle>({{HairStyle::Line, "line"},
+                                                       {HairStyle::Polyline, "polyline"},
+                                                       {HairStyle::Curve, "curve"},
+                                                       {HairStyle::Tube, "tube"}});
+
+}  // namespace
+
 const char* styleName(HairStyle style) {
-  switch (style) {
-    case HairStyle::Line:
-      return "line";
-    case HairStyle::Polyline:
-      return "polyline";
-    case HairStyle::Curve:
-      return "curve";
-    case HairStyle::Tube:
-      return "tube";
-  }
-  return "?";
+  return kStyleNames.name(style).data();
 }
 
 std::string styleNames() {
-  std::string s;
-  for (HairStyle style : kHairStyles) s += (s.empty() ? "" : ", ") + std::string(styleName(style));
-  return s;
+  return kStyleNames.list();
 }
 
 HairStyle parseStyle(std::string_view name, const std::string& where) {
-  for (HairStyle s : kHairStyles)
-    if (name == styleName(s)) return s;
+  if (const auto s = kStyleNames.find(name)) return *s;
   inputError(where, ": unknown hair style '", excerpt(name), "' (accepted: ", styleNames(), ")");
 }
 

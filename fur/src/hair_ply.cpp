@@ -12,33 +12,6 @@
 #include "pelage/util/error.h"
 
 namespace pelage::fur {
-namespace {
-
-// Buffers binary output and hands it to the writer in large pieces.
-class Chunked {
- public:
-  explicit Chunked(AtomicFileWriter& w) : w_(w) { buf_.reserve(kSize); }
-  template <class T>
-  void put(const T& v) {
-    putBytes(&v, sizeof(T));
-  }
-  void putBytes(const void* data, std::size_t n) {
-    if (buf_.size() + n > kSize) flush();
-    const auto* p = static_cast<const char*>(data);
-    buf_.insert(buf_.end(), p, p + n);
-  }
-  void flush() {
-    if (!buf_.empty()) w_.write(buf_.data(), buf_.size());
-    buf_.clear();
-  }
-
- private:
-  static constexpr std::size_t kSize = 1 << 22;
-  AtomicFileWriter& w_;
-  std::vector<char> buf_;
-};
-
-}  // namespace
 
 HairPlyCounts hairPlyCounts(const FurFrame& frame) {
   HairPlyCounts n;
@@ -86,7 +59,6 @@ HairPlyCounts writeHairPly(const std::string& path, const FurFrame& frame, const
 
   AtomicFileWriter w(path);
   w.write(h.str());
-  Chunked out(w);
   std::vector<std::uint8_t> rgb;
   std::vector<float> widths;
   for (int c = 0; c < kCoatCount; ++c) {
@@ -107,7 +79,7 @@ HairPlyCounts writeHairPly(const std::string& path, const FurFrame& frame, const
         rec[28] = static_cast<char>(coat);
         std::memcpy(rec + 29, &widths[static_cast<std::size_t>(k)], 4);
         if (colors) std::memcpy(rec + 33, rgb.data() + 3 * (i * P + k), 3);
-        out.putBytes(rec, size);
+        w.write(rec, size);
       }
   }
   std::int32_t base = 0;
@@ -117,8 +89,8 @@ HairPlyCounts writeHairPly(const std::string& path, const FurFrame& frame, const
       for (std::int64_t i = 0; i < hb.drawn; ++i)
         for (std::int32_t k = 0; k + 1 < P; ++k) {
           const std::int32_t v = base + static_cast<std::int32_t>(i) * P + k;
-          out.put(v);
-          out.put(static_cast<std::int32_t>(v + 1));
+          w.put(v);
+          w.put(static_cast<std::int32_t>(v + 1));
         }
     base += static_cast<std::int32_t>(hb.drawn * P);
   }
@@ -128,13 +100,12 @@ HairPlyCounts writeHairPly(const std::string& path, const FurFrame& frame, const
     const std::vector<std::int32_t> pattern = hairTriangles(hb.layout);
     for (std::int64_t i = 0; i < hb.drawn && !pattern.empty(); ++i)
       for (std::size_t t = 0; t < pattern.size(); t += 3) {
-        out.put(std::uint8_t{3});
+        w.put(std::uint8_t{3});
         for (std::size_t k = 0; k < 3; ++k)
-          out.put(static_cast<std::int32_t>(base + i * P + pattern[t + k]));
+          w.put(static_cast<std::int32_t>(base + i * P + pattern[t + k]));
       }
     base += static_cast<std::int32_t>(hb.drawn * P);
   }
-  out.flush();
   w.commit();
   return n;
 }

@@ -11,6 +11,7 @@
 #include "pelage/fur/generate.h"
 #include "pelage/fur/hair_math.h"
 #include "pelage/scene/playback.h"
+#include "pelage/util/enum_names.h"
 #include "pelage/util/error.h"
 #include "pelage/util/parallel.h"
 
@@ -374,9 +375,10 @@ void validateHoldSeconds(double seconds, const std::string& field) {
 }
 
 AnalysisGroups parseAnalysisGroups(const std::string& name, const std::string& field) {
-  if (name == "region") return AnalysisGroups::Region;
-  if (name == "segment") return AnalysisGroups::Segment;
-  fieldError(field, "'", excerpt(name), "' (accepted: region, segment)");
+  constexpr auto kNames = makeEnumNames<AnalysisGroups>(
+      {{AnalysisGroups::Region, "region"}, {AnalysisGroups::Segment, "segment"}});
+  if (const auto g = kNames.find(name)) return *g;
+  fieldError(field, "'", excerpt(name), "' (accepted: ", kNames.list(), ")");
 }
 
 AnalysisResult analyzeClip(const Model& model, const Fur& fur, const AnalysisOptions& options) {

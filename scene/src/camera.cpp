@@ -7,6 +7,7 @@
 
 #include "pelage/scene/frame.h"
 #include "pelage/scene/frame_range.h"
+#include "pelage/util/enum_names.h"
 #include "pelage/util/error.h"
 #include "pelage/util/json_reader.h"
 
@@ -163,34 +164,27 @@ Eigen::Matrix4f Camera::projection() const {
   return m;
 }
 
+namespace {
+
+constexpr auto kCameraPresetNames =
+    makeEnumNames<CameraPreset>({{CameraPreset::Front, "front"},
+                                 {CameraPreset::Side, "side"},
+                                 {CameraPreset::ThreeQuarter, "three-quarter"},
+                                 {CameraPreset::Face, "face"},
+                                 {CameraPreset::Follow, "follow"}});
+
+}  // namespace
+
 std::string_view cameraPresetName(CameraPreset preset) {
-  switch (preset) {
-    case CameraPreset::Front:
-      return "front";
-    case CameraPreset::Side:
-      return "side";
-    case CameraPreset::ThreeQuarter:
-      return "three-quarter";
-    case CameraPreset::Face:
-      return "face";
-    case CameraPreset::Follow:
-      return "follow";
-  }
-  return "?";
+  return kCameraPresetNames.name(preset);
 }
 
 std::string cameraPresetNames() {
-  std::string s;
-  for (CameraPreset p : {CameraPreset::Front, CameraPreset::Side, CameraPreset::ThreeQuarter,
-                         CameraPreset::Face, CameraPreset::Follow})
-    s += (s.empty() ? "" : ", ") + std::string(cameraPresetName(p));
-  return s;
+  return kCameraPresetNames.list();
 }
 
 CameraPreset parseCameraPreset(std::string_view name, std::string_view field) {
-  for (CameraPreset p : {CameraPreset::Front, CameraPreset::Side, CameraPreset::ThreeQuarter,
-                         CameraPreset::Face, CameraPreset::Follow})
-    if (name == cameraPresetName(p)) return p;
+  if (const auto p = kCameraPresetNames.find(name)) return *p;
   fieldError(std::string(field), ": unknown camera preset '", excerpt(name),
              "' (accepted: ", cameraPresetNames(), ")");
 }

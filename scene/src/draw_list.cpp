@@ -2,45 +2,40 @@
 
 #include "pelage/scene/frame.h"
 #include "pelage/util/color.h"
+#include "pelage/util/enum_names.h"
 #include "pelage/util/error.h"
 
 namespace pelage::scene {
 
+namespace {
+
+constexpr auto kHairShadingNames =
+    makeEnumNames<HairShading>({{HairShading::Paper, "paper"},
+                                {HairShading::KajiyaKay, "kajiya-kay"},
+                                {HairShading::Marschner, "marschner"},
+                                {HairShading::Physical, "physical"}});
+constexpr auto kHairSourceNames =
+    makeEnumNames<HairSource>({{HairSource::Gpu, "gpu"}, {HairSource::Cpu, "cpu"}});
+
+}  // namespace
+
 std::string_view hairShadingName(HairShading shading) {
-  switch (shading) {
-    case HairShading::Paper:
-      return "paper";
-    case HairShading::KajiyaKay:
-      return "kajiya-kay";
-    case HairShading::Marschner:
-      return "marschner";
-    case HairShading::Physical:
-      return "physical";
-  }
-  return "?";
+  return kHairShadingNames.name(shading);
 }
 
 HairShading parseHairShading(std::string_view name, std::string_view field) {
-  for (HairShading s : kHairShadings)
-    if (name == hairShadingName(s)) return s;
+  if (const auto s = kHairShadingNames.find(name)) return *s;
   fieldError(std::string(field), ": unknown hair shading '", excerpt(name),
-             "' (accepted: paper, kajiya-kay, marschner, physical)");
+             "' (accepted: ", kHairShadingNames.list(), ")");
 }
 
 std::string_view hairSourceName(HairSource source) {
-  switch (source) {
-    case HairSource::Cpu:
-      return "cpu";
-    case HairSource::Gpu:
-      return "gpu";
-  }
-  return "?";
+  return kHairSourceNames.name(source);
 }
 
 HairSource parseHairSource(std::string_view name, std::string_view field) {
-  for (HairSource s : {HairSource::Gpu, HairSource::Cpu})
-    if (name == hairSourceName(s)) return s;
-  fieldError(std::string(field), "'", excerpt(name), "' (accepted: gpu, cpu)");
+  if (const auto s = kHairSourceNames.find(name)) return *s;
+  fieldError(std::string(field), "'", excerpt(name), "' (accepted: ", kHairSourceNames.list(), ")");
 }
 
 std::int64_t DrawList::drawnHairs() const {

@@ -7,27 +7,26 @@
 #include "pelage/fur/hair_ply.h"
 #include "pelage/scene/export_gltf.h"
 #include "pelage/util/atomic_file.h"
+#include "pelage/util/enum_names.h"
 #include "pelage/util/error.h"
 
 namespace pelage::scene {
 namespace fs = std::filesystem;
 
+namespace {
+
+constexpr auto kExportFormatNames = makeEnumNames<ExportFormat>(
+    {{ExportFormat::Usda, "usda"}, {ExportFormat::Ply, "ply"}, {ExportFormat::Glb, "glb"}});
+
+}  // namespace
+
 std::string_view exportFormatName(ExportFormat format) {
-  switch (format) {
-    case ExportFormat::Usda:
-      return "usda";
-    case ExportFormat::Ply:
-      return "ply";
-    case ExportFormat::Glb:
-      return "glb";
-  }
-  return "?";
+  return kExportFormatNames.name(format);
 }
 
 ExportFormat parseExportFormat(std::string_view name) {
-  for (ExportFormat f : {ExportFormat::Usda, ExportFormat::Ply, ExportFormat::Glb})
-    if (name == exportFormatName(f)) return f;
-  fieldError("format", "'", excerpt(name), "' (accepted: usda, ply, glb)");
+  if (const auto f = kExportFormatNames.find(name)) return *f;
+  fieldError("format", "'", excerpt(name), "' (accepted: ", kExportFormatNames.list(), ")");
 }
 
 void validateExportOutput(const ExportOptions& o) {

@@ -48,45 +48,20 @@ std::vector<CoatPart> coatParts(const FrameState& state) {
   return parts;
 }
 
-// Appends little-endian binary data to the file in large pieces.
-class Bin {
- public:
-  explicit Bin(AtomicFileWriter& w) : w_(w) { buf_.reserve(kSize); }
-  void put(const void* data, std::size_t n) {
-    if (n >= kSize) {
-      flush();
-      w_.write(data, n);
-      return;
+// Appends `points` xyz points (pelage axes) in glTF axes.
+void putPoints(AtomicFileWriter& w, const float* xyz, std::size_t points) {
+  float out[3 * 256];
+  for (std::size_t i = 0; i < points; i += 256) {
+    const std::size_t n = std::min<std::size_t>(256, points - i);
+    for (std::size_t k = 0; k < n; ++k) {
+      const float* p = xyz + 3 * (i + k);
+      out[3 * k] = p[1];
+      out[3 * k + 1] = p[2];
+      out[3 * k + 2] = p[0];
     }
-    if (buf_.size() + n > kSize) flush();
-    const auto* p = static_cast<const char*>(data);
-    buf_.insert(buf_.end(), p, p + n);
+    w.write(out, n * 12);
   }
-  void putU32(std::uint32_t v) { put(&v, 4); }
-  // `points` xyz points (pelage axes) in glTF axes.
-  void putPoints(const float* xyz, std::size_t points) {
-    float out[3 * 256];
-    for (std::size_t i = 0; i < points; i += 256) {
-      const std::size_t n = std::min<std::size_t>(256, points - i);
-      for (std::size_t k = 0; k < n; ++k) {
-        const float* p = xyz + 3 * (i + k);
-        out[3 * k] = p[1];
-        out[3 * k + 1] = p[2];
-        out[3 * k + 2] = p[0];
-      }
-      put(out, n * 12);
-    }
-  }
-  void flush() {
-    if (!buf_.empty()) w_.write(buf_.data(), buf_.size());
-    buf_.clear();
-  }
-
- private:
-  static constexpr std::size_t kSize = 1 << 22;
-  AtomicFileWriter& w_;
-  std::vector<char> buf_;
-};
+}
 
 // glTF 2.0 is +Y up (front +Z); pelage is +Z up (front +X). A point goes to glTF axes by the
 // rotation (x, y, z) -> (y, z, x), the inverse of the importer's change of basis, so a creature
@@ -247,30 +222,29 @@ GlbCounts writeFrameGlb(const std::string& path, const Model& model, const Fur& 
   counts.bytes = total;
 
   AtomicFileWriter w(path);
-  Bin bin(w);
-  bin.putU32(0x46546C67u);  // "glTF"
-  bin.putU32(2);
-  bin.putU32(static_cast<std::uint32_t>(total));
-  bin.putU32(static_cast<std::uint32_t>(json.size()));
-  bin.putU32(0x4E4F534Au);  // "JSON"
-  bin.put(json.data(), json.size());
-  bin.putU32(static_cast<std::uint32_t>(binBytes));
-  bin.putU32(0x004E4942u);  // "BIN\0"
+  w.put<std::uint32_t>(0x46546C67u);  // "glTF"
+  w.put<std::uint32_t>(2);
+  w.put<std::uint32_t>(static_cast<std::uint32_t>(total));
+  w.put<std::uint32_t>(static_cast<std::uint32_t>(json.size()));
+  w.put<std::uint32_t>(0x4E4F534Au);  // "JSON"
+  w.write(json.data(), json.size());
+  w.put<std::uint32_t>(static_cast<std::uint32_t>(binBytes));
+  w.put<std::uint32_t>(0x004E4942u);  // "BIN\0"
   static_assert(sizeof(Eigen::Vector3f) == 12);
-  bin.putPoints(state.skin.positions.front().data(), nV);
-  bin.putPoints(state.skin.normals.front().data(), nV);
-  bin.put(skin.triangles.data(), skin.triangles.size() * 4);
+  putPoints(w, state.skin.positions.front().data(), nV);
+  putPoints(w, state.skin.normals.front().data(), nV);
+  w.write(skin.triangles.data(), skin.triangles.size() * 4);
   std::vector<std::uint32_t> idx;
   for (const CoatPart& p : parts) {
     const fur::HairBuffers& b = state.fur.coats[static_cast<std::size_t>(p.coat)];
     const int K = p.layout.strandPoints;
     if (p.layout.ringSides == 1) {
-      bin.putPoints(b.positions.data(), static_cast<std::size_t>(p.vertices));
+      putPoints(w, b.positions.data(), static_cast<std::size_t>(p.vertices));
     } else {
       line.resize(static_cast<std::size_t>(K) * 3);
       for (std::int64_t h = 0; h < p.hairs; ++h) {
         detail::hairCenterLine(b, h, line.data());
-        bin.putPoints(line.data(), static_cast<std::size_t>(K));
+        putPoints(w, line.data(), static_cast<std::size_t>(K));
       }
     }
     idx.clear();
@@ -281,11 +255,11 @@ GlbCounts writeFrameGlb(const std::string& path, const Model& model, const Fur& 
         idx.push_back(base + static_cast<std::uint32_t>(k + 1));
       }
       if (idx.size() >= (1u << 20)) {
-        bin.put(idx.data(), idx.size() * 4);
+        w.write(idx.data(), idx.size() * 4);
         idx.clear();
       }
     }
-    bin.put(idx.data(), idx.size() * 4);
+    w.write(idx.data(), idx.size() * 4);
     // COLOR_0: the hair's root and tip colours graded along its centre line, RGBA8 linear.
     const fur::CoatColors& cc = fur.colors.coats[static_cast<std::size_t>(p.coat)];
     std::vector<std::uint8_t> rgba(static_cast<std::size_t>(K) * 4);
@@ -298,15 +272,14 @@ GlbCounts writeFrameGlb(const std::string& path, const Model& model, const Fur& 
               static_cast<std::uint8_t>(std::lround(c[j] * 255.0f));
         rgba[static_cast<std::size_t>(4 * k + 3)] = 255;
       }
-      bin.put(rgba.data(), rgba.size());
+      w.write(rgba.data(), rgba.size());
     }
     std::vector<float> widths(static_cast<std::size_t>(K));
     for (int k = 0; k < K; ++k)
       widths[static_cast<std::size_t>(k)] =
           fur::exportedWidth(state.fur, params, p.coat, k * p.layout.ringSides);
-    for (std::int64_t h = 0; h < p.hairs; ++h) bin.put(widths.data(), widths.size() * 4);
+    for (std::int64_t h = 0; h < p.hairs; ++h) w.write(widths.data(), widths.size() * 4);
   }
-  bin.flush();
   w.commit();
   return counts;
 }

@@ -54,6 +54,32 @@ TEST(AtomicFile, ReplacesOldFileOnlyOnCommit) {
   EXPECT_EQ(test::readText(dir.file("c.txt")), "new");
 }
 
+// Small values are gathered in the writer's buffer, pieces larger than it go through: the file
+// holds every byte in the order written, whatever the sizes, and only after commit.
+TEST(AtomicFile, BufferedWritesKeepEveryByteInOrder) {
+  test::TempDir dir;
+  const std::string path = dir.file("mixed.bin");
+  std::string expected;
+  AtomicFileWriter w(path);
+  auto putInt = [&](std::int32_t v) {
+    w.put(v);
+    expected.append(reinterpret_cast<const char*>(&v), 4);
+  };
+  putInt(7);
+  const std::string big(AtomicFileWriter::kBufferBytes + 5, 'b');
+  w.write(big);
+  expected += big;
+  for (std::int32_t k = 0; k < 300000; ++k) putInt(k);  // more than one buffer's worth
+  const std::string fits(AtomicFileWriter::kBufferBytes - 3, 'f');
+  w.write(fits);
+  expected += fits;
+  w.write("", 0);
+  putInt(-1);
+  EXPECT_FALSE(fs::exists(path));
+  w.commit();
+  EXPECT_EQ(test::readText(path), expected);
+}
+
 TEST(AtomicFile, MissingDirectoryIsAClearError) {
   try {
     writeFileAtomically("/nonexistent-dir-pelage/x.ply", "x");

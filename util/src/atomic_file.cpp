@@ -153,19 +153,39 @@ AtomicFileWriter::~AtomicFileWriter() {
 void AtomicFileWriter::failWith(const char* what, int err) {
   if (file_) std::fclose(file_);
   file_ = nullptr;
+  buffer_.reset();
+  capacity_ = used_ = 0;
   std::remove(tempPath_.c_str());
   committed_ = true;  // nothing left to clean up
   inputError(path_, ": ", what, " failed (", reason(err), "); no file was written");
 }
 
-void AtomicFileWriter::write(const void* data, std::size_t bytes) {
+void AtomicFileWriter::flushBuffer() {
+  if (used_ > 0 && std::fwrite(buffer_.get(), 1, used_, file_) != used_) failWith("write", errno);
+  used_ = 0;
+}
+
+void AtomicFileWriter::writeThrough(const void* data, std::size_t bytes) {
   PELAGE_CHECK(file_ && !committed_, "write after commit");
   if (bytes == 0) return;
-  if (std::fwrite(data, 1, bytes, file_) != bytes) failWith("write", errno);
+  if (!buffer_) {
+    buffer_ = std::make_unique<char[]>(kBufferBytes);
+    capacity_ = kBufferBytes;
+  }
+  flushBuffer();
+  if (bytes < capacity_) {
+    std::memcpy(buffer_.get(), data, bytes);
+    used_ = bytes;
+  } else if (std::fwrite(data, 1, bytes, file_) != bytes) {
+    failWith("write", errno);
+  }
 }
 
 void AtomicFileWriter::commit() {
   PELAGE_CHECK(file_ && !committed_, "double commit");
+  flushBuffer();
+  buffer_.reset();
+  capacity_ = 0;
   if (std::fflush(file_) != 0) failWith("write", errno);
   if (std::ferror(file_)) failWith("write", errno ? errno : EIO);
   std::FILE* f = file_;

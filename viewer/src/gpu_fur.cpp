@@ -126,13 +126,9 @@ struct GpuFur::Impl {
   Buffer
       vertexData;  // nV x 3 segment directions (each frame), then nV fur lengths (with the roots)
   std::int32_t vertexCount = 0;
-  GLuint skinPositions = 0, skinNormals = 0;
-  const fur::FurRoots* roots = nullptr;
-  const fur::FurParams* params = nullptr;
+  GpuFurFrame frame;  // beginFrame's: the fur, roots, skin buffers and culling this frame draws
   std::uint64_t generation = ~std::uint64_t{0};
   std::uint64_t colorGeneration = ~std::uint64_t{0};
-  float cullFactor = 1.0f;
-  const std::array<std::vector<float>, fur::kCoatCount>* clumpCentres = nullptr;
 
   struct Coat {
     std::int64_t rootCount = 0;
@@ -273,8 +269,8 @@ struct GpuFur::Impl {
 
   void ensureTwist(int c) {
     Coat& g = coats[static_cast<std::size_t>(c)];
-    const float r = params->coats[static_cast<std::size_t>(c)].normalRandomize;
-    const std::uint64_t seed = fur::coatSeed(roots->seed, c);
+    const float r = frame.inputs.params->coats[static_cast<std::size_t>(c)].normalRandomize;
+    const std::uint64_t seed = fur::coatSeed(frame.inputs.roots->seed, c);
     if (g.twistAmount == r && g.twistSeed == seed) return;
     fur::makeTwistTable(seed, r, g.twistTable);
     PELAGE_CHECK(g.twistTable.size() == static_cast<std::size_t>(kTableFloats - kTwistFloatsAt),
@@ -299,7 +295,7 @@ void GpuFur::beginFrame(const GpuFurFrame& f) {
     m.uploadSkin(*in.skin);
     m.generation = ~std::uint64_t{0};
   }
-  if (m.generation != in.rootsGeneration || m.roots != in.roots) {
+  if (m.generation != in.rootsGeneration || m.frame.inputs.roots != in.roots) {
     m.uploadRoots(*in.roots);
     m.generation = in.rootsGeneration;
     m.colorGeneration = ~std::uint64_t{0};
@@ -309,12 +305,7 @@ void GpuFur::beginFrame(const GpuFurFrame& f) {
     m.uploadColors(in.colors);
     m.colorGeneration = colorGeneration;
   }
-  m.roots = in.roots;
-  m.params = in.params;
-  m.clumpCentres = in.clumpCentres;
-  m.skinPositions = f.skinPositions;
-  m.skinNormals = f.skinNormals;
-  m.cullFactor = f.cullFactor;
+  m.frame = f;
   PELAGE_CHECK(in.deformed->directions.size() == static_cast<std::size_t>(m.vertexCount));
   glNamedBufferSubData(m.vertexData.get(), 0, static_cast<GLsizeiptr>(m.vertexCount) * 12,
                        in.deformed->directions.data());
@@ -323,10 +314,11 @@ void GpuFur::beginFrame(const GpuFurFrame& f) {
 void GpuFur::generate(int coat, const fur::HairLayout& layout, bool tangents,
                       HairVertexBuffers& out) {
   Impl& m = *impl_;
-  PELAGE_CHECK(coat >= 0 && coat < fur::kCoatCount && m.params, "generate before beginFrame");
+  const scene::GpuFurInputs& in = m.frame.inputs;
+  PELAGE_CHECK(coat >= 0 && coat < fur::kCoatCount && in.params, "generate before beginFrame");
   Impl::Coat& g = m.coats[static_cast<std::size_t>(coat)];
-  const fur::CoatShape shape = fur::makeCoatShape(*m.params, *m.roots, coat);
-  PELAGE_CHECK(layout == fur::coatLayout(*m.params, *m.roots, coat), "a layout of ",
+  const fur::CoatShape shape = fur::makeCoatShape(*in.params, *in.roots, coat);
+  PELAGE_CHECK(layout == fur::coatLayout(*in.params, *in.roots, coat), "a layout of ",
                layout.pointsPerHair(), " points for a coat of ", shape.points);
   out.reserve(g.rootCount, layout, m.maxBinding);
   glNamedBufferSubData(g.shape.get(), 0, sizeof shape, &shape);
@@ -334,14 +326,14 @@ void GpuFur::generate(int coat, const fur::HairLayout& layout, bool tangents,
   lastDispatches_ = 0;
 
   // Clumping: this frame's centre strand points (fur::generateClumpCentres), and the weights.
-  const fur::Clump& clump = m.params->coats[static_cast<std::size_t>(coat)].clump;
-  const bool clumps = fur::coatClumps(*m.params, *m.roots, coat);
+  const fur::Clump& clump = in.params->coats[static_cast<std::size_t>(coat)].clump;
+  const bool clumps = fur::coatClumps(*in.params, *in.roots, coat);
   std::array<float, fur::kMaxCurvePoints> clumpWeights{};
   if (clumps) {
     const std::vector<float>* centres =
-        m.clumpCentres ? &(*m.clumpCentres)[static_cast<std::size_t>(coat)] : nullptr;
+        in.clumpCentres ? &(*in.clumpCentres)[static_cast<std::size_t>(coat)] : nullptr;
     const std::size_t expected =
-        m.roots->coats[static_cast<std::size_t>(coat)].clumpCentres.size() * 3 *
+        in.roots->coats[static_cast<std::size_t>(coat)].clumpCentres.size() * 3 *
         static_cast<std::size_t>(layout.strandPoints);
     PELAGE_CHECK(centres && centres->size() == expected, "coat ", coat,
                  " clumps but its frame has ", centres ? centres->size() : 0,
@@ -359,7 +351,7 @@ void GpuFur::generate(int coat, const fur::HairLayout& layout, bool tangents,
   }
 
   // Sec. 3.3: drawnStart on the GPU when culling, else the roots' own triangleStart.
-  const bool culling = m.cullFactor > 1.0f;
+  const bool culling = m.frame.cullFactor > 1.0f;
   GLuint drawnStart = g.triangleStart.get();
   const std::int64_t nT = m.triangleCount;
   if (culling && nT > 0) {
@@ -371,7 +363,7 @@ void GpuFur::generate(int coat, const fur::HairLayout& layout, bool tangents,
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 15, g.blockSums.get());
     glUseProgram(m.cullProgram.get());
     glUniform1i(uniform(m.cullProgram.get(), "uTriangles"), static_cast<GLint>(nT));
-    glUniform1f(uniform(m.cullProgram.get(), "uFactor"), m.cullFactor);
+    glUniform1f(uniform(m.cullProgram.get(), "uFactor"), m.frame.cullFactor);
     glDispatchCompute(static_cast<GLuint>(blocks), 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     glUseProgram(m.scanBlocksProgram.get());
@@ -395,8 +387,8 @@ void GpuFur::generate(int coat, const fur::HairLayout& layout, bool tangents,
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, g.triangleStart.get());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, drawnStart);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, g.tables.get());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, m.skinPositions);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, m.skinNormals);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, m.frame.skinPositions);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, m.frame.skinNormals);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 10, m.vertexData.get());
   glUniform1i(uniform(hp, "uTangents"), tangents ? 1 : 0);
   glUniform1i(uniform(hp, "uStrandStride"), layout.ringSides);

@@ -4,9 +4,12 @@
 #pragma once
 
 #include <cstdio>
+#include <cstring>
 #include <functional>
+#include <memory>
 #include <string>
 #include <string_view>
+#include <type_traits>
 
 namespace pelage {
 
@@ -18,19 +21,40 @@ class AtomicFileWriter {
   AtomicFileWriter(const AtomicFileWriter&) = delete;
   AtomicFileWriter& operator=(const AtomicFileWriter&) = delete;
 
-  void write(const void* data, std::size_t bytes);
+  // Appends bytes. Small writes (a binary exporter's values) are gathered into pieces of
+  // kBufferBytes before they reach the file.
+  void write(const void* data, std::size_t bytes) {
+    if (bytes != 0 && bytes <= capacity_ - used_) {
+      std::memcpy(buffer_.get() + used_, data, bytes);
+      used_ += bytes;
+      return;
+    }
+    writeThrough(data, bytes);
+  }
   void write(std::string_view text) { write(text.data(), text.size()); }
+  // Appends the bytes of `value`, a trivially copyable value (binary formats, little-endian here).
+  template <class T>
+  void put(const T& value) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    write(&value, sizeof(T));
+  }
   // Flushes, closes and renames onto the final path. Throws InputError on any failure.
   void commit();
+
+  static constexpr std::size_t kBufferBytes = std::size_t{1} << 22;
 
   const std::string& path() const { return path_; }
   const std::string& tempPath() const { return tempPath_; }
 
  private:
   [[noreturn]] void failWith(const char* what, int err);
+  void writeThrough(const void* data, std::size_t bytes);  // flushes the buffer, then writes
+  void flushBuffer();
   std::string path_;
   std::string tempPath_;
   std::FILE* file_ = nullptr;
+  std::unique_ptr<char[]> buffer_;  // kBufferBytes once anything is written; none after commit
+  std::size_t capacity_ = 0, used_ = 0;
   bool committed_ = false;
 };
 

@@ -160,8 +160,8 @@ template <class E, class FF>
 inline HairFrame<E> framePart(const HairFrame<FF>& f, int j) {
   const auto v = [j](const FF& x) { return part(x, j); };
   const auto v3 = [&](const Vec3<FF>& x) { return Vec3<E>{v(x.x), v(x.y), v(x.z)}; };
-  return {v3(f.root),  v3(f.normal), v3(f.dTilde),    v3(f.e),       v3(f.planeNormal),
-          v(f.length), v(f.phase),   v(f.curlRadius), v(f.curlTurns)};
+  return {v3(f.root),  v3(f.normal), v3(f.dTilde),    v3(f.e),        v3(f.planeNormal),
+          v(f.length), v(f.phase),   v(f.curlRadius), v(f.curlTurns), v(f.widthScale)};
 }
 inline __m128 quarter(const F4& x, int) {
   return x.v;

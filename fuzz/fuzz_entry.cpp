@@ -209,6 +209,7 @@ std::string groomExample() {
                                           0.125f * static_cast<float>(v % 9));
     g.curlRadius.emplace_back(0.0625f * static_cast<float>(v % 9), 0.25f);
     g.curlTurns.emplace_back(2.5f * static_cast<float>(v % 9), 0.5f * static_cast<float>(v % 3));
+    g.widthScale.emplace_back(0.5f + 0.25f * static_cast<float>(v % 7), 1.5f);
   }
   return fur::groomFileJson(groomMesh(), g);
 }

@@ -127,6 +127,9 @@ CoatShape makeCoatShape(const FurParams& params, const FurRoots& roots, int coat
   c.perHairCurl =
       !cr.curlRadius.empty() && usesCurveParams(params.coats[static_cast<std::size_t>(coat)].style);
   if (c.perHairCurl) c.curl = 1;
+  // A groom's width scale thickens each tube by its own; strands are widened where drawn.
+  c.perHairWidth = !cr.widthScale.empty() &&
+                   params.coats[static_cast<std::size_t>(coat)].style == HairStyle::Tube;
   const std::uint64_t seed = coatSeed(roots.seed, coat);
   c.frizzSeed = std::bit_cast<std::int32_t>(static_cast<std::uint32_t>(seed ^ (seed >> 32)));
   return c;

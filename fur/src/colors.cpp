@@ -143,14 +143,15 @@ FurColors colorRoots(const skin::SkinMesh& skin, const FurRoots& roots, const Fu
     cc.ambientRatio =
         lumD > 1e-6f ? std::clamp(luminance(linear.ambient) / lumD, 0.0f, 4.0f) : 0.0f;
     const std::vector<Eigen::Vector3f>& vertexTint = maps.vertex.tint;
-    if (model.uniformOver(cc.source) && vertexTint.empty()) {
+    const CoatRoots& cr = roots.coats[ci];
+    cc.perHairWidth = !cr.widthScale.empty();
+    if (model.uniformOver(cc.source) && vertexTint.empty() && !cc.perHairWidth) {
       cc.perHair = false;
       cc.diffuse = clamp01(linear.diffuse.cwiseProduct(model.tint));
       cc.ambient = clamp01(linear.ambient.cwiseProduct(model.tint));
       continue;
     }
     cc.perHair = true;
-    const CoatRoots& cr = roots.coats[ci];
     const std::int64_t n = cr.size();
     cc.packed.assign(static_cast<std::size_t>(2 * n), 0u);
     const std::uint64_t seed = coatSeed(roots.seed, c);
@@ -187,9 +188,21 @@ FurColors colorRoots(const skin::SkinMesh& skin, const FurRoots& roots, const Fu
       }
       cc.packed[2 * ks] = packSrgb8(root);
       cc.packed[2 * ks + 1] = packSrgb8(tip);
+      if (cc.perHairWidth) packHairWidth(cc.packed.data() + 2 * ks, cr.widthScale[ks]);
     });
   }
   return out;
+}
+
+void packHairWidth(std::uint32_t* pair, float widthScale) {
+  const auto code = static_cast<std::uint32_t>(
+      std::lround(std::clamp(widthScale, 0.0f, kMaxWidthScale) * kWidthScaleCodes));
+  pair[0] = (pair[0] & 0x00FFFFFFu) | (code & 0xFFu) << 24;
+  pair[1] = (pair[1] & 0x00FFFFFFu) | (code >> 8) << 24;
+}
+
+float hairWidthScale(const std::uint32_t* pair) {
+  return static_cast<float>((pair[0] >> 24) | (pair[1] >> 24) << 8) / kWidthScaleCodes;
 }
 
 void pointColorsSrgb8(const CoatColors& cc, const HairBuffers& hb, std::vector<std::uint8_t>& rgb) {

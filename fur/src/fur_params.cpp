@@ -119,6 +119,7 @@ void validateFurParams(FurParams& p, const std::string& source) {
     checkPair(g.segmentDirectionWeight, "segmentDirectionWeight", 1.0);
     checkPair(g.curlRadius, "curl.radius", kMaxCurlRadius);
     checkPair(g.curlTurns, "curl.turns", kMaxCurlTurns);
+    checkPair(g.widthScale, "widthScale", kMaxWidthScale);
   }
   for (int k = 0; k < 3; ++k) checkRange(source, str("up[", k, "]"), p.up[k], -1e6, 1e6);
   const float upLength = p.up.norm();

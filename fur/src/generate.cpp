@@ -266,7 +266,13 @@ void detail::generateFurWithDynamics(
       drawn = computeDrawnStart(cr, seed, factor, ws.drawnStart[ci]);
       drawnStart = ws.drawnStart[ci].data();
     }
-    if (emit) hb.drawn = drawn;
+    if (emit) {
+      hb.drawn = drawn;
+      if (cr.widthScale.empty())
+        hb.widthScales.clear();
+      else
+        hb.widthScales.resize(static_cast<std::size_t>(drawn));
+    }
     if (drawn == 0) continue;
     detail::CoatKernelArgs a;
     a.shape = &shape;
@@ -285,6 +291,7 @@ void detail::generateFurWithDynamics(
     a.segmentWeight = cr.segmentWeight.empty() ? nullptr : cr.segmentWeight.data();
     a.curlRadius = cr.curlRadius.empty() ? nullptr : cr.curlRadius.data();
     a.curlTurns = cr.curlTurns.empty() ? nullptr : cr.curlTurns.data();
+    a.widthScale = shape.perHairWidth ? cr.widthScale.data() : nullptr;
     a.barycentric = roots.barycentric.data();
     a.twist = shape.twist ? ws.twist[ci].data() : nullptr;
     a.positions = emit ? hb.positions.data() : nullptr;
@@ -313,6 +320,10 @@ void detail::generateFurWithDynamics(
                      bytes > kStreamStoreBytes && aligned(a.positions) && aligned(a.normals);
     parallelForChunks(drawn, kHairsPerTask, [&](std::int64_t b, std::int64_t e) {
       detail::runCoatRange(a, b, e);
+      if (emit && !cr.widthScale.empty())
+        for (std::int64_t h = b; h < e; ++h)
+          hb.widthScales[static_cast<std::size_t>(h)] =
+              cr.widthScale[static_cast<std::size_t>(a.hairIds[h])];
       if (clumps)
         for (std::int64_t h = b; h < e; ++h) {
           const auto r = static_cast<std::size_t>(a.hairIds[h]);
@@ -372,7 +383,8 @@ HairInput<float> rootInput(const skin::SkinMesh& skin, const FurRoots& roots,
       roots.barycentric.data() + 4 * cr.tableIndex[r], records[0], records[1], records[2],
       cr.jitter.data() + 4 * r, cr.lengthScale.empty() ? 1.0f : cr.lengthScale[r],
       cr.comb.empty() ? 0u : cr.comb[r], cr.floppiness.empty() ? 0.0f : cr.floppiness[r],
-      cr.segmentWeight.empty() ? 0.0f : cr.segmentWeight[r], curl);
+      cr.segmentWeight.empty() ? 0.0f : cr.segmentWeight[r], curl,
+      cr.widthScale.empty() ? 1.0f : cr.widthScale[r]);
 }
 
 void referenceHair(const skin::SkinMesh& skin, const FurRoots& roots, const FurParams& params,

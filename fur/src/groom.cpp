@@ -41,11 +41,12 @@ Groom loadGroomMaps(const GroomMapPaths& paths, const skin::SkinMesh& skin,
     const char* field = !paths.density.empty()  ? "maps.density"
                         : !paths.length.empty() ? "maps.length"
                                                 : "maps.color";
-    fieldError(field, ": model '", modelName,
-               "' has no texture coordinates, so groom maps cannot be placed on it (they need a "
-               "glTF model with TEXCOORD_0); groom it by regions instead (a preset's \"regions\": "
-               "lengthScale, lengthMm, densityScale, tint, stiffness, segmentDirectionWeight, curl "
-               "per region or joint)");
+    fieldError(
+        field, ": model '", modelName,
+        "' has no texture coordinates, so groom maps cannot be placed on it (they need a "
+        "glTF model with TEXCOORD_0); groom it by regions instead (a preset's \"regions\": "
+        "lengthScale, lengthMm, densityScale, tint, stiffness, segmentDirectionWeight, curl, "
+        "widthScale per region or joint)");
   }
   m.density = loadMap(paths.density, "maps.density", false, skin::Filter::Nearest);
   m.length = loadMap(paths.length, "maps.length", false, skin::Filter::Linear);
@@ -134,8 +135,8 @@ VertexGroom groomFromRegions(const skin::SkinMesh& skin, const anatomy::Body& bo
           for (int k = 0; k < 3; ++k)
             g.tint[v][k] = blend(g.tint[v][k], g.tint[v][k] * reg.tint[k], w[v]);
     }
-    // A per-coat value (stiffness, segment direction weight, curl radius and turns) moves from
-    // the coats' own.
+    // A per-coat value (stiffness, segment direction weight, curl radius and turns, width scale)
+    // moves from the coats' own.
     const auto blendCoats = [&](std::vector<Eigen::Vector2f>& values,
                                 const std::optional<Eigen::Vector2f>& target, float overcoat,
                                 float undercoat) {
@@ -152,6 +153,7 @@ VertexGroom groomFromRegions(const skin::SkinMesh& skin, const anatomy::Body& bo
                under.segmentDirectionWeight);
     blendCoats(g.curlRadius, reg.curlRadius, over.curlRadius, under.curlRadius);
     blendCoats(g.curlTurns, reg.curlTurns, over.curlTurns, under.curlTurns);
+    blendCoats(g.widthScale, reg.widthScale, 1.0f, 1.0f);  // the coats' own width: scale 1
     if (matches) matches->push_back(std::move(m));
   }
   return g;

@@ -91,7 +91,8 @@ std::string groomFileJson(const skin::SkinMesh& skin, const VertexGroom& g) {
                    (g.stiffness.empty() || g.stiffness.size() == nV) &&
                    (g.segmentDirectionWeight.empty() || g.segmentDirectionWeight.size() == nV) &&
                    (g.curlRadius.empty() || g.curlRadius.size() == nV) &&
-                   (g.curlTurns.empty() || g.curlTurns.size() == nV),
+                   (g.curlTurns.empty() || g.curlTurns.size() == nV) &&
+                   (g.widthScale.empty() || g.widthScale.size() == nV),
                "groom arrays sized for another mesh");
   nlohmann::json j;
   j["format"] = kFormat;
@@ -125,6 +126,7 @@ std::string groomFileJson(const skin::SkinMesh& skin, const VertexGroom& g) {
     j["segmentDirectionWeight"] = rows(g.segmentDirectionWeight);
   if (!g.curlRadius.empty()) j["curlRadius"] = rows(g.curlRadius);
   if (!g.curlTurns.empty()) j["curlTurns"] = rows(g.curlTurns);
+  if (!g.widthScale.empty()) j["widthScale"] = rows(g.widthScale);
   return j.dump() + "\n";
 }
 
@@ -141,7 +143,7 @@ VertexGroom parseGroomFile(const std::string& text, const std::string& source,
     j.fail(str("not a groom file: expected \"format\": \"", kFormat,
                "\" (groom files come from pelage's groom output or Python's write_groom)"));
   j.rejectUnknown({"format", "version", "mesh", "length", "density", "tint", "comb", "clump",
-                   "stiffness", "segmentDirectionWeight", "curlRadius", "curlTurns"});
+                   "stiffness", "segmentDirectionWeight", "curlRadius", "curlTurns", "widthScale"});
   j.integer("version", kGroomFileVersion, kGroomFileVersion);
   const JsonReader mesh = j.at("mesh");
   mesh.rejectUnknown({"vertices", "triangles", "hash"});
@@ -168,6 +170,8 @@ VertexGroom parseGroomFile(const std::string& text, const std::string& source,
     g.curlRadius = readRows<2>(j, "curlRadius", n, 0.0, static_cast<double>(kMaxCurlRadius));
   if (j.has("curlTurns"))
     g.curlTurns = readRows<2>(j, "curlTurns", n, 0.0, static_cast<double>(kMaxCurlTurns));
+  if (j.has("widthScale"))
+    g.widthScale = readRows<2>(j, "widthScale", n, 0.0, static_cast<double>(kMaxWidthScale));
   if (j.has("tint")) g.tint = readRows<3>(j, "tint", n, 0.0, static_cast<double>(kMaxGroomTint));
   if (j.has("comb")) {
     g.comb = readRows<3>(j, "comb", n, -1.0, 1.0);

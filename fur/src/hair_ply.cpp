@@ -23,9 +23,11 @@ HairPlyCounts hairPlyCounts(const FurFrame& frame) {
   return n;
 }
 
-float exportedWidth(const FurFrame& frame, const FurParams& params, int coat, int k) {
+float exportedWidth(const FurFrame& frame, const FurParams& params, int coat, std::int64_t hair,
+                    int k) {
   const HairBuffers& hb = frame.coats[static_cast<std::size_t>(coat)];
-  const float w = params.coats[static_cast<std::size_t>(coat)].width.metersAt(hb.layout.along(k));
+  const float w = params.coats[static_cast<std::size_t>(coat)].width.metersAt(hb.layout.along(k)) *
+                  hb.widthScaleOf(hair);
   return hb.layout.topology == HairTopology::Strand ? w * std::max(frame.cullingFactor, 1.0f) : w;
 }
 
@@ -68,9 +70,13 @@ HairPlyCounts writeHairPly(const std::string& path, const FurFrame& frame, const
     if (colors) pointColorsSrgb8(colors->coats[static_cast<std::size_t>(c)], hb, rgb);
     const std::size_t size = colors ? 36 : 33;
     widths.resize(static_cast<std::size_t>(P));
-    for (int k = 0; k < P; ++k)
-      widths[static_cast<std::size_t>(k)] = exportedWidth(frame, params, c, k);
-    for (std::int64_t i = 0; i < hb.drawn; ++i)
+    const auto hairWidths = [&](std::int64_t i) {
+      for (int k = 0; k < P; ++k)
+        widths[static_cast<std::size_t>(k)] = exportedWidth(frame, params, c, i, k);
+    };
+    hairWidths(0);  // every hair's, unless the hairs have widths of their own
+    for (std::int64_t i = 0; i < hb.drawn; ++i) {
+      if (!hb.widthScales.empty()) hairWidths(i);
       for (std::int64_t k = 0; k < P; ++k) {
         char rec[36];  // 6 floats, int, uchar, float (and 3 uchar): little-endian like the host
         std::memcpy(rec, hb.positions.data() + (i * P + k) * 3, 12);
@@ -81,6 +87,7 @@ HairPlyCounts writeHairPly(const std::string& path, const FurFrame& frame, const
         if (colors) std::memcpy(rec + 33, rgb.data() + 3 * (i * P + k), 3);
         w.write(rec, size);
       }
+    }
   }
   std::int32_t base = 0;
   for (const HairBuffers& hb : frame.coats) {  // edges

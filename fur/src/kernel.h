@@ -30,6 +30,7 @@ struct CoatKernelArgs {
   const float* segmentWeight = nullptr;        // nRoots (a groom's direction weight), or null
   const float* curlRadius = nullptr;           // nRoots (a groom's curl), or null
   const float* curlTurns = nullptr;            // nRoots (with curlRadius), or null
+  const float* widthScale = nullptr;           // nRoots (a groom's width scale, tubes), or null
   const float* barycentric = nullptr;          // 2048 x 4
   const float* twist = nullptr;                // 2048 x 16 (cos, sin per point) or null
   float* positions = nullptr;                  // drawn x P x 3

@@ -467,8 +467,8 @@ struct Backend {
   static HairFrame<F> frameLanes(const HairFrame<FrameF>& f, int j) {
     const auto v = [j](const FrameF& x) { return eightOf(x, j); };
     const auto v3 = [&](const Vec3<FrameF>& x) { return Vec3<F>{v(x.x), v(x.y), v(x.z)}; };
-    return {v3(f.root),  v3(f.normal), v3(f.dTilde),    v3(f.e),       v3(f.planeNormal),
-            v(f.length), v(f.phase),   v(f.curlRadius), v(f.curlTurns)};
+    return {v3(f.root),  v3(f.normal), v3(f.dTilde),    v3(f.e),        v3(f.planeNormal),
+            v(f.length), v(f.phase),   v(f.curlRadius), v(f.curlTurns), v(f.widthScale)};
   }
   static void loadTwist(const CoatKernelArgs& a, const std::int32_t* roots, HairTwist<F>& twist) {
     loadTwist8(a, roots, twist);

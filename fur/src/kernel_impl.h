@@ -163,8 +163,9 @@ void runCoatRange(const CoatKernelArgs& a, std::int64_t begin, std::int64_t end)
         for (int l = 0; l < kFrameLanes; ++l) s[l] = a.lengthScale[roots[k * kFrameLanes + l]];
         inputs[k].length = inputs[k].length * B::loadFrame(s);
       }
-    // A groom's stiffness, segment direction weight and curl: each root's own floppiness, w and
-    // helix (CoatRoots::floppiness, ::segmentWeight, ::curlRadius, ::curlTurns).
+    // A groom's stiffness, segment direction weight, curl and width: each root's own floppiness,
+    // w, helix and width scale (CoatRoots::floppiness, ::segmentWeight, ::curlRadius, ::curlTurns,
+    // ::widthScale).
     const auto gatherPerRoot = [&](const float* values, auto member) {
       if (!values) return;
       for (int k = 0; k < frameBlocks; ++k) {
@@ -177,6 +178,7 @@ void runCoatRange(const CoatKernelArgs& a, std::int64_t begin, std::int64_t end)
     gatherPerRoot(a.segmentWeight, &HairInput<FrameF>::segmentWeight);
     gatherPerRoot(a.curlRadius, &HairInput<FrameF>::curlRadius);
     gatherPerRoot(a.curlTurns, &HairInput<FrameF>::curlTurns);
+    gatherPerRoot(a.widthScale, &HairInput<FrameF>::widthScale);
     // A groom's comb: each hair's first triangle edge and unpacked comb (interpolateRoot's).
     if (a.comb)
       for (int k = 0; k < frameBlocks; ++k) {

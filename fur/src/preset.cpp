@@ -155,7 +155,8 @@ std::optional<Eigen::Vector2f> coatPair(const JsonReader& j, const char* field, 
 
 // "regions": [{"match": PATTERN, "lengthScale": s, "lengthMm": mm, "densityScale": d,
 // "tint": [r, g, b], "stiffness": s | [overcoat, undercoat], "segmentDirectionWeight": w |
-// [overcoat, undercoat], "curl": {"radius": r | [o, u], "turns": t | [o, u]}}, ...]; the list
+// [overcoat, undercoat], "curl": {"radius": r | [o, u], "turns": t | [o, u]}, "widthScale": s |
+// [o, u]}, ...]; the list
 // replaces the base preset's.
 std::vector<FurRegion> parseFurRegions(const JsonReader& list) {
   if (!list.isArray())
@@ -166,10 +167,10 @@ std::vector<FurRegion> parseFurRegions(const JsonReader& list) {
   for (std::size_t i = 0; i < list.size(); ++i) {
     const JsonReader j = list.at(i);
     if (!j.isObject()) j.fail("expected an object {\"match\": PATTERN, ...}");
-    // Of the coat fields the stiffness, the segment direction weight and the curl are per region
-    // (width and colour source are per coat).
+    // Of the coat fields the stiffness, the segment direction weight, the curl and the width (as
+    // a scale) are per region (the colour source is per coat).
     j.rejectUnknown({"match", "lengthScale", "lengthMm", "densityScale", "tint", "stiffness",
-                     "segmentDirectionWeight", "curl"});
+                     "segmentDirectionWeight", "curl", "widthScale"});
     FurRegion r;
     if (!j.has("match"))
       j.fail("missing 'match' (a region, material or joint name; '*' wildcards)");
@@ -195,6 +196,7 @@ std::vector<FurRegion> parseFurRegions(const JsonReader& list) {
       r.curlRadius = coatPair(curl, "radius", kMaxCurlRadius);
       r.curlTurns = coatPair(curl, "turns", kMaxCurlTurns);
     }
+    r.widthScale = coatPair(j, "widthScale", kMaxWidthScale);
     out.push_back(std::move(r));
   }
   return out;
@@ -451,6 +453,7 @@ std::string furPresetJson(const FurParams& p) {
                                             g.segmentDirectionWeight->y()};
       if (g.curlRadius) region["curl"]["radius"] = {g.curlRadius->x(), g.curlRadius->y()};
       if (g.curlTurns) region["curl"]["turns"] = {g.curlTurns->x(), g.curlTurns->y()};
+      if (g.widthScale) region["widthScale"] = {g.widthScale->x(), g.widthScale->y()};
       list.push_back(std::move(region));
     }
     j["regions"] = list;

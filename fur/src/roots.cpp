@@ -404,6 +404,7 @@ FurRoots growRoots(const skin::SkinMesh& skin, const FurParams& params, const Gr
     if (clumpScaled) cr.clumpScale.resize(n);
     if (!groom.vertex.stiffness.empty()) cr.floppiness.resize(n);
     if (!groom.vertex.segmentDirectionWeight.empty()) cr.segmentWeight.resize(n);
+    if (!groom.vertex.widthScale.empty()) cr.widthScale.resize(n);
     const CoatParams& coat = params.coats[static_cast<std::size_t>(c)];
     const bool curled = !groom.vertex.curlRadius.empty() || !groom.vertex.curlTurns.empty();
     if (curled) {
@@ -454,6 +455,7 @@ FurRoots growRoots(const skin::SkinMesh& skin, const FurParams& params, const Gr
             cr.curlRadius[ks] = atRoot(groom.vertex.curlRadius);
           if (curled && !groom.vertex.curlTurns.empty())
             cr.curlTurns[ks] = atRoot(groom.vertex.curlTurns);
+          if (!cr.widthScale.empty()) cr.widthScale[ks] = atRoot(groom.vertex.widthScale);
           if (!cr.comb.empty())
             cr.comb[ks] = restComb(skin, rest, groom.vertex.comb, static_cast<std::int32_t>(t),
                                    roots.barycentric.data() + 4 * cr.tableIndex[ks]);

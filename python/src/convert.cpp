@@ -176,7 +176,8 @@ fur::VertexGroom vertexGroomFrom(int vertices, const py::object& length, const p
                                  const py::object& tint, const py::object& comb,
                                  const py::object& clump, const py::object& stiffness,
                                  const py::object& segmentDirectionWeight,
-                                 const py::object& curlRadius, const py::object& curlTurns) {
+                                 const py::object& curlRadius, const py::object& curlTurns,
+                                 const py::object& widthScale) {
   const auto nV = static_cast<py::ssize_t>(vertices);
   const auto column = [&](const py::object& o, const char* name) {
     std::vector<float> out;
@@ -223,6 +224,7 @@ fur::VertexGroom vertexGroomFrom(int vertices, const py::object& length, const p
                                    "(overcoat, undercoat) segment direction weight");
   g.curlRadius = pairs(curlRadius, "curl_radius", "(overcoat, undercoat) curl radius");
   g.curlTurns = pairs(curlTurns, "curl_turns", "(overcoat, undercoat) curl turns");
+  g.widthScale = pairs(widthScale, "width_scale", "(overcoat, undercoat) width scale");
   return g;
 }
 
@@ -250,6 +252,7 @@ py::dict groomDict(const fur::VertexGroom& g) {
     d["segment_direction_weight"] = pairs(g.segmentDirectionWeight);
   if (!g.curlRadius.empty()) d["curl_radius"] = pairs(g.curlRadius);
   if (!g.curlTurns.empty()) d["curl_turns"] = pairs(g.curlTurns);
+  if (!g.widthScale.empty()) d["width_scale"] = pairs(g.widthScale);
   return d;
 }
 

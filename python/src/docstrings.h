@@ -57,6 +57,9 @@ Args:
         undercoat) at the vertex, radius [0, 0.5] (a fraction of the hair's length) and turns
         [0, 20], in place of the coat's: a curve or tube hair winds with the values interpolated
         at its root (either alone keeps the coat's other; sec. 3.8).
+    width_scale: None, or shape (vertices, 2): multiplies each coat's hair width (overcoat,
+        undercoat) [0, 10] at the vertex: a hair is drawn and exported (a tube grown) at the
+        coat's width times the scale interpolated at its root.
     strokes: None, or grooming strokes applied on top of the arrays (those they need and that
         are absent start from the model's lengths, density 1, tint 1, no comb): a strokes file's
         path, or its JSON as a dict, {"strokes": [{"tool": "length" | "density" | "color" | "comb",

@@ -118,10 +118,12 @@ void writeGroom(const PyModel& m, const std::string& path, const py::object& len
                 const py::object& density, const py::object& tint, const py::object& comb,
                 const py::object& clump, const py::object& stiffness,
                 const py::object& segmentDirectionWeight, const py::object& curlRadius,
-                const py::object& curlTurns, const py::object& strokes) {
+                const py::object& curlTurns, const py::object& widthScale,
+                const py::object& strokes) {
   const skin::SkinMesh& skin = m.model->skin;
-  fur::VertexGroom g = vertexGroomFrom(skin.numVertices(), length, density, tint, comb, clump,
-                                       stiffness, segmentDirectionWeight, curlRadius, curlTurns);
+  fur::VertexGroom g =
+      vertexGroomFrom(skin.numVertices(), length, density, tint, comb, clump, stiffness,
+                      segmentDirectionWeight, curlRadius, curlTurns, widthScale);
   if (!strokes.is_none())
     fur::applyGroomStrokes(skin,
                            py::isinstance<py::str>(strokes)
@@ -580,7 +582,8 @@ PYBIND11_MODULE(_pelage, m) {
            py::arg("comb") = py::none(), py::arg("clump") = py::none(),
            py::arg("stiffness") = py::none(), py::arg("segment_direction_weight") = py::none(),
            py::arg("curl_radius") = py::none(), py::arg("curl_turns") = py::none(),
-           py::arg("strokes") = py::none(), doc::kWriteGroomDoc)
+           py::arg("width_scale") = py::none(), py::arg("strokes") = py::none(),
+           doc::kWriteGroomDoc)
       .def("__repr__", [](const PyModel& s) {
         return "<pelage.Model " + s.model->name + ": " + std::to_string(s.model->body.size()) +
                " segments, " + std::to_string(s.model->skin.numTriangles()) + " triangles, " +
@@ -598,7 +601,8 @@ PYBIND11_MODULE(_pelage, m) {
           "groom", [](const PyFur& f) { return groomDict(f.fur->groom.vertex); },
           "The per-vertex groom the hairs grew from (dict of numpy arrays: "
           "'length' (nV,) metres, 'density' (nV,), 'tint' (nV, 3), 'comb' (nV, 3), 'clump' (nV,), "
-          "'stiffness', 'segment_direction_weight', 'curl_radius' and 'curl_turns' (nV, 2) "
+          "'stiffness', 'segment_direction_weight', 'curl_radius', 'curl_turns' and "
+          "'width_scale' (nV, 2) "
           "(overcoat, undercoat); "
           "only those "
           "a groom file or the regions set).")

@@ -189,6 +189,38 @@ def test_curl_by_region_and_from_numpy(tmp_path):
 
 @pytest.mark.skipif(not os.path.exists(os.path.join(SHARED, "Fox", "Fox.glb")),
                     reason="the shared glTF models are not here")
+def test_width_by_region_and_from_numpy(tmp_path):
+    fox = pelage.load(os.path.join(SHARED, "Fox", "Fox.glb"))
+    n = len(fox.skin()[0])
+    tube = {"style": "tube"}
+    thick = fox.fur(hairs=3000, overcoat=tube, undercoat=tube,
+                    regions=[{"match": "b_Tail*", "widthScale": [2, 0.5]}])
+    assert thick.params["regions"][0]["widthScale"] == pytest.approx([2, 0.5])
+    assert set(thick.groom) == {"width_scale"}
+    scale = thick.groom["width_scale"]
+    assert scale.shape == (n, 2)
+    assert scale[:, 0].min() == 1 and scale[:, 0].max() == 2
+    assert scale[:, 1].min() == 0.5 and scale[:, 1].max() == 1
+    # Tubes grow that thick; strands keep their points (they are drawn and exported that wide).
+    plain = fox.fur(hairs=3000, overcoat=tube, undercoat=tube)
+    assert not np.array_equal(thick.hairs().points, plain.hairs().points)
+    strands = fox.fur(hairs=3000, regions=[{"match": "b_Tail*", "widthScale": 2}])
+    assert np.array_equal(strands.hairs().points, fox.fur(hairs=3000).hairs().points)
+    # From numpy through a groom file: the same hairs, bit for bit.
+    path = str(tmp_path / "width.groom.json")
+    fox.write_groom(path, width_scale=scale)
+    from_file = fox.fur(hairs=3000, overcoat=tube, undercoat=tube, groom=path)
+    assert np.array_equal(bits(from_file.groom["width_scale"]), bits(scale))
+    assert np.array_equal(bits(from_file.hairs().points), bits(thick.hairs().points))
+    with pytest.raises(ValueError, match=r"widthScale\[0\].*\[0, 10\]"):
+        fox.write_groom(str(tmp_path / "bad.json"), width_scale=np.full((n, 2), 11.0))
+    with pytest.raises(ValueError, match=r"width_scale.*shape \(%d, 2\)" % n):
+        fox.write_groom(path, width_scale=scale[:, 0])
+    assert not os.path.exists(tmp_path / "bad.json")
+
+
+@pytest.mark.skipif(not os.path.exists(os.path.join(SHARED, "Fox", "Fox.glb")),
+                    reason="the shared glTF models are not here")
 def test_subdivision_levels():
     path = os.path.join(SHARED, "Fox", "Fox.glb")
     tris = {s: len(pelage.load(path, subdivide=s).skin()[2]) for s in (0, 1, "auto")}

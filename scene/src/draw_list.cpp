@@ -97,6 +97,7 @@ void buildDrawList(const Model& model, const FrameState& frame, const Fur* fur,
     const fur::CoatColors& colors = fur->colors.coats[ci];
     item.material = linearMaterial(cp.material);
     item.perHairColor = colors.perHair;
+    item.perHairWidth = colors.perHairWidth;
     item.ambientRatio = colors.ambientRatio;
     if (!colors.perHair) {
       item.material.diffuse = colors.diffuse;

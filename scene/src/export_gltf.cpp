@@ -275,10 +275,17 @@ GlbCounts writeFrameGlb(const std::string& path, const Model& model, const Fur& 
       w.write(rgba.data(), rgba.size());
     }
     std::vector<float> widths(static_cast<std::size_t>(K));
-    for (int k = 0; k < K; ++k)
-      widths[static_cast<std::size_t>(k)] =
-          fur::exportedWidth(state.fur, params, p.coat, k * p.layout.ringSides);
-    for (std::int64_t h = 0; h < p.hairs; ++h) w.write(widths.data(), widths.size() * 4);
+    const auto hairWidths = [&](std::int64_t h) {
+      for (int k = 0; k < K; ++k)
+        widths[static_cast<std::size_t>(k)] =
+            fur::exportedWidth(state.fur, params, p.coat, h, k * p.layout.ringSides);
+    };
+    hairWidths(0);  // every hair's, unless the hairs have widths of their own
+    const bool own = !state.fur.coats[static_cast<std::size_t>(p.coat)].widthScales.empty();
+    for (std::int64_t h = 0; h < p.hairs; ++h) {
+      if (own) hairWidths(h);
+      w.write(widths.data(), widths.size() * 4);
+    }
   }
   w.commit();
   return counts;

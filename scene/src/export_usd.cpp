@@ -156,7 +156,11 @@ struct CoatOut {
   fur::HairLayout layout;
   fur::CoatShape shape;
   std::int64_t curves = 0;
+  std::vector<float> widthScales;  // each hair's (HairBuffers::widthScales; empty: 1)
   std::unique_ptr<Spool> points, extent;
+  float widthScaleOf(std::int64_t h) const {
+    return widthScales.empty() ? 1.0f : widthScales[static_cast<std::size_t>(h)];
+  }
 };
 
 std::string vec3Text(const Eigen::Vector3f& v) {
@@ -235,6 +239,7 @@ void UsdaWriter::addFrame(int frame, const FrameState& state) {
       co.layout = b.layout;
       co.shape = fur::makeCoatShape(*m.params, c);
       co.curves = b.drawn;
+      co.widthScales = b.widthScales;
       co.points = std::make_unique<Spool>(m.path, co.name + "-points");
       co.extent = std::make_unique<Spool>(m.path, co.name + "-extent");
       m.coats.push_back(std::move(co));
@@ -293,7 +298,9 @@ void UsdaWriter::addFrame(int frame, const FrameState& state) {
     t.flush();
     // Widths reach half a tube diameter beyond the control points.
     const fur::StrandWidth& w = m.params->coats[static_cast<std::size_t>(co.coat)].width;
-    const float pad = 0.5e-3f * std::max(w.rootMm, w.tipMm);
+    float widest = 1.0f;
+    for (float s : co.widthScales) widest = std::max(widest, s);
+    const float pad = 0.5e-3f * std::max(w.rootMm, w.tipMm) * widest;
     if (!box.isEmpty()) {
       box.min().array() -= pad;
       box.max().array() += pad;
@@ -407,14 +414,14 @@ UsdExportCounts UsdaWriter::finish() {
           const std::int64_t i = h * ends + e;
           if (i > 0) t << ((i % 16) == 0 ? ",\n            " : ", ");
           const int k = ends == 2 ? (e == 0 ? 0 : co.shape.curvePoints - 1) : e;
-          t.num(cp.width.metersAt(co.layout.along(k * co.layout.ringSides)));
+          t.num(cp.width.metersAt(co.layout.along(k * co.layout.ringSides)) * co.widthScaleOf(h));
           if (t.str().size() > (1u << 20)) emit();
         }
       t << "] (\n            interpolation = \"varying\"\n        )\n";
     } else {
       // The hair's width at each vertex (fur::StrandWidth), tapering from root to tip.
       t << "        float[] widths = [";
-      perVertex([&](std::int64_t, float a) { t.num(cp.width.metersAt(a)); });
+      perVertex([&](std::int64_t h, float a) { t.num(cp.width.metersAt(a) * co.widthScaleOf(h)); });
       t << "] (\n            interpolation = \"vertex\"\n        )\n";
     }
     t << "        float3[] extent.timeSamples = {\n";

@@ -110,13 +110,16 @@ std::string referenceSceneBytes(const DrawList& list, const fur::FurFrame& hairs
           colors[6 * i + 3 * static_cast<std::size_t>(end) + static_cast<std::size_t>(a)] = c[a];
       }
     }
-    coats.push_back({{"coat", item.coat},
-                     {"hairs", n},
-                     {"points", K},
-                     {"cullFactor", item.cullFactor},
-                     {"widths", blobs.add(widths.data(), widths.size())},
-                     {"positions", blobs.add(centres.data(), centres.size())},
-                     {"colors", blobs.add(colors.data(), colors.size())}});
+    nlohmann::json coat = {{"coat", item.coat},
+                           {"hairs", n},
+                           {"points", K},
+                           {"cullFactor", item.cullFactor},
+                           {"widths", blobs.add(widths.data(), widths.size())},
+                           {"positions", blobs.add(centres.data(), centres.size())},
+                           {"colors", blobs.add(colors.data(), colors.size())}};
+    if (!b.widthScales.empty())
+      coat["widthScales"] = blobs.add(b.widthScales.data(), b.widthScales.size());
+    coats.push_back(std::move(coat));
   }
   h["coats"] = coats;
 

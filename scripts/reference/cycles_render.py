@@ -222,6 +222,11 @@ def add_coat(scene, coat, values, as_drawn, material):
     # Radius per point (metres): half the width. Set on the attribute itself (a Named Attribute
     # node's default output would leave every radius at Blender's default without a word).
     radius = array.array("f", (0.5 * widen * widths[k] for k in range(K))) * n
+    if "widthScales" in coat:  # a groom's width per hair
+        scales = values(coat["widthScales"], "f")
+        for i in range(n):
+            for k in range(K):
+                radius[i * K + k] *= scales[i]
     if "radius" not in curves.attributes:
         curves.attributes.new("radius", "FLOAT", "POINT")
     curves.attributes["radius"].data.foreach_set("value", radius)

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -111,6 +112,31 @@ TEST(HairColors, ShiftHueKeepsValueAndTurnsRedTowardsGreen) {
   EXPECT_GT(turned.y(), turned.x());
   EXPECT_TRUE(shiftHue(red, 0.0f).isApprox(red, 1e-6f));
   EXPECT_TRUE(shiftHue(shiftHue(red, 40.0f), -40.0f).isApprox(red, 1e-4f));
+}
+
+// A hair's width scale rides in its colour pair's alpha bytes: the colours' bytes stay, the scale
+// comes back within half a code (exactly for multiples of 1/kWidthScaleCodes), over [0, 10].
+TEST(HairColors, AWidthScaleRidesInTheAlphaBytesAndLeavesTheColours) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> scale(0.0f, kMaxWidthScale);
+  std::uniform_int_distribution<std::uint32_t> bits;
+  for (int i = 0; i < 10000; ++i) {
+    const std::uint32_t before[2] = {bits(rng), bits(rng)};
+    std::uint32_t pair[2] = {before[0], before[1]};
+    const float s = i == 0 ? kMaxWidthScale : (i == 1 ? 0.0f : scale(rng));
+    packHairWidth(pair, s);
+    ASSERT_EQ(pair[0] & 0x00FFFFFFu, before[0] & 0x00FFFFFFu);
+    ASSERT_EQ(pair[1] & 0x00FFFFFFu, before[1] & 0x00FFFFFFu);
+    ASSERT_NEAR(hairWidthScale(pair), s, 0.5f / kWidthScaleCodes) << s;
+  }
+  for (const float exact : {0.0f, 0.25f, 1.0f, 1.5f, 2.0f, 3.0009765625f, 10.0f}) {
+    std::uint32_t pair[2] = {packSrgb8(Eigen::Vector3f(0.2f, 0.4f, 0.6f)), 0u};
+    packHairWidth(pair, exact);
+    EXPECT_EQ(hairWidthScale(pair), exact);
+  }
+  std::uint32_t pair[2] = {0u, 0u};
+  packHairWidth(pair, 1e6f);  // clamped to the range
+  EXPECT_EQ(hairWidthScale(pair), kMaxWidthScale);
 }
 
 // A density map black on the left half of the UV square: no root there, and the total is kept

@@ -5,12 +5,15 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
 #include <functional>
 #include <random>
 
 #include "../test_support.h"
 #include "fur_test_support.h"
+#include "pelage/fur/colors.h"
+#include "pelage/fur/hair_ply.h"
 #include "pelage/util/error.h"
 
 namespace pelage::fur {
@@ -218,6 +221,12 @@ TEST(Groom, FileValuesAreChecked) {
   text.replace(text.find("[20.0,2.0]"), 10, "[20.5,2.0]");
   test::expectInputError([&] { parseGroomFile(text, "f.json", g.skin, "grid"); },
                          {"f.json", "curlTurns[0]", "[0, 20]"});
+  VertexGroom width;
+  width.widthScale.assign(25, Eigen::Vector2f(2.5f, 0.5f));
+  text = groomFileJson(g.skin, width);
+  text.replace(text.rfind("[2.5,0.5]"), 9, "[2.5,10.5]");
+  test::expectInputError([&] { parseGroomFile(text, "f.json", g.skin, "grid"); },
+                         {"f.json", "widthScale[24]", "2 numbers", "[0, 10]"});
   test::expectInputError([&] { parseGroomFile("{}", "f.json", g.skin, "grid"); },
                          {"f.json", "not a groom file"});
   test::expectInputError([&] { parseGroomFile("[1,", "f.json", g.skin, "grid"); }, {"f.json"});
@@ -256,7 +265,8 @@ TEST(Groom, VertexLengthsAndDensityShapeTheRoots) {
 }
 
 TEST(Groom, HairsOnAGroomMatchTheReferenceOnEveryPathAndThreadCount) {
-  // Vertex lengths from 0 (bare) to twice the skin's, and densities, on a curved skin: every
+  // Vertex lengths from 0 (bare) to twice the skin's, densities, stiffness, w, helix and width,
+  // on a curved skin: every
   // style, kernel target and thread count gives the scalar reference's hairs bit for bit.
   const skin::SkinMesh s = test::makeSphere(0.1f, 24, 48);
   skin::DeformedSkin d;
@@ -271,16 +281,29 @@ TEST(Groom, HairsOnAGroomMatchTheReferenceOnEveryPathAndThreadCount) {
     // A helix on both coats (the undercoat's own is 0.2 radius, 2.5 turns), turns varying.
     groom.vertex.curlRadius.emplace_back(z > 0.0f ? 0.1f : 0.0f, 0.2f);
     groom.vertex.curlTurns.emplace_back(2.0f + 20.0f * z, 2.5f + 30.0f * z);
+    // Tubes of a width of their own (1 to 3 times the coat's radius, thinner undercoat).
+    groom.vertex.widthScale.emplace_back(2.0f + 10.0f * z, 0.7f - 3.0f * z);
   }
   test::checkStylesAgainstReference(s, d, 6000, Eigen::Vector3f(0.0f, 0.0f, 0.1f), groom);
 }
 
+// How a groom's per-coat value stands in a coat's parameters: `set` gives a coat the value (as its
+// own field, or a width as a scale of the coat's), `plain` is the groom value that keeps the coat.
+struct CoatValue {
+  std::function<void(CoatParams&, float)> set;
+  std::function<float(const CoatParams&)> plain;
+};
+CoatValue coatField(float CoatParams::*field) {
+  return {[field](CoatParams& c, float v) { c.*field = v; },
+          [field](const CoatParams& c) { return c.*field; }};
+}
+
 // A groom of one per-coat value everywhere (VertexGroom::*field = `value` for (overcoat,
 // undercoat); the default preset's coats, as `prepare` changes them) gives, bit for bit, the hairs
-// of coats of that value (CoatParams::*coatField; each root's own, CoatRoots::*perRoot, is the
-// coat's); the plain coats' value on the lower half changes only the upper hairs.
+// of coats of that value (`coat.set`; each root's own, CoatRoots::*perRoot, is the coat's); the
+// plain coats' value on the lower half changes only the upper hairs.
 void expectGroomGrowsAsCoatsOfItsValue(std::vector<Eigen::Vector2f> VertexGroom::*field,
-                                       float CoatParams::*coatField,
+                                       const CoatValue& coat,
                                        std::vector<float> CoatRoots::*perRoot,
                                        const Eigen::Vector2f& value,
                                        const std::function<void(FurParams&)>& prepare = {}) {
@@ -292,8 +315,8 @@ void expectGroomGrowsAsCoatsOfItsValue(std::vector<Eigen::Vector2f> VertexGroom:
   plain.culling.enabled = false;
   if (prepare) prepare(plain);
   FurParams coats = plain;
-  coats.coats[kOvercoat].*coatField = value.x();
-  coats.coats[kUndercoat].*coatField = value.y();
+  coat.set(coats.coats[kOvercoat], value.x());
+  coat.set(coats.coats[kUndercoat], value.y());
   Groom groom;
   (groom.vertex.*field).assign(static_cast<std::size_t>(s.numVertices()), value);
   const FurRoots groomed = growRoots(s, plain, groom);
@@ -310,7 +333,7 @@ void expectGroomGrowsAsCoatsOfItsValue(std::vector<Eigen::Vector2f> VertexGroom:
   for (int v = 0; v < s.numVertices(); ++v)
     if (s.restPositions()[3 * v + 2] < 0.0f)
       (groom.vertex.*field)[static_cast<std::size_t>(v)] =
-          Eigen::Vector2f(plain.coats[kOvercoat].*coatField, plain.coats[kUndercoat].*coatField);
+          Eigen::Vector2f(coat.plain(plain.coats[kOvercoat]), coat.plain(plain.coats[kUndercoat]));
   const FurRoots half = growRoots(s, plain, groom);
   const FurFrame mixed = test::furFrame(s, half, plain, d);
   const FurFrame allPlain = test::furFrame(s, ungroomed, plain, d);
@@ -338,7 +361,7 @@ void expectGroomGrowsAsCoatsOfItsValue(std::vector<Eigen::Vector2f> VertexGroom:
 }
 
 TEST(Groom, AStiffnessGroomDroopsEachHairAsACoatOfItsStiffness) {
-  expectGroomGrowsAsCoatsOfItsValue(&VertexGroom::stiffness, &CoatParams::stiffness,
+  expectGroomGrowsAsCoatsOfItsValue(&VertexGroom::stiffness, coatField(&CoatParams::stiffness),
                                     &CoatRoots::floppiness, Eigen::Vector2f(0.85f, 0.05f));
 }
 
@@ -346,8 +369,8 @@ TEST(Groom, ADirectionWeightGroomTurnsEachHairAsACoatOfItsWeight) {
   // Sec. 3.4's w per hair: the default coats' w is 0.3; 0.9 and 0.6 lean the hairs further
   // toward the sphere's segment direction (+x).
   expectGroomGrowsAsCoatsOfItsValue(&VertexGroom::segmentDirectionWeight,
-                                    &CoatParams::segmentDirectionWeight, &CoatRoots::segmentWeight,
-                                    Eigen::Vector2f(0.9f, 0.6f));
+                                    coatField(&CoatParams::segmentDirectionWeight),
+                                    &CoatRoots::segmentWeight, Eigen::Vector2f(0.9f, 0.6f));
 }
 
 TEST(Groom, ACurlGroomWindsEachHairAsACoatOfItsHelix) {
@@ -362,12 +385,77 @@ TEST(Groom, ACurlGroomWindsEachHairAsACoatOfItsHelix) {
       }
     };
   };
-  expectGroomGrowsAsCoatsOfItsValue(&VertexGroom::curlRadius, &CoatParams::curlRadius,
+  expectGroomGrowsAsCoatsOfItsValue(&VertexGroom::curlRadius, coatField(&CoatParams::curlRadius),
                                     &CoatRoots::curlRadius, Eigen::Vector2f(0.15f, 0.3f),
                                     styled(HairStyle::Curve, 0.0f, 2.5f));
-  expectGroomGrowsAsCoatsOfItsValue(&VertexGroom::curlTurns, &CoatParams::curlTurns,
+  expectGroomGrowsAsCoatsOfItsValue(&VertexGroom::curlTurns, coatField(&CoatParams::curlTurns),
                                     &CoatRoots::curlTurns, Eigen::Vector2f(3.0f, 1.5f),
                                     styled(HairStyle::Tube, 0.1f, 0.0f));
+}
+
+// A coat's width as a scale of its own (root and tip); the plain coat's scale is 1.
+CoatValue widthScaled() {
+  return {[](CoatParams& c, float s) {
+            c.width = {c.width.rootMm * s, c.width.tipMm * s};
+          },
+          [](const CoatParams&) { return 1.0f; }};
+}
+
+TEST(Groom, AWidthGroomThickensEachTubeAsACoatOfThatWidth) {
+  // Powers of two: a tube of the coat's radius times 2 (or 0.5) is exactly the tube of a coat of
+  // twice (half) the width.
+  expectGroomGrowsAsCoatsOfItsValue(&VertexGroom::widthScale, widthScaled(), &CoatRoots::widthScale,
+                                    Eigen::Vector2f(2.0f, 0.5f), [](FurParams& p) {
+                                      for (CoatParams& c : p.coats) c.style = HairStyle::Tube;
+                                    });
+}
+
+TEST(Groom, AWidthGroomKeepsStrandsInPlaceAndGivesEachItsWidth) {
+  // Strands are as thin as the renderer draws them: the groom leaves their points, and hands each
+  // drawn hair its root's scale (HairBuffers::widthScales; what the exports multiply by) and the
+  // renderer the same in its colours' alpha bytes (colors.h packHairWidth).
+  const skin::SkinMesh s = test::makeSphere(0.1f, 16, 32);
+  skin::DeformedSkin d;
+  skin::restSkin(s, d);
+  FurParams p = loadFurPreset("default");
+  p.setHairCount(4000);
+  p.culling.enabled = false;
+  Groom groom;
+  for (int v = 0; v < s.numVertices(); ++v)  // 1 at the bottom pole to 3 at the top
+    groom.vertex.widthScale.emplace_back(2.0f + 10.0f * s.restPositions()[3 * v + 2], 0.75f);
+  const FurRoots plain = growRoots(s, p);
+  const FurRoots groomed = growRoots(s, p, groom);
+  const FurFrame a = test::furFrame(s, plain, p, d);
+  const FurFrame b = test::furFrame(s, groomed, p, d);
+  EXPECT_TRUE(test::sameHairs(a, b));
+  const FurColors colors = colorRoots(s, groomed, p, groom);
+  const FurColors plainColors = colorRoots(s, plain, p, Groom{});
+  for (int c = 0; c < kCoatCount; ++c) {
+    const auto cs = static_cast<std::size_t>(c);
+    const HairBuffers& hb = b.coats[cs];
+    EXPECT_TRUE(a.coats[cs].widthScales.empty());
+    ASSERT_EQ(hb.widthScales.size(), static_cast<std::size_t>(hb.drawn));
+    const std::vector<float>& own = groomed.coats[cs].widthScale;
+    const auto [lo, hi] = std::minmax_element(own.begin(), own.end());
+    EXPECT_GE(*lo, c == kOvercoat ? 1.0f : 0.75f);
+    EXPECT_LE(*hi, c == kOvercoat ? 3.0f : 0.75f);
+    if (c == kOvercoat) {
+      EXPECT_GT(*hi - *lo, 1.5f);
+    }
+    ASSERT_TRUE(colors.coats[cs].perHair && colors.coats[cs].perHairWidth);
+    for (std::int64_t i = 0; i < hb.drawn; ++i) {
+      const auto r = static_cast<std::size_t>(hb.hairIds[static_cast<std::size_t>(i)]);
+      ASSERT_EQ(hb.widthScaleOf(i), own[r]);
+      for (int k = 0; k < hb.layout.pointsPerHair(); ++k)
+        ASSERT_EQ(exportedWidth(b, p, c, i, k), exportedWidth(a, p, c, i, k) * own[r]);
+      const std::uint32_t* pair = colors.coats[cs].packed.data() + 2 * r;
+      EXPECT_NEAR(hairWidthScale(pair), own[r], 0.5f / kWidthScaleCodes);
+      if (plainColors.coats[cs].perHair) {  // the colours themselves are the groomless ones
+        for (int e = 0; e < 2; ++e)
+          EXPECT_EQ(pair[e] & 0x00FFFFFFu, plainColors.coats[cs].packed[2 * r + e] & 0x00FFFFFFu);
+      }
+    }
+  }
 }
 
 }  // namespace

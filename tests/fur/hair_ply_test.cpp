@@ -213,15 +213,15 @@ TEST(HairPly, CulledStrandsAreWidenedTubesKeepTheirDiameter) {
   f.cullingFactor = 3.0f;  // a third of the hairs drawn: strands three times as wide
   const int P = f.coats[kOvercoat].layout.pointsPerHair();
   for (int k = 0; k < P; ++k)
-    EXPECT_FLOAT_EQ(exportedWidth(f, p, kOvercoat, k),
+    EXPECT_FLOAT_EQ(exportedWidth(f, p, kOvercoat, 0, k),
                     3.0f * p.coats[kOvercoat].width.metersAt(static_cast<float>(k) /
                                                              static_cast<float>(P - 1)));
   const HairLayout& tube = f.coats[kUndercoat].layout;
   for (int k = 0; k < tube.pointsPerHair(); ++k)
-    EXPECT_FLOAT_EQ(exportedWidth(f, p, kUndercoat, k),
+    EXPECT_FLOAT_EQ(exportedWidth(f, p, kUndercoat, 0, k),
                     p.coats[kUndercoat].width.metersAt(tube.along(k)));
   f.cullingFactor = 0.5f;  // closer than the reference: every hair, at its own width
-  EXPECT_FLOAT_EQ(exportedWidth(f, p, kOvercoat, 0), p.coats[kOvercoat].width.metersAt(0.0f));
+  EXPECT_FLOAT_EQ(exportedWidth(f, p, kOvercoat, 0, 0), p.coats[kOvercoat].width.metersAt(0.0f));
 }
 
 TEST(HairPly, UnwritableDestinationLeavesNoFile) {

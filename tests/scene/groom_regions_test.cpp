@@ -13,6 +13,7 @@
 #include "pelage/fur/generate.h"
 #include "pelage/fur/groom.h"
 #include "pelage/fur/groom_strokes.h"
+#include "pelage/fur/hair_ply.h"
 #include "pelage/fur/preset.h"
 #include "pelage/skin/deform.h"
 #include "pelage/util/color.h"
@@ -326,6 +327,9 @@ TEST(GroomRegions, ErrorsNameThePresetFileTheRegionAndTheField) {
   test::writeText(file, R"({"regions": [{"match": "b_Tail*", "curl": {"turns": [1, 2, 3]}}]})");
   test::expectInputError([&] { fur::loadFurPreset(file); },
                          {file, "regions[0].curl.turns", "[overcoat, undercoat]"});
+  test::writeText(file, R"({"regions": [{"match": "b_Tail*", "widthScale": [2, 10.5]}]})");
+  test::expectInputError([&] { fur::loadFurPreset(file); },
+                         {file, "regions[0].widthScale", "[0, 10]"});
   test::writeText(file, R"({"regions": [{"match": "b_Tail*", "curl": {"radus": 0.1}}]})");
   test::expectInputError([&] { fur::loadFurPreset(file); }, {file, "regions[0].curl", "radus"});
   // Coat fields a region cannot set yet are refused by name.
@@ -358,12 +362,21 @@ TEST(GroomRegions, PresetRoundTripAndRegrowth) {
                 .tint = {0.5f, 0.25f, 1.0f}},
                {.match = "b_Head*", .stiffness = Eigen::Vector2f(0.25f, 0.75f)},
                {.match = "b_Leg*", .segmentDirectionWeight = Eigen::Vector2f(0.5f, 1.0f)},
-               {.match = "b_Neck*", .curlTurns = Eigen::Vector2f(3.0f, 0.5f)}};
+               {.match = "b_Neck*", .curlTurns = Eigen::Vector2f(3.0f, 0.5f)},
+               {.match = "b_Spine*", .widthScale = Eigen::Vector2f(2.0f, 0.5f)}};
   const fur::FurParams back = fur::parseFurPreset(fur::furPresetJson(p), "round trip");
   EXPECT_EQ(back.regions, p.regions);
   fur::FurParams q = p;
   q.regions[0].lengthScale = 1.5f;
   EXPECT_TRUE(scene::rootsDiffer(p, q));
+  q = p;
+  q.regions.back().widthScale = Eigen::Vector2f(3.0f, 0.5f);
+  EXPECT_TRUE(scene::rootsDiffer(p, q));
+  // A region's width scale is of the coats' widths, whatever they are: no regrowth when they
+  // change.
+  q = p;
+  q.coats[fur::kOvercoat].width = {1.0f, 0.5f};
+  EXPECT_FALSE(scene::rootsDiffer(p, q));
   // The coats' stiffness, w and helix are where such regions blend from: the roots' own values
   // change.
   for (float fur::CoatParams::*field :
@@ -375,6 +388,7 @@ TEST(GroomRegions, PresetRoundTripAndRegrowth) {
   }
   // Without a region of that value the coats' apply per frame: no regrowth.
   q = p;
+  q.regions.pop_back();  // the width region goes
   q.regions.pop_back();  // the curl region goes
   q.regions.pop_back();  // and the w region; the stiffness region stays
   fur::FurParams r = q;
@@ -451,6 +465,60 @@ TEST(GroomRegions, FoxStiffTailDroopsAsAStiffCoatUnchangedAwayBlendedBetween) {
   expectFoxTailGrowsAsCoatsOfItsValue(
       {.match = "b_Tail*", .stiffness = Eigen::Vector2f(0.95f, 0.95f)}, &fur::CoatParams::stiffness,
       0.95f, &fur::CoatRoots::floppiness, false);
+}
+
+TEST(GroomRegions, FoxThickTailHairsAreTheirCoatsWidthTimesTheTailScale) {
+  // A width scale of 2 on the tail: the hairs stay where they were (strands), and each root's
+  // scale is 2 exactly where the tail's weight is 1, 1 exactly away, rising with the weight
+  // between; the exported widths follow.
+  const scene::Model* m = fox();
+  if (!m) GTEST_SKIP() << "shared Fox model absent";
+  const fur::FurParams plain = foxParams();
+  fur::FurParams groomed = plain;
+  groomed.regions = {{.match = "b_Tail*", .widthScale = Eigen::Vector2f(2.0f, 2.0f)}};
+  const scene::Fur a = scene::growFur(*m, plain, "test");
+  const scene::Fur b = scene::growFur(*m, groomed, "test");
+  ASSERT_EQ(a.roots.coats[0].triangle, b.roots.coats[0].triangle);
+  ASSERT_EQ(a.roots.coats[0].tableIndex, b.roots.coats[0].tableIndex);
+  const std::vector<float>& scale = b.roots.coats[0].widthScale;
+  ASSERT_EQ(scale.size(), b.roots.coats[0].triangle.size());
+  EXPECT_TRUE(a.roots.coats[0].widthScale.empty());
+  const std::vector<float> tail = fur::regionWeights(m->skin, m->body, "b_Tail*");
+  int inTail = 0, away = 0;
+  std::vector<std::pair<float, float>> blend;  // (tail weight at the root, its scale)
+  for (std::int64_t k = 0; k < b.roots.coats[0].size(); ++k) {
+    const RootWeights t = rootWeights(*m, b.roots, k, tail);
+    const float s = scale[static_cast<std::size_t>(k)];
+    if (t.v[0] == 1.0f && t.v[1] == 1.0f && t.v[2] == 1.0f) {
+      EXPECT_EQ(s, 2.0f) << "root " << k;
+      ++inTail;
+    } else if (std::max({t.v[0], t.v[1], t.v[2]}) == 0.0f) {
+      EXPECT_EQ(s, 1.0f) << "root " << k;
+      ++away;
+    } else {
+      blend.emplace_back(t.blend, s);
+    }
+  }
+  EXPECT_GT(inTail, 200);
+  EXPECT_GT(away, 5000);
+  EXPECT_GT(blend.size(), 100u);
+  std::sort(blend.begin(), blend.end());
+  for (std::size_t i = 1; i < blend.size(); ++i)
+    EXPECT_GE(blend[i].second - blend[i - 1].second, -1e-6f) << "the blend is not monotone";
+  skin::DeformedSkin rest;
+  skin::restSkin(m->skin, rest);
+  fur::FurWorkspace ws;
+  fur::FurFrame fa, fb;
+  fur::generateFur(m->skin, a.roots, plain, rest, {}, ws, fa);
+  fur::generateFur(m->skin, b.roots, groomed, rest, {}, ws, fb);
+  const fur::HairBuffers& hb = fb.coats[0];
+  ASSERT_EQ(hb.drawn, fa.coats[0].drawn);
+  EXPECT_EQ(0, std::memcmp(hb.positions.data(), fa.coats[0].positions.data(),
+                           hb.positions.size() * sizeof(float)));
+  for (std::int64_t i = 0; i < hb.drawn; i += 97)
+    EXPECT_EQ(fur::exportedWidth(fb, groomed, 0, i, 0),
+              fur::exportedWidth(fa, plain, 0, i, 0) *
+                  scale[static_cast<std::size_t>(hb.hairIds[static_cast<std::size_t>(i)])]);
 }
 
 TEST(GroomRegions, FoxTailAlongTheBoneTurnsAsACoatOfThatWeight) {

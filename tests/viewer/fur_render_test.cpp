@@ -480,5 +480,35 @@ TEST_F(FurRenderTest, CpuAndGpuHairsGiveTheSameImage) {
   EXPECT_LT(differ, a.image.width * a.image.height / 500);
 }
 
+// A groom's width scale draws each strand at its own width, in the colour pass and the deep opacity
+// map alike: scale 2 everywhere is, pixel for pixel, coats of twice the width (powers of two keep
+// every product exact), on the CPU's hairs and the GPU's; and wider strands cover more.
+TEST_F(FurRenderTest, AWidthGroomDrawsEachStrandAtItsOwnWidth) {
+  fur::FurParams p = testFur(20000);
+  for (fur::CoatParams& c : p.coats) c.color.valueVariation = 0.2f;  // colours per hair either way
+  fur::FurParams groomed = p, wide = p;
+  groomed.regions = {{.match = "*", .widthScale = Eigen::Vector2f(2.0f, 2.0f)}};
+  for (fur::CoatParams& c : wide.coats) c.width = {2.0f * c.width.rootMm, 2.0f * c.width.tipMm};
+  const scene::Fur plainFur = scene::growFur(critter(), p);
+  const scene::Fur groomedFur = scene::growFur(critter(), groomed);
+  const scene::Fur wideFur = scene::growFur(critter(), wide);
+  ASSERT_TRUE(groomedFur.colors.coats[0].perHairWidth);
+  const scene::Camera cam = camera(scene::CameraPreset::Side, 240, plainFur);
+  const Shot bare = render(nullptr, cam);
+  for (const scene::HairSource source : {scene::HairSource::Cpu, scene::HairSource::Gpu}) {
+    SCOPED_TRACE(scene::hairSourceName(source));
+    scene::DrawOptions opt;
+    opt.hairSource = source;
+    const scene::Light light = plainLight(false, true);  // the deep opacity map takes widths too
+    const Shot g = render(&groomedFur, cam, opt, light);
+    const Shot w = render(&wideFur, cam, opt, light);
+    const Shot n = render(&plainFur, cam, opt, light);
+    EXPECT_EQ(g.image.rgba, w.image.rgba);
+    const double inkWide = ink(g.image, bare.image), inkPlain = ink(n.image, bare.image);
+    std::printf("width scale 2: ink %.0f against %.0f at the coats' width\n", inkWide, inkPlain);
+    EXPECT_GT(inkWide, 1.2 * inkPlain);
+  }
+}
+
 }  // namespace
 }  // namespace pelage::viewer

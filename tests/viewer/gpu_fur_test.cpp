@@ -164,9 +164,12 @@ TEST_P(GpuFurParity, MatchesTheCpuModel) {
       // And a helix per vertex (curve and tube coats wind by it).
       fur.groom.vertex.curlRadius.emplace_back(0.3f * s, 0.1f);
       fur.groom.vertex.curlTurns.emplace_back(1.0f + 4.0f * s, 2.5f);
+      // And a width scale per vertex (tubes grow that thick; every hair's colours carry it).
+      fur.groom.vertex.widthScale.emplace_back(0.5f + 2.0f * s, 1.5f - s);
     }
     const std::vector<std::int32_t> triangles = fur.roots.coats[0].triangle;
     fur.roots = fur::growRoots(model.skin, fur.params, fur.groom);
+    fur.colors = fur::colorRoots(model.skin, fur.roots, fur.params, fur.groom);
     ASSERT_EQ(fur.roots.coats[0].triangle, triangles);
     ASSERT_FALSE(fur.roots.coats[0].comb.empty());
     for (const fur::CoatRoots& cr : fur.roots.coats) {
@@ -175,7 +178,9 @@ TEST_P(GpuFurParity, MatchesTheCpuModel) {
       ASSERT_FALSE(cr.floppiness.empty());
       ASSERT_FALSE(cr.segmentWeight.empty());
       ASSERT_FALSE(cr.curlRadius.empty());
+      ASSERT_FALSE(cr.widthScale.empty());
     }
+    for (const fur::CoatColors& cc : fur.colors.coats) ASSERT_TRUE(cc.perHairWidth);
   }
   ASSERT_GT(fur.roots.coats[0].size(), 5000);
   ASSERT_GT(fur.roots.coats[1].size(), 2500);

@@ -30,9 +30,9 @@ void drawOpacityHairs(const scene::FurDrawItem& f, HairVertexBuffers& b, GLuint 
 }  // namespace
 
 DeepOpacityMap::DeepOpacityMap() {
-  opacityProgram_.reset(
-      buildProgram("deep opacity", {ShaderStage{GL_VERTEX_SHADER, {"deep_opacity.vert"}},
-                                    ShaderStage{GL_FRAGMENT_SHADER, {"deep_opacity.frag"}}}));
+  opacityProgram_.reset(buildProgram(
+      "deep opacity", {ShaderStage{GL_VERTEX_SHADER, {"color.glsl", "deep_opacity.vert"}},
+                       ShaderStage{GL_FRAGMENT_SHADER, {"deep_opacity.frag"}}}));
   blurProgram_.reset(buildProgram("deep opacity low-pass",
                                   {ShaderStage{GL_VERTEX_SHADER, {"oit_composite.vert"}},
                                    ShaderStage{GL_FRAGMENT_SHADER, {"opacity_blur.frag"}}}));
@@ -102,6 +102,8 @@ void DeepOpacityMap::draw(const scene::DrawList& list, const LightFrame& light, 
     setFloat(p, "uTipWidth", f.width.metersAt(1.0f));
     setFloat(p, "uWiden", std::max(f.cullFactor, 1.0f));
     setFloat(p, "uStandsFor", static_cast<float>(opacityStride(f)));
+    setInt(p, "uPerHairWidth", f.perHairWidth ? 1 : 0);
+    glBindTextureUnit(1, buffers(f).colorTexture());
     drawOpacityHairs(f, buffers(f), p);
   }
   glDisable(GL_BLEND);

@@ -224,13 +224,14 @@ struct GpuFur::Impl {
       glNamedBufferSubData(g.tables.get(), 0, kTwistFloatsAt * 4, r.barycentric.data());
       g.twistAmount = -1.0f;
       // Per root, as the shader's RootExtras: (clump slot, clump scale bits, floppiness bits,
-      // segment direction weight bits), then (curl radius bits, curl turns bits, 0, 0) where the
-      // roots carry a groom's curl;
+      // segment direction weight bits), then (curl radius bits, curl turns bits, width scale
+      // bits, 0) where the roots carry a groom's curl or width scale;
       // a root in a clump other than its own (generateFur's test) gets its slot, others -1.
       std::vector<std::int32_t> extras;
-      const bool curled = !cr.curlRadius.empty();
-      g.extrasStride = curled ? 2 : 1;
-      if (!cr.clumpSlot.empty() || !cr.floppiness.empty() || !cr.segmentWeight.empty() || curled) {
+      const bool curled = !cr.curlRadius.empty(), widths = !cr.widthScale.empty();
+      g.extrasStride = curled || widths ? 2 : 1;
+      if (!cr.clumpSlot.empty() || !cr.floppiness.empty() || !cr.segmentWeight.empty() ||
+          g.extrasStride == 2) {
         const auto stride = static_cast<std::size_t>(4 * g.extrasStride);
         extras.assign(stride * static_cast<std::size_t>(g.rootCount), 0);
         for (std::int64_t j = 0; j < g.rootCount; ++j) {
@@ -246,6 +247,7 @@ struct GpuFur::Impl {
             x[4] = std::bit_cast<std::int32_t>(cr.curlRadius[k]);
             x[5] = std::bit_cast<std::int32_t>(cr.curlTurns[k]);
           }
+          if (widths) x[6] = std::bit_cast<std::int32_t>(cr.widthScale[k]);
         }
       }
       g.rootExtras = makeBuffer(static_cast<GLsizeiptr>(extras.size() * 4), extras.data());

@@ -432,6 +432,7 @@ struct Renderer::Impl {
     setMaterial(p, f.material);
     setInt(p, "uShading", static_cast<int>(list.hairShading));
     setInt(p, "uPerHairColor", f.perHairColor ? 1 : 0);
+    setInt(p, "uPerHairWidth", f.perHairWidth ? 1 : 0);
     setFloat(p, "uAmbientRatio", f.ambientRatio);
     glBindTextureUnit(1, b.colorTexture());
     if (p == strandProgram.get() || p == strandOitProgram.get()) {

@@ -7,3 +7,8 @@ vec3 unpackHairColor(uint p) {
   return srgbToLinear(vec3(float(p & 0xFFu), float((p >> 8) & 0xFFu), float((p >> 16) & 0xFFu)) /
                       255.0);
 }
+// A hair's width scale from the alpha bytes of its packed pair (fur/colors.h hairWidthScale: the
+// 16-bit code, low byte in the root colour's, over kWidthScaleCodes).
+float hairWidthScale(uvec2 pair) {
+  return float((pair.x >> 24) | ((pair.y >> 24) << 8)) / 4096.0;
+}

@@ -9,6 +9,7 @@
 // share uFibreOpacity of the light it intercepts (scene::Light::fibreOpacity; the rest scatters on,
 // forward, into the coat), as the hair opacity of opacity shadow maps (Kim and Neumann 2001).
 in float vAlong;
+in float vWidthScale;
 uniform vec4 uLayers;        // layer ends beyond z0, metres, increasing
 uniform float uDepthScale;   // metres per unit of window depth along the light
 uniform float uRootWidth;    // metres
@@ -22,7 +23,7 @@ layout(location = 0) out vec4 fOpacity;
 void main() {
   float z0 = texelFetch(uHairDepth, ivec2(gl_FragCoord.xy), 0).r;
   float dz = max(gl_FragCoord.z - z0, 0.0) * uDepthScale;
-  float w = mix(uRootWidth, uTipWidth, vAlong) * uWiden;
+  float w = mix(uRootWidth, uTipWidth, vAlong) * uWiden * vWidthScale;
   float a = min(w / uTexelMeters, 1.0) * uStandsFor * uFibreOpacity;
   fOpacity = a * vec4(lessThanEqual(vec4(dz), uLayers));
 }

@@ -15,7 +15,7 @@ layout(std430, binding = 5) readonly buffer Jitter { vec4 jitter[]; };          
 // The coat's tables: the barycentric table (2048 x (b1, b2, b3, 0)), then from TWIST_FLOATS_AT
 // the twist table (2048 x 8 x (cos, sin)).
 layout(std430, binding = 6) readonly buffer Tables { float tables[]; };
-layout(std430, binding = 7) readonly buffer RootExtras { ivec4 rootExtras[]; };      // window: (clump slot or -1, clump scale bits, floppiness bits, segment direction weight bits) [, (curl radius bits, curl turns bits, 0, 0)]
+layout(std430, binding = 7) readonly buffer RootExtras { ivec4 rootExtras[]; };      // window: (clump slot or -1, clump scale bits, floppiness bits, segment direction weight bits) [, (curl radius bits, curl turns bits, width scale bits, 0)]
 layout(std430, binding = 8) readonly buffer Positions { float positions[]; };        // nV x 3, deformed
 layout(std430, binding = 9) readonly buffer Normals { float normals[]; };            // nV x 3
 layout(std430, binding = 10) readonly buffer VertexData { float vertexData[]; };     // nV x 3 directions, then nV lengths
@@ -35,7 +35,7 @@ uniform bool uColors;       // per-hair colours: copy each drawn hair's root and
 uniform int uVertexCount;   // nV (where VertexData's lengths start)
 uniform bool uClump;        // the coat clumps (RootExtras' clump and ClumpCentres are its)
 uniform bool uRootExtras;   // RootExtras is bound (the coat clumps or has per-hair floppiness, w or curl)
-uniform int uExtrasStride;  // ivec4s per root in RootExtras: 2 where the roots carry a groom's curl
+uniform int uExtrasStride;  // ivec4s per root in RootExtras: 2 where the roots carry a groom's curl or width scale
 uniform float uClumpWeights[MAX_CURVE_POINTS];  // fur::clumpWeights: s_k
 
 int gOut = 0;    // first float of this hair's points in the chunk
@@ -119,12 +119,16 @@ void main() {
     hin.twistCos[i] = cs2.x;
     hin.twistSin[i] = cs2.y;
   }
-  // A groom's curl: a second ivec4 per root (uExtrasStride 2), read by curve and tube coats.
+  // A groom's curl and width scale: a second ivec4 per root (uExtrasStride 2), read by curve and
+  // tube coats (the curl) and tube coats (the width).
   ivec4 extras = uRootExtras ? rootExtras[uExtrasStride * local] : ivec4(-1, 0, 0, 0);
-  if (cs.perHairCurl != 0) {
-    ivec4 curl = rootExtras[2 * local + 1];
-    hin.curlRadius = intBitsToFloat(curl.x);
-    hin.curlTurns = intBitsToFloat(curl.y);
+  if (cs.perHairCurl != 0 || cs.perHairWidth != 0) {
+    ivec4 second = rootExtras[2 * local + 1];
+    if (cs.perHairCurl != 0) {
+      hin.curlRadius = intBitsToFloat(second.x);
+      hin.curlTurns = intBitsToFloat(second.y);
+    }
+    if (cs.perHairWidth != 0) hin.widthScale = intBitsToFloat(second.z);
   }
   if (cs.perHairFloppiness != 0) hin.floppiness = intBitsToFloat(extras.z);
   if (cs.perHairSegmentWeight != 0) hin.segmentWeight = intBitsToFloat(extras.w);

@@ -68,6 +68,7 @@ struct HairInput {
   float segmentWeight;  // the root's own (cs.perHairSegmentWeight: a groom's direction weight)
   float curlRadius;     // the root's own helix (cs.perHairCurl: a groom's curl)
   float curlTurns;
+  float widthScale;     // the root's own (cs.perHairWidth: a groom's width scale, tubes)
   float twistCos[POLYLINE_POINTS];
   float twistSin[POLYLINE_POINTS];
 };
@@ -104,6 +105,7 @@ HairInput interpolateRoot(vec3 b, vec3 p1, vec3 p2, vec3 p3, float len1, float l
   hin.segmentWeight = cs.segmentWeight;
   hin.curlRadius = cs.curlRadius;
   hin.curlTurns = 0.0;
+  hin.widthScale = 1.0;
   return hin;
 }
 
@@ -295,7 +297,8 @@ void buildHair(HairInput hin) {
   for (int k = 0; k < K; ++k) {
     vec3 tangent = k == 0 ? next - cur : (k == K - 1 ? cur - prev : next - prev);
     vec3 tUnit = normalizeOr(tangent, dTilde, 1e-30);
-    float radius = hasLength ? cs.tubeRadius[k] : 0.0;
+    float coatRadius = cs.tubeRadius[k];
+    float radius = hasLength ? (cs.perHairWidth != 0 ? coatRadius * hin.widthScale : coatRadius) : 0.0;
     for (int j = 0; j < M; ++j) {
       vec3 dir = tubeDirection(j, tUnit, b);
       emitPoint(k * M + j, cur + dir * radius, dir);

@@ -12,6 +12,7 @@ in vec3 vPosition[];
 in vec3 vShading[];
 in float vAlong[];
 in vec3 vColor[];
+in float vWidthScale[];  // the hair's own multiple of the coat's width (1 without a groom's)
 out vec3 gPosition;
 out vec3 gShading;
 out vec3 gColor;
@@ -33,8 +34,8 @@ void main() {
   vec2 d = s1 - s0;
   float len = length(d);
   vec2 n = len > 1e-6 ? vec2(-d.y, d.x) / len : vec2(1.0, 0.0);
-  float t0 = uWiden * uProjScale * mix(uRootWidth, uTipWidth, vAlong[0]) / c0.w;
-  float t1 = uWiden * uProjScale * mix(uRootWidth, uTipWidth, vAlong[1]) / c1.w;
+  float t0 = uWiden * uProjScale * vWidthScale[0] * mix(uRootWidth, uTipWidth, vAlong[0]) / c0.w;
+  float t1 = uWiden * uProjScale * vWidthScale[1] * mix(uRootWidth, uTipWidth, vAlong[1]) / c1.w;
   float h0 = 0.5 * max(t0, 1.0), h1 = 0.5 * max(t1, 1.0);
   float k0 = t0 / max(t0, 1.0), k1 = t1 / max(t1, 1.0);
   vec3 seg = vPosition[1] - vPosition[0];

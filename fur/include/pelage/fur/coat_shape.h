@@ -39,6 +39,8 @@ inline constexpr int kMaxTubeSides = 32;    // M
 //    (CoatRoots::segmentWeight; HairInput::segmentWeight replaces `segmentWeight`);
 //  perHairCurl: the coat's roots carry their own helix (CoatRoots::curlRadius, ::curlTurns;
 //    HairInput's replace `curlRadius` and the curlCos/curlSin table: helixTurn at curlT);
+//  perHairWidth: a tube coat's roots carry their own width scale (CoatRoots::widthScale;
+//    HairInput::widthScale multiplies `tubeRadius`; strands take theirs when drawn and exported);
 //  frizz*: the frizz (fur_params.h Frizz; addFrizz): frizz = strand points with frizz (0: off),
 //    frizzRing = points per strand point (a tube's M, else 1), frizzSeed = the coat seed's 32 bits;
 //    per strand point k: frizzWeight = amplitude (m) t_k^tipWeight, frizzCell = floor(t_k freq),
@@ -64,6 +66,7 @@ inline constexpr int kMaxTubeSides = 32;    // M
   SCALAR(std::int32_t, int, perHairFloppiness)                          \
   SCALAR(std::int32_t, int, perHairSegmentWeight)                       \
   SCALAR(std::int32_t, int, perHairCurl)                                \
+  SCALAR(std::int32_t, int, perHairWidth)                               \
   SCALAR(std::int32_t, int, frizz)                                      \
   SCALAR(std::int32_t, int, frizzRing)                                  \
   SCALAR(std::int32_t, int, frizzSeed)                                  \

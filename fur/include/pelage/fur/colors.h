@@ -37,8 +37,13 @@ struct CoatColors {
   Eigen::Vector3f ambient = Eigen::Vector3f::Zero();
   float ambientRatio = 0.0f;  // per hair: ambient = hair colour x this
   // perHair: root k's root colour at 2k and tip colour at 2k + 1, each RGBA8 with sRGB-encoded
-  // R, G, B in bytes 0, 1, 2 (little-endian: R lowest) and 255 in byte 3.
+  // R, G, B in bytes 0, 1, 2 (little-endian: R lowest); byte 3 of both is 255, or with
+  // perHairWidth the hair's width scale (packHairWidth).
   std::vector<std::uint32_t> packed;
+  // The roots carry a groom's width scale (CoatRoots::widthScale): each pair's alpha bytes hold
+  // it, so the renderer draws every hair at its own width from the pairs it already reads (which
+  // makes the coat's colours per hair even where they would all be one).
+  bool perHairWidth = false;
 };
 
 struct FurColors {
@@ -51,6 +56,13 @@ struct FurColors {
 // Deterministic and thread-count independent. InputError for an unavailable source.
 FurColors colorRoots(const skin::SkinMesh& skin, const FurRoots& roots, const FurParams& params,
                      const Groom& maps);
+
+// A hair's width scale s in [0, kMaxWidthScale] in the alpha bytes of its packed pair (root,
+// tip): the 16-bit code round(s kWidthScaleCodes), low byte in the root colour's, high byte in the
+// tip's; hairWidthScale decodes it (what the renderer's hair.vert does), within 1/8192 of s.
+inline constexpr float kWidthScaleCodes = 4096.0f;
+void packHairWidth(std::uint32_t* pair, float widthScale);
+float hairWidthScale(const std::uint32_t* pair);
 
 // Linear RGB (clamped to [0, 1]) -> packed RGBA8 sRGB, and back (the 8-bit codes decoded).
 std::uint32_t packSrgb8(const Eigen::Vector3f& linear);

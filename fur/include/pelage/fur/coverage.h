@@ -44,7 +44,8 @@ FurParams fitCoverageToBudget(const skin::SkinMesh& skin, FurParams params,
 
 // The coats' expected density and optical depth on `skin` (its rest pose and per-vertex fur
 // lengths, or `lengths` (nV, a groom's: fur/groom.h) when given; the preset's lengthScale and
-// relative lengths; a length map, lengthRegion or density groom is not counted). The hair count is
+// relative lengths; a length map, lengthRegion, density groom or width scale groom is not
+// counted). The hair count is
 // params' (hairs, density or coverage). The other functions here take `lengths` the same way.
 FurCoverage estimateCoverage(const skin::SkinMesh& skin, const FurParams& params,
                              const float* lengths = nullptr);

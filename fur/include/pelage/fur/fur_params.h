@@ -95,6 +95,8 @@ struct Clump {
 // The helix's ranges (CoatParams::curlRadius, curlTurns; regions and groom files too).
 inline constexpr float kMaxCurlRadius = 0.5f;
 inline constexpr float kMaxCurlTurns = 20.0f;
+// The most a groom or a region multiplies a coat's hair width by.
+inline constexpr float kMaxWidthScale = 10.0f;
 
 // One coat (sec. 3.1): "different material characteristics, stiffness, randomness, and hair style".
 struct CoatParams {
@@ -150,6 +152,10 @@ struct FurRegion {
   // curlTurns, per hair); unset: keep.
   std::optional<Eigen::Vector2f> curlRadius = std::nullopt;
   std::optional<Eigen::Vector2f> curlTurns = std::nullopt;
+  // Multiplies the hair width (StrandWidth, root and tip) of (overcoat, undercoat) there,
+  // [0, kMaxWidthScale] each (per hair: strands drawn and exported that wide, tubes that thick);
+  // unset: keep.
+  std::optional<Eigen::Vector2f> widthScale = std::nullopt;
   bool operator==(const FurRegion&) const = default;
 };
 inline constexpr std::size_t kMaxFurRegions = 256;

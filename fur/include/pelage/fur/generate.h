@@ -67,6 +67,13 @@ struct HairBuffers {
   // Per drawn hair, its root and tip colour (fur/colors.h packing: 2 per hair), filled by
   // fillHairColors when the coat's hairs have colours of their own; empty otherwise.
   std::vector<std::uint32_t> colors;
+  // Per drawn hair, its width scale (CoatRoots::widthScale through hairIds: a groom's), filled by
+  // generateFur where the coat's roots carry one; empty otherwise (every hair the coat's width).
+  std::vector<float> widthScales;
+  // Drawn hair i's width scale: widthScales[i], or 1.
+  float widthScaleOf(std::int64_t i) const {
+    return widthScales.empty() ? 1.0f : widthScales[static_cast<std::size_t>(i)];
+  }
 };
 
 // One frame's hairs, both coats in one allocation: coat 0's roots, then coat 1's (each coat's slots

@@ -51,6 +51,9 @@ inline constexpr float kMaxCombLength2 = 1.0f + 1e-5f;
 //    (a fraction of the length) and turns [0, 20], replacing the coat's (sec. 3.8's curve and
 //    tube styles): a hair winds with the values interpolated at its root at rest
 //    (CoatRoots::curlRadius, ::curlTurns); either alone keeps the coat's other.
+//  widthScale: multiplies each coat's hair width (fur_params.h StrandWidth, root and tip) at the
+//    vertex (overcoat, undercoat), [0, kMaxWidthScale]: a hair takes the scale interpolated at its
+//    root at rest (CoatRoots::widthScale), drawn, exported and (tubes) grown that wide.
 struct VertexGroom {
   std::vector<float> length;
   std::vector<float> density;
@@ -61,10 +64,11 @@ struct VertexGroom {
   std::vector<Eigen::Vector2f> segmentDirectionWeight;
   std::vector<Eigen::Vector2f> curlRadius;
   std::vector<Eigen::Vector2f> curlTurns;
+  std::vector<Eigen::Vector2f> widthScale;
   bool empty() const {
     return length.empty() && density.empty() && tint.empty() && comb.empty() && clump.empty() &&
            stiffness.empty() && segmentDirectionWeight.empty() && curlRadius.empty() &&
-           curlTurns.empty();
+           curlTurns.empty() && widthScale.empty();
   }
 };
 
@@ -119,12 +123,13 @@ VertexGroom groomFromRegions(const skin::SkinMesh& skin, const anatomy::Body& bo
 //    "length": [nV metres], "density": [nV], "tint": [nV x [r, g, b]], "comb": [nV x [x, y, z]],
 //    "clump": [nV], "stiffness": [nV x [overcoat, undercoat]],
 //    "segmentDirectionWeight": [nV x [overcoat, undercoat]], "curlRadius": [nV x [o, u]],
-//    "curlTurns": [nV x [o, u]]}
+//    "curlTurns": [nV x [o, u]], "widthScale": [nV x [o, u]]}
 // (each array optional; floats written with round-trip precision, so a file reads back
 // bit-identically). The hash (meshHash) keys the file to the skin's vertex and triangle order and
 // rest positions; loading it on another mesh is an error naming both meshes. Values: length
 // [0, 10] m, density [0, 100], tint [0, 10] each, comb of length <= 1, clump, stiffness and
-// segment direction weight [0, 1], curl radius [0, 0.5], curl turns [0, 20], all finite.
+// segment direction weight [0, 1], curl radius [0, 0.5], curl turns [0, 20], width scale [0, 10],
+// all finite.
 inline constexpr int kGroomFileVersion = 1;
 
 // FNV-1a 64 over the vertex and triangle counts, the triangles' vertex indices and the rest

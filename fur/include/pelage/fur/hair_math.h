@@ -162,6 +162,7 @@ struct HairInput {
   T segmentWeight;  // the root's own (read only when CoatShape::perHairSegmentWeight)
   T curlRadius;     // the root's own helix (read only when CoatShape::perHairCurl)
   T curlTurns;
+  T widthScale;  // the root's own width scale (read only when CoatShape::perHairWidth)
 };
 
 // The polyline normal twist of one hair (sec. 3.7), per point: cos and sin of the random angle.
@@ -185,6 +186,8 @@ struct HairFrame {
   // The helix radius (the coat's, or the hair's own with CoatShape::perHairCurl, as the GPU's
   // HairInput) and the hair's own turns (read only with perHairCurl).
   T curlRadius, curlTurns;
+  // The multiple of the coat's tube radius (1, or the hair's own with CoatShape::perHairWidth).
+  T widthScale;
 };
 
 // Van Gelder & Wilhelms 1997, sec. 3.2: h = b1 v1 + b2 v2 + b3 v3 (one component).
@@ -219,13 +222,14 @@ inline void unpackComb(std::uint32_t packed, float& x, float& y) {
 // (kVertexRecordFloats each) with the barycentric entry b = (b1, b2, b3), and the root's jitter
 // j = (xi x, y, z, helix phase); a length map's value at the root multiplies the interpolated
 // length (1 without one: x * 1 = x exactly); `comb` is the root's packed comb (0: none);
-// `floppiness`, `segmentWeight` and `curl` (radius, turns) the root's own (CoatRoots; read only
-// where the coat has them). The scalar form of every kernel's gather (and of the GPU's
-// interpolateRoot in hair_math.glsl).
+// `floppiness`, `segmentWeight`, `curl` (radius, turns) and `widthScale` the root's own
+// (CoatRoots; read only where the coat has them). The scalar form of every kernel's gather (and of
+// the GPU's interpolateRoot in hair_math.glsl).
 inline HairInput<float> interpolateRoot(const float* b, const float* v1, const float* v2,
                                         const float* v3, const float* j, float lengthScale = 1.0f,
                                         std::uint32_t comb = 0, float floppiness = 0.0f,
-                                        float segmentWeight = 0.0f, const float* curl = nullptr) {
+                                        float segmentWeight = 0.0f, const float* curl = nullptr,
+                                        float widthScale = 1.0f) {
   const auto mix = [&](int k) { return barycentricMix(b[0], b[1], b[2], v1[k], v2[k], v3[k]); };
   HairInput<float> in{};
   in.root = {mix(0), mix(1), mix(2)};
@@ -240,6 +244,7 @@ inline HairInput<float> interpolateRoot(const float* b, const float* v1, const f
   in.segmentWeight = segmentWeight;
   in.curlRadius = curl ? curl[0] : 0.0f;
   in.curlTurns = curl ? curl[1] : 0.0f;
+  in.widthScale = widthScale;
   return in;
 }
 
@@ -431,6 +436,7 @@ inline void hairFrame(const CoatShape& c, const HairInput<T>& in, HairFrame<T>& 
   f.phase = in.phase;
   f.curlRadius = c.perHairCurl ? in.curlRadius : T(c.curlRadius);
   f.curlTurns = c.perHairCurl ? in.curlTurns : T(0.0f);
+  f.widthScale = c.perHairWidth ? in.widthScale : T(1.0f);
 }
 
 // Sec. 3.6: a straight line from the root to the ending point, shaded with the skin normal.
@@ -513,7 +519,9 @@ inline void emitTube(const CoatShape& c, const HairFrame<T>& f, Sink& sink) {
   for (int k = 0; k < K; ++k) {
     const Vec3<T> tangent = k == 0 ? next - cur : (k == K - 1 ? cur - prev : next - prev);
     const Vec3<T> tUnit = normalizeOr(tangent, f.dTilde, 1e-30f);
-    const T radius = pick(hasLength, T(c.tubeRadius[k]), T(0.0f));
+    const T coatRadius = T(c.tubeRadius[k]);
+    const T radius =
+        pick(hasLength, c.perHairWidth ? coatRadius * f.widthScale : coatRadius, T(0.0f));
     const RingFrame<T> ring = ringFrame(tUnit, f.planeNormal);
     for (int j = 0; j < M; ++j) {
       const Vec3<T> dir = tubeDirection(c, j, ring);

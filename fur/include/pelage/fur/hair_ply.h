@@ -1,8 +1,9 @@
 // One frame of hairs as a binary little-endian PLY file, written atomically:
 //   element vertex: float x, y, z, nx, ny, nz; int hair (index into the coat's roots);
 //                   uchar coat (0 overcoat, 1 undercoat); float width (metres: the coat's
-//                   fur::StrandWidth at the point, tapering root to tip; a tube's diameter; a
-//                   culled frame's strands widened by its factor c, exportedWidth); with colours,
+//                   fur::StrandWidth at the point, tapering root to tip, times the hair's own
+//                   width scale (a groom's); a tube's diameter; a culled frame's strands widened
+//                   by its factor c, exportedWidth); with colours,
 //                   uchar red, green, blue (8-bit sRGB, graded root to tip: colors.h
 //                   pointColorsSrgb8)
 //   element edge:   int vertex1, vertex2 joining consecutive points of each strand hair
@@ -34,10 +35,12 @@ bool isCompleteHairPly(const std::string& path);
 // The element counts writeHairPly writes for `frame`.
 HairPlyCounts hairPlyCounts(const FurFrame& frame);
 
-// The width the exporters (this PLY, the glb) write for point k of coat `coat`'s hairs: the coat's
-// width at the point (tubes: their diameter), strands times the frame's culling factor c when
-// culled (fewer, wider strands keep the coat's coverage, as the renderer draws them).
-float exportedWidth(const FurFrame& frame, const FurParams& params, int coat, int k);
+// The width the exporters (this PLY, the glb) write for point k of drawn hair `hair` of coat
+// `coat`: the coat's width at the point (tubes: their diameter) times the hair's own width scale
+// (HairBuffers::widthScaleOf, a groom's), strands times the frame's culling factor c when culled
+// (fewer, wider strands keep the coat's coverage, as the renderer draws them).
+float exportedWidth(const FurFrame& frame, const FurParams& params, int coat, std::int64_t hair,
+                    int k);
 
 // Writes `frame` (grown with `params`: the coats' widths) to `path` (via a temporary file renamed
 // on success; InputError naming the file on any failure, leaving no partial file). `comment` lines

@@ -61,6 +61,10 @@ struct CoatRoots {
   // ::curlTurns; the coat's value where the groom has only the other); empty without either (the
   // coat's helix for every hair).
   std::vector<float> curlRadius, curlTurns;
+  // nRoots: the multiple of the coat's hair width (StrandWidth) the hair is drawn, exported and
+  // (tubes) grown at, the groom's per-vertex width scale of this coat interpolated at the root at
+  // rest (VertexGroom::widthScale); empty without one (the coat's width for every hair).
+  std::vector<float> widthScale;
   double expectedHairs = 0.0;  // N_coat, before random rounding
   std::int64_t size() const { return static_cast<std::int64_t>(triangle.size()); }
 };

@@ -86,6 +86,9 @@ struct FurDrawItem {
   // and its ambient that colour times ambientRatio.
   Material material;
   bool perHairColor = false;
+  // With per-hair colours: each hair's packed pair also holds its width scale (fur/colors.h
+  // packHairWidth; a groom's), by which its strand is drawn wider or narrower than `width`.
+  bool perHairWidth = false;
   float ambientRatio = 0.0f;
   const std::uint32_t* colors =
       nullptr;                  // CPU source, per-hair colours: drawnHairs x 2 (root, tip)

@@ -14,6 +14,8 @@
 //    "coats": [{"coat": 0 | 1, "hairs": n, "points": K, "cullFactor": c,
 //               "widths": float32 K (metres, the coat's true width at each point; the renderer
 //                 widens culled strands by cullFactor),
+//               "widthScales": float32 n (only where the hairs have widths of their own, a
+//                 groom's: each hair's width is widths times its scale),
 //               "positions": float32 n x K x 3 (each hair's centre line: its points, a tube's
 //                 ring centres),
 //               "colors": float32 n x 2 x 3 (linear root and tip colour; a point's is their mix

@@ -210,6 +210,11 @@ std::string groomExample() {
     g.curlRadius.emplace_back(0.0625f * static_cast<float>(v % 9), 0.25f);
     g.curlTurns.emplace_back(2.5f * static_cast<float>(v % 9), 0.5f * static_cast<float>(v % 3));
     g.widthScale.emplace_back(0.5f + 0.25f * static_cast<float>(v % 7), 1.5f);
+    // The overcoat from its material to the texture along the mesh, the undercoat all creature.
+    const float t = 0.25f * static_cast<float>(v % 5);
+    for (int s = 0; s < fur::kColorSourceCount; ++s)
+      g.colorSourceWeight[static_cast<std::size_t>(s)].emplace_back(
+          s == 0 ? 1.0f - t : (s == 2 ? t : 0.0f), s == 1 ? 1.0f : 0.0f);
   }
   return fur::groomFileJson(groomMesh(), g);
 }

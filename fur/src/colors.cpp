@@ -145,7 +145,23 @@ FurColors colorRoots(const skin::SkinMesh& skin, const FurRoots& roots, const Fu
     const std::vector<Eigen::Vector3f>& vertexTint = maps.vertex.tint;
     const CoatRoots& cr = roots.coats[ci];
     cc.perHairWidth = !cr.widthScale.empty();
-    if (model.uniformOver(cc.source) && vertexTint.empty() && !cc.perHairWidth) {
+    // A groom's colour source weights (regions' colour sources): the sources this coat's hairs
+    // blend, each resolved on this skin.
+    const auto& sourceWeight = maps.vertex.colorSourceWeight;
+    const bool blended = maps.vertex.hasColorSourceWeights();
+    std::array<ColorSource, kColorSourceCount> resolved{};
+    std::array<bool, kColorSourceCount> used{};
+    for (int s = 0; s < kColorSourceCount && blended; ++s) {
+      const auto& w = sourceWeight[static_cast<std::size_t>(s)];
+      used[static_cast<std::size_t>(s)] =
+          std::any_of(w.begin(), w.end(), [&](const Eigen::Vector2f& x) { return x[c] > 0.0f; });
+      if (used[static_cast<std::size_t>(s)])
+        resolved[static_cast<std::size_t>(s)] =
+            resolveColorSource(skin, static_cast<ColorSource>(s), maps,
+                               str(c == kOvercoat ? "overcoat" : "undercoat",
+                                   " colour source (a region's or groom's)"));
+    }
+    if (model.uniformOver(cc.source) && vertexTint.empty() && !cc.perHairWidth && !blended) {
       cc.perHair = false;
       cc.diffuse = clamp01(linear.diffuse.cwiseProduct(model.tint));
       cc.ambient = clamp01(linear.ambient.cwiseProduct(model.tint));
@@ -168,9 +184,26 @@ FurColors colorRoots(const skin::SkinMesh& skin, const FurRoots& roots, const Fu
                      vertexTint[static_cast<std::size_t>(v[1])] * b[1]) +
                     vertexTint[static_cast<std::size_t>(v[2])] * b[2];
       }
-      Eigen::Vector3f root = clamp01(sourceColor(skin, maps, linear, cc.source, cr.triangle[ks], b)
-                                         .cwiseProduct(model.tint)
-                                         .cwiseProduct(groomTint));
+      Eigen::Vector3f source = Eigen::Vector3f::Zero();
+      if (!blended) {
+        source = sourceColor(skin, maps, linear, cc.source, cr.triangle[ks], b);
+      } else {
+        // Each source's weight at the root, s1 + b2 (s2 - s1) + b3 (s3 - s1): exactly 1 where
+        // the three vertices take one source, so such a hair has that source's colour.
+        const std::int32_t* v =
+            skin.triangles.data() + 3 * static_cast<std::size_t>(cr.triangle[ks]);
+        for (int s = 0; s < kColorSourceCount; ++s) {
+          if (!used[static_cast<std::size_t>(s)]) continue;
+          const auto& w = sourceWeight[static_cast<std::size_t>(s)];
+          const auto at = [&](int i) { return w[static_cast<std::size_t>(v[i])][c]; };
+          const float weight = at(0) + b[1] * (at(1) - at(0)) + b[2] * (at(2) - at(0));
+          if (weight > 0.0f)
+            source +=
+                weight * sourceColor(skin, maps, linear, resolved[static_cast<std::size_t>(s)],
+                                     cr.triangle[ks], b);
+        }
+      }
+      Eigen::Vector3f root = clamp01(source.cwiseProduct(model.tint).cwiseProduct(groomTint));
       Eigen::Vector3f tip = model.hasTipColor ? clamp01(tipLinear.cwiseProduct(groomTint))
                                               : clamp01(root * model.tipLightness);
       // Per-hair variation (one hue shift and one brightness factor for the whole hair).

@@ -46,7 +46,7 @@ Groom loadGroomMaps(const GroomMapPaths& paths, const skin::SkinMesh& skin,
         "' has no texture coordinates, so groom maps cannot be placed on it (they need a "
         "glTF model with TEXCOORD_0); groom it by regions instead (a preset's \"regions\": "
         "lengthScale, lengthMm, densityScale, tint, stiffness, segmentDirectionWeight, curl, "
-        "widthScale per region or joint)");
+        "widthScale, colorSource per region or joint)");
   }
   m.density = loadMap(paths.density, "maps.density", false, skin::Filter::Nearest);
   m.length = loadMap(paths.length, "maps.length", false, skin::Filter::Linear);
@@ -154,6 +154,17 @@ VertexGroom groomFromRegions(const skin::SkinMesh& skin, const anatomy::Body& bo
     blendCoats(g.curlRadius, reg.curlRadius, over.curlRadius, under.curlRadius);
     blendCoats(g.curlTurns, reg.curlTurns, over.curlTurns, under.curlTurns);
     blendCoats(g.widthScale, reg.widthScale, 1.0f, 1.0f);  // the coats' own width: scale 1
+    // A colour source: every source's weight moves toward 1 for the region's, 0 for the others,
+    // from the coats' own sources (weight 1 each), so a coat's weights keep summing to 1.
+    if (reg.colorSource) {
+      for (int s = 0; s < kColorSourceCount; ++s) {
+        const auto named = static_cast<ColorSource>(s);
+        const auto own = [&](const CoatParams& c) { return c.color.source == named ? 1.0f : 0.0f; };
+        const auto target = [&](int c) { return (*reg.colorSource)[c] == named ? 1.0f : 0.0f; };
+        blendCoats(g.colorSourceWeight[static_cast<std::size_t>(s)],
+                   Eigen::Vector2f(target(0), target(1)), own(over), own(under));
+      }
+    }
     if (matches) matches->push_back(std::move(m));
   }
   return g;

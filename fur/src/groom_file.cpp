@@ -48,7 +48,7 @@ std::vector<float> readValues(const JsonReader& doc, const char* field, std::siz
       const nlohmann::json& x = width == 1 ? e : (tuple ? e[static_cast<std::size_t>(k)] : e);
       const double d = x.is_number() ? x.get<double>() : std::nan("");
       if (!(d >= lo && d <= hi) || (width > 1 && !tuple))
-        inputError(a.file(), ": ", field, "[", v, "]: expected ",
+        inputError(a.file(), ": ", a.path(), "[", v, "]: expected ",
                    width == 1 ? std::string("a number") : str(width, " numbers"), " in [", lo, ", ",
                    hi, "]");
       out[v * static_cast<std::size_t>(width) + static_cast<std::size_t>(k)] =
@@ -92,7 +92,12 @@ std::string groomFileJson(const skin::SkinMesh& skin, const VertexGroom& g) {
                    (g.segmentDirectionWeight.empty() || g.segmentDirectionWeight.size() == nV) &&
                    (g.curlRadius.empty() || g.curlRadius.size() == nV) &&
                    (g.curlTurns.empty() || g.curlTurns.size() == nV) &&
-                   (g.widthScale.empty() || g.widthScale.size() == nV),
+                   (g.widthScale.empty() || g.widthScale.size() == nV) &&
+                   std::all_of(g.colorSourceWeight.begin(), g.colorSourceWeight.end(),
+                               [&](const auto& w) {
+                                 return w.size() == g.colorSourceWeight[0].size() &&
+                                        (w.empty() || w.size() == nV);
+                               }),
                "groom arrays sized for another mesh");
   nlohmann::json j;
   j["format"] = kFormat;
@@ -127,6 +132,10 @@ std::string groomFileJson(const skin::SkinMesh& skin, const VertexGroom& g) {
   if (!g.curlRadius.empty()) j["curlRadius"] = rows(g.curlRadius);
   if (!g.curlTurns.empty()) j["curlTurns"] = rows(g.curlTurns);
   if (!g.widthScale.empty()) j["widthScale"] = rows(g.widthScale);
+  if (g.hasColorSourceWeights())
+    for (int s = 0; s < kColorSourceCount; ++s)
+      j["colorSourceWeight"][std::string(colorSourceName(static_cast<ColorSource>(s)))] =
+          rows(g.colorSourceWeight[static_cast<std::size_t>(s)]);
   return j.dump() + "\n";
 }
 
@@ -143,7 +152,8 @@ VertexGroom parseGroomFile(const std::string& text, const std::string& source,
     j.fail(str("not a groom file: expected \"format\": \"", kFormat,
                "\" (groom files come from pelage's groom output or Python's write_groom)"));
   j.rejectUnknown({"format", "version", "mesh", "length", "density", "tint", "comb", "clump",
-                   "stiffness", "segmentDirectionWeight", "curlRadius", "curlTurns", "widthScale"});
+                   "stiffness", "segmentDirectionWeight", "curlRadius", "curlTurns", "widthScale",
+                   "colorSourceWeight"});
   j.integer("version", kGroomFileVersion, kGroomFileVersion);
   const JsonReader mesh = j.at("mesh");
   mesh.rejectUnknown({"vertices", "triangles", "hash"});
@@ -172,6 +182,19 @@ VertexGroom parseGroomFile(const std::string& text, const std::string& source,
     g.curlTurns = readRows<2>(j, "curlTurns", n, 0.0, static_cast<double>(kMaxCurlTurns));
   if (j.has("widthScale"))
     g.widthScale = readRows<2>(j, "widthScale", n, 0.0, static_cast<double>(kMaxWidthScale));
+  if (j.has("colorSourceWeight")) {
+    const JsonReader w = j.at("colorSourceWeight");
+    if (!w.isObject())
+      w.fail(
+          "expected {\"material\": [...], \"creature\": ..., \"texture\": ..., \"vertex\": ..., "
+          "\"map\": ...}, each nV x [overcoat, undercoat] weights");
+    w.rejectUnknown({"material", "creature", "texture", "vertex", "map"});
+    for (int s = 0; s < kColorSourceCount; ++s) {
+      const std::string name(colorSourceName(static_cast<ColorSource>(s)));
+      if (!w.has(name)) w.fail("missing '" + name + "': give the weights of all five sources");
+      g.colorSourceWeight[static_cast<std::size_t>(s)] = readRows<2>(w, name.c_str(), n, 0.0, 1.0);
+    }
+  }
   if (j.has("tint")) g.tint = readRows<3>(j, "tint", n, 0.0, static_cast<double>(kMaxGroomTint));
   if (j.has("comb")) {
     g.comb = readRows<3>(j, "comb", n, -1.0, 1.0);

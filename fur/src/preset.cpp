@@ -156,7 +156,7 @@ std::optional<Eigen::Vector2f> coatPair(const JsonReader& j, const char* field, 
 // "regions": [{"match": PATTERN, "lengthScale": s, "lengthMm": mm, "densityScale": d,
 // "tint": [r, g, b], "stiffness": s | [overcoat, undercoat], "segmentDirectionWeight": w |
 // [overcoat, undercoat], "curl": {"radius": r | [o, u], "turns": t | [o, u]}, "widthScale": s |
-// [o, u]}, ...]; the list
+// [o, u], "colorSource": NAME | [o, u]}, ...]; the list
 // replaces the base preset's.
 std::vector<FurRegion> parseFurRegions(const JsonReader& list) {
   if (!list.isArray())
@@ -167,10 +167,10 @@ std::vector<FurRegion> parseFurRegions(const JsonReader& list) {
   for (std::size_t i = 0; i < list.size(); ++i) {
     const JsonReader j = list.at(i);
     if (!j.isObject()) j.fail("expected an object {\"match\": PATTERN, ...}");
-    // Of the coat fields the stiffness, the segment direction weight, the curl and the width (as
-    // a scale) are per region (the colour source is per coat).
+    // Of the coat fields the stiffness, the segment direction weight, the curl, the width (as a
+    // scale) and the colour source are per region.
     j.rejectUnknown({"match", "lengthScale", "lengthMm", "densityScale", "tint", "stiffness",
-                     "segmentDirectionWeight", "curl", "widthScale"});
+                     "segmentDirectionWeight", "curl", "widthScale", "colorSource"});
     FurRegion r;
     if (!j.has("match"))
       j.fail("missing 'match' (a region, material or joint name; '*' wildcards)");
@@ -197,6 +197,19 @@ std::vector<FurRegion> parseFurRegions(const JsonReader& list) {
       r.curlTurns = coatPair(curl, "turns", kMaxCurlTurns);
     }
     r.widthScale = coatPair(j, "widthScale", kMaxWidthScale);
+    if (j.has("colorSource")) {
+      const JsonReader s = j.at("colorSource");
+      const auto source = [&](const JsonReader& name) {
+        return parseColorSource(name.asString(), name.where());
+      };
+      if (s.isArray()) {
+        if (s.size() != 2) s.fail("expected a colour source name or [overcoat, undercoat]");
+        r.colorSource = std::array<ColorSource, 2>{source(s.at(0)), source(s.at(1))};
+      } else {
+        const ColorSource both = source(s);
+        r.colorSource = std::array<ColorSource, 2>{both, both};
+      }
+    }
     out.push_back(std::move(r));
   }
   return out;
@@ -454,6 +467,9 @@ std::string furPresetJson(const FurParams& p) {
       if (g.curlRadius) region["curl"]["radius"] = {g.curlRadius->x(), g.curlRadius->y()};
       if (g.curlTurns) region["curl"]["turns"] = {g.curlTurns->x(), g.curlTurns->y()};
       if (g.widthScale) region["widthScale"] = {g.widthScale->x(), g.widthScale->y()};
+      if (g.colorSource)
+        region["colorSource"] = {colorSourceName((*g.colorSource)[0]),
+                                 colorSourceName((*g.colorSource)[1])};
       list.push_back(std::move(region));
     }
     j["regions"] = list;

@@ -177,7 +177,8 @@ fur::VertexGroom vertexGroomFrom(int vertices, const py::object& length, const p
                                  const py::object& clump, const py::object& stiffness,
                                  const py::object& segmentDirectionWeight,
                                  const py::object& curlRadius, const py::object& curlTurns,
-                                 const py::object& widthScale) {
+                                 const py::object& widthScale,
+                                 const py::object& colorSourceWeight) {
   const auto nV = static_cast<py::ssize_t>(vertices);
   const auto column = [&](const py::object& o, const char* name) {
     std::vector<float> out;
@@ -225,6 +226,32 @@ fur::VertexGroom vertexGroomFrom(int vertices, const py::object& length, const p
   g.curlRadius = pairs(curlRadius, "curl_radius", "(overcoat, undercoat) curl radius");
   g.curlTurns = pairs(curlTurns, "curl_turns", "(overcoat, undercoat) curl turns");
   g.widthScale = pairs(widthScale, "width_scale", "(overcoat, undercoat) width scale");
+  if (!colorSourceWeight.is_none()) {
+    if (!py::isinstance<py::dict>(colorSourceWeight))
+      throw InputError("color_source_weight",
+                       "must be a dict of the five colour sources (material, creature, texture, "
+                       "vertex, map) to arrays of shape (vertices, 2)");
+    const auto d = colorSourceWeight.cast<py::dict>();
+    for (const auto& item : d) {
+      const std::string key = py::str(item.first);
+      bool known = false;
+      for (int s = 0; s < fur::kColorSourceCount; ++s)
+        known = known || key == fur::colorSourceName(static_cast<fur::ColorSource>(s));
+      if (!known)
+        throw InputError(
+            "color_source_weight",
+            str("has '", key, "'; accepted: material, creature, texture, vertex, map"));
+    }
+    for (int s = 0; s < fur::kColorSourceCount; ++s) {
+      const std::string name(fur::colorSourceName(static_cast<fur::ColorSource>(s)));
+      if (!d.contains(name))
+        throw InputError("color_source_weight",
+                         "lacks '" + name + "': give the weights of all five colour sources");
+      g.colorSourceWeight[static_cast<std::size_t>(s)] =
+          pairs(d[name.c_str()], ("color_source_weight['" + name + "']").c_str(),
+                "(overcoat, undercoat) weight");
+    }
+  }
   return g;
 }
 
@@ -253,6 +280,13 @@ py::dict groomDict(const fur::VertexGroom& g) {
   if (!g.curlRadius.empty()) d["curl_radius"] = pairs(g.curlRadius);
   if (!g.curlTurns.empty()) d["curl_turns"] = pairs(g.curlTurns);
   if (!g.widthScale.empty()) d["width_scale"] = pairs(g.widthScale);
+  if (g.hasColorSourceWeights()) {
+    py::dict w;
+    for (int s = 0; s < fur::kColorSourceCount; ++s)
+      w[py::str(std::string(fur::colorSourceName(static_cast<fur::ColorSource>(s))))] =
+          pairs(g.colorSourceWeight[static_cast<std::size_t>(s)]);
+    d["color_source_weight"] = w;
+  }
   return d;
 }
 

@@ -101,13 +101,14 @@ Dynamics dynamicsFrom(const py::object& d);
 
 // numpy arrays (None: absent) as a vertex groom of `vertices` vertices: length, density and clump
 // of shape (vertices,), tint and comb (vertices, 3), stiffness, segment direction weight, curl
-// radius and turns, width scale (vertices, 2); InputError naming the keyword for another shape.
+// radius and turns, width scale (vertices, 2), and colour source weights (a dict of the five
+// source names to (vertices, 2)); InputError naming the keyword for another shape.
 fur::VertexGroom vertexGroomFrom(int vertices, const py::object& length, const py::object& density,
                                  const py::object& tint, const py::object& comb,
                                  const py::object& clump, const py::object& stiffness,
                                  const py::object& segmentDirectionWeight,
                                  const py::object& curlRadius, const py::object& curlTurns,
-                                 const py::object& widthScale);
+                                 const py::object& widthScale, const py::object& colorSourceWeight);
 // A vertex groom as a dict of numpy arrays, copied ("length", "density", "tint", "comb"; absent
 // ones left out).
 py::dict groomDict(const fur::VertexGroom& g);

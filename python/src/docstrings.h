@@ -60,6 +60,10 @@ Args:
     width_scale: None, or shape (vertices, 2): multiplies each coat's hair width (overcoat,
         undercoat) [0, 10] at the vertex: a hair is drawn and exported (a tube grown) at the
         coat's width times the scale interpolated at its root.
+    color_source_weight: None, or a dict of all five colour sources ("material", "creature",
+        "texture", "vertex", "map") to arrays of shape (vertices, 2): each coat's weight of that
+        source at the vertex (overcoat, undercoat) [0, 1], a coat's summing to 1: a hair's root
+        colour blends the sources' colours at its root by the weights interpolated there.
     strokes: None, or grooming strokes applied on top of the arrays (those they need and that
         are absent start from the model's lengths, density 1, tint 1, no comb): a strokes file's
         path, or its JSON as a dict, {"strokes": [{"tool": "length" | "density" | "color" | "comb",

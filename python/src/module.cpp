@@ -119,11 +119,11 @@ void writeGroom(const PyModel& m, const std::string& path, const py::object& len
                 const py::object& clump, const py::object& stiffness,
                 const py::object& segmentDirectionWeight, const py::object& curlRadius,
                 const py::object& curlTurns, const py::object& widthScale,
-                const py::object& strokes) {
+                const py::object& colorSourceWeight, const py::object& strokes) {
   const skin::SkinMesh& skin = m.model->skin;
   fur::VertexGroom g =
       vertexGroomFrom(skin.numVertices(), length, density, tint, comb, clump, stiffness,
-                      segmentDirectionWeight, curlRadius, curlTurns, widthScale);
+                      segmentDirectionWeight, curlRadius, curlTurns, widthScale, colorSourceWeight);
   if (!strokes.is_none())
     fur::applyGroomStrokes(skin,
                            py::isinstance<py::str>(strokes)
@@ -582,8 +582,8 @@ PYBIND11_MODULE(_pelage, m) {
            py::arg("comb") = py::none(), py::arg("clump") = py::none(),
            py::arg("stiffness") = py::none(), py::arg("segment_direction_weight") = py::none(),
            py::arg("curl_radius") = py::none(), py::arg("curl_turns") = py::none(),
-           py::arg("width_scale") = py::none(), py::arg("strokes") = py::none(),
-           doc::kWriteGroomDoc)
+           py::arg("width_scale") = py::none(), py::arg("color_source_weight") = py::none(),
+           py::arg("strokes") = py::none(), doc::kWriteGroomDoc)
       .def("__repr__", [](const PyModel& s) {
         return "<pelage.Model " + s.model->name + ": " + std::to_string(s.model->body.size()) +
                " segments, " + std::to_string(s.model->skin.numTriangles()) + " triangles, " +
@@ -602,7 +602,8 @@ PYBIND11_MODULE(_pelage, m) {
           "The per-vertex groom the hairs grew from (dict of numpy arrays: "
           "'length' (nV,) metres, 'density' (nV,), 'tint' (nV, 3), 'comb' (nV, 3), 'clump' (nV,), "
           "'stiffness', 'segment_direction_weight', 'curl_radius', 'curl_turns' and "
-          "'width_scale' (nV, 2) "
+          "'width_scale' (nV, 2), 'color_source_weight' (a dict of the five colour sources "
+          "to (nV, 2)) "
           "(overcoat, undercoat); "
           "only those "
           "a groom file or the regions set).")

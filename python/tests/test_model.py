@@ -221,6 +221,39 @@ def test_width_by_region_and_from_numpy(tmp_path):
 
 @pytest.mark.skipif(not os.path.exists(os.path.join(SHARED, "Fox", "Fox.glb")),
                     reason="the shared glTF models are not here")
+def test_colour_source_by_region_and_from_numpy(tmp_path):
+    fox = pelage.load(os.path.join(SHARED, "Fox", "Fox.glb"))
+    n = len(fox.skin()[0])
+    white = {"color": {"source": "creature"}, "diffuse": [1, 1, 1]}
+    tailed = fox.fur(hairs=3000, overcoat=white,
+                     regions=[{"match": "b_Tail*", "colorSource": "material"}])
+    assert tailed.params["regions"][0]["colorSource"] == ["material", "material"]
+    weights = tailed.groom["color_source_weight"]
+    assert sorted(weights) == ["creature", "map", "material", "texture", "vertex"]
+    assert weights["material"].shape == (n, 2)
+    assert weights["material"][:, 0].max() == 1 and weights["creature"][:, 0].min() == 0
+    total = sum(weights[k] for k in weights)
+    assert np.allclose(total, 1, atol=1e-6)
+    plain = fox.fur(hairs=3000, overcoat=white)
+    assert not np.array_equal(tailed.hairs().colors, plain.hairs().colors)
+    assert np.array_equal(tailed.hairs().points, plain.hairs().points)
+    # From numpy through a groom file: the same colours, bit for bit.
+    path = str(tmp_path / "sources.groom.json")
+    fox.write_groom(path, color_source_weight=weights)
+    from_file = fox.fur(hairs=3000, overcoat=white, groom=path)
+    assert np.array_equal(from_file.hairs().colors, tailed.hairs().colors)
+    with pytest.raises(ValueError, match="lacks 'map'"):
+        fox.write_groom(path, color_source_weight={k: v for k, v in weights.items() if k != "map"})
+    with pytest.raises(ValueError, match=r"colorSourceWeight.material\[0\].*\[0, 1\]"):
+        fox.write_groom(str(tmp_path / "bad.json"),
+                        color_source_weight=dict(weights, material=np.full((n, 2), 2.0)))
+    assert not os.path.exists(tmp_path / "bad.json")
+    with pytest.raises(ValueError, match=r"regions\[0\].colorSource.*unknown colour source"):
+        fox.fur(hairs=100, regions=[{"match": "b_Tail*", "colorSource": "paint"}])
+
+
+@pytest.mark.skipif(not os.path.exists(os.path.join(SHARED, "Fox", "Fox.glb")),
+                    reason="the shared glTF models are not here")
 def test_subdivision_levels():
     path = os.path.join(SHARED, "Fox", "Fox.glb")
     tris = {s: len(pelage.load(path, subdivide=s).skin()[2]) for s in (0, 1, "auto")}

@@ -71,9 +71,9 @@ bool clumpRootsDiffer(const fur::FurParams& a, const fur::FurParams& b) {
   return false;
 }
 
-// A region's stiffness, segment direction weight or curl blends from the coats' own into the
-// per-vertex values the roots' floppiness, w and helix are interpolated from
-// (fur::groomFromRegions).
+// A region's stiffness, segment direction weight, curl or colour source blends from the coats' own
+// into the per-vertex values the roots' floppiness, w and helix, and the hairs' colours, are
+// interpolated from (fur::groomFromRegions).
 bool regionCoatValuesDiffer(const fur::FurParams& a, const fur::FurParams& b) {
   const auto anyRegion = [&](auto field) {
     for (const fur::FurParams* p : {&a, &b})
@@ -94,8 +94,11 @@ bool regionCoatValuesDiffer(const fur::FurParams& a, const fur::FurParams& b) {
   return (anyRegion(&fur::FurRegion::stiffness) && coatsDiffer(&fur::CoatParams::stiffness)) ||
          (anyRegion(&fur::FurRegion::segmentDirectionWeight) &&
           coatsDiffer(&fur::CoatParams::segmentDirectionWeight)) ||
-         (curlRegions &&
-          (coatsDiffer(&fur::CoatParams::curlRadius) || coatsDiffer(&fur::CoatParams::curlTurns)));
+         (curlRegions && (coatsDiffer(&fur::CoatParams::curlRadius) ||
+                          coatsDiffer(&fur::CoatParams::curlTurns))) ||
+         (anyRegion(&fur::FurRegion::colorSource) &&
+          (a.coats[0].color.source != b.coats[0].color.source ||
+           a.coats[1].color.source != b.coats[1].color.source));
 }
 }  // namespace
 

@@ -227,6 +227,21 @@ TEST(Groom, FileValuesAreChecked) {
   text.replace(text.rfind("[2.5,0.5]"), 9, "[2.5,10.5]");
   test::expectInputError([&] { parseGroomFile(text, "f.json", g.skin, "grid"); },
                          {"f.json", "widthScale[24]", "2 numbers", "[0, 10]"});
+  VertexGroom sources;
+  for (int s = 0; s < kColorSourceCount; ++s)
+    sources.colorSourceWeight[static_cast<std::size_t>(s)].assign(
+        25, Eigen::Vector2f(s == 0 ? 0.75f : (s == 2 ? 0.25f : 0.0f), s == 1 ? 1.0f : 0.0f));
+  text = groomFileJson(g.skin, sources);
+  const std::string goodSources = text;
+  EXPECT_EQ(parseGroomFile(text, "f.json", g.skin, "grid").colorSourceWeight,
+            sources.colorSourceWeight);
+  text.replace(text.find("[0.75,0.0]"), 10, "[1.75,0.0]");
+  test::expectInputError([&] { parseGroomFile(text, "f.json", g.skin, "grid"); },
+                         {"f.json", "colorSourceWeight", "material", "[0, 1]"});
+  text = goodSources;
+  text.replace(text.find("\"vertex\""), 8, "\"vortex\"");
+  test::expectInputError([&] { parseGroomFile(text, "f.json", g.skin, "grid"); },
+                         {"f.json", "colorSourceWeight", "vortex"});
   test::expectInputError([&] { parseGroomFile("{}", "f.json", g.skin, "grid"); },
                          {"f.json", "not a groom file"});
   test::expectInputError([&] { parseGroomFile("[1,", "f.json", g.skin, "grid"); }, {"f.json"});

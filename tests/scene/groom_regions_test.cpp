@@ -330,6 +330,12 @@ TEST(GroomRegions, ErrorsNameThePresetFileTheRegionAndTheField) {
   test::writeText(file, R"({"regions": [{"match": "b_Tail*", "widthScale": [2, 10.5]}]})");
   test::expectInputError([&] { fur::loadFurPreset(file); },
                          {file, "regions[0].widthScale", "[0, 10]"});
+  test::writeText(file, R"({"regions": [{"match": "b_Tail*", "colorSource": "fur"}]})");
+  test::expectInputError([&] { fur::loadFurPreset(file); },
+                         {"regions[0].colorSource", "unknown colour source 'fur'", "texture"});
+  test::writeText(file, R"({"regions": [{"match": "b_Tail*", "colorSource": ["material"]}]})");
+  test::expectInputError([&] { fur::loadFurPreset(file); },
+                         {file, "regions[0].colorSource", "[overcoat, undercoat]"});
   test::writeText(file, R"({"regions": [{"match": "b_Tail*", "curl": {"radus": 0.1}}]})");
   test::expectInputError([&] { fur::loadFurPreset(file); }, {file, "regions[0].curl", "radus"});
   // Coat fields a region cannot set yet are refused by name.
@@ -363,7 +369,9 @@ TEST(GroomRegions, PresetRoundTripAndRegrowth) {
                {.match = "b_Head*", .stiffness = Eigen::Vector2f(0.25f, 0.75f)},
                {.match = "b_Leg*", .segmentDirectionWeight = Eigen::Vector2f(0.5f, 1.0f)},
                {.match = "b_Neck*", .curlTurns = Eigen::Vector2f(3.0f, 0.5f)},
-               {.match = "b_Spine*", .widthScale = Eigen::Vector2f(2.0f, 0.5f)}};
+               {.match = "b_Spine*", .widthScale = Eigen::Vector2f(2.0f, 0.5f)},
+               {.match = "b_Head*",
+                .colorSource = std::array{fur::ColorSource::Material, fur::ColorSource::Texture}}};
   const fur::FurParams back = fur::parseFurPreset(fur::furPresetJson(p), "round trip");
   EXPECT_EQ(back.regions, p.regions);
   fur::FurParams q = p;
@@ -377,6 +385,10 @@ TEST(GroomRegions, PresetRoundTripAndRegrowth) {
   q = p;
   q.coats[fur::kOvercoat].width = {1.0f, 0.5f};
   EXPECT_FALSE(scene::rootsDiffer(p, q));
+  // A region's colour source blends from the coats' own sources.
+  q = p;
+  q.coats[fur::kUndercoat].color.source = fur::ColorSource::Material;
+  EXPECT_TRUE(scene::rootsDiffer(p, q));
   // The coats' stiffness, w and helix are where such regions blend from: the roots' own values
   // change.
   for (float fur::CoatParams::*field :
@@ -388,6 +400,7 @@ TEST(GroomRegions, PresetRoundTripAndRegrowth) {
   }
   // Without a region of that value the coats' apply per frame: no regrowth.
   q = p;
+  q.regions.pop_back();  // the colour source region goes
   q.regions.pop_back();  // the width region goes
   q.regions.pop_back();  // the curl region goes
   q.regions.pop_back();  // and the w region; the stiffness region stays
@@ -519,6 +532,55 @@ TEST(GroomRegions, FoxThickTailHairsAreTheirCoatsWidthTimesTheTailScale) {
     EXPECT_EQ(fur::exportedWidth(fb, groomed, 0, i, 0),
               fur::exportedWidth(fa, plain, 0, i, 0) *
                   scale[static_cast<std::size_t>(hb.hairIds[static_cast<std::size_t>(i)])]);
+}
+
+TEST(GroomRegions, FoxTailTakesItsRegionsColourSourceBlendedAtItsBorder) {
+  // The default coats colour the Fox from its texture (source creature); a region's "material"
+  // source on the tail: hairs with tail weight 1 have exactly the colours of coats of the material
+  // source, those away exactly the texture's, and those between a blend of the two.
+  const scene::Model* m = fox();
+  if (!m) GTEST_SKIP() << "shared Fox model absent";
+  const fur::FurParams plain = foxParams();
+  ASSERT_EQ(plain.coats[0].color.source, fur::ColorSource::Creature);
+  fur::FurParams groomed = plain, coats = plain;
+  groomed.regions = {
+      {.match = "b_Tail*",
+       .colorSource = std::array{fur::ColorSource::Material, fur::ColorSource::Material}}};
+  for (fur::CoatParams& c : coats.coats) c.color.source = fur::ColorSource::Material;
+  const scene::Fur a = scene::growFur(*m, plain, "test");
+  const scene::Fur b = scene::growFur(*m, groomed, "test");
+  const scene::Fur o = scene::growFur(*m, coats, "test");
+  ASSERT_EQ(a.roots.coats[0].triangle, b.roots.coats[0].triangle);
+  ASSERT_TRUE(b.groom.vertex.hasColorSourceWeights());
+  // The root colour of root k as packed (the coat's one colour where every hair has it).
+  const auto rootColor = [](const scene::Fur& f, std::int64_t k) {
+    const fur::CoatColors& cc = f.colors.coats[0];
+    return cc.perHair ? cc.packed[2 * static_cast<std::size_t>(k)] : fur::packSrgb8(cc.diffuse);
+  };
+  const std::vector<float> tail = fur::regionWeights(m->skin, m->body, "b_Tail*");
+  int inTail = 0, away = 0, between = 0, outside = 0;
+  for (std::int64_t k = 0; k < b.roots.coats[0].size(); ++k) {
+    const RootWeights t = rootWeights(*m, b.roots, k, tail);
+    const std::uint32_t got = rootColor(b, k);
+    if (t.v[0] == 1.0f && t.v[1] == 1.0f && t.v[2] == 1.0f) {
+      EXPECT_EQ(got, rootColor(o, k)) << "root " << k;
+      ++inTail;
+    } else if (std::max({t.v[0], t.v[1], t.v[2]}) == 0.0f) {
+      EXPECT_EQ(got, rootColor(a, k)) << "root " << k;
+      ++away;
+    } else {
+      // Each channel between the texture's and the material's (8-bit rounding aside).
+      const Eigen::Vector3f c = fur::unpackSrgb8(got), x = fur::unpackSrgb8(rootColor(a, k)),
+                            y = fur::unpackSrgb8(rootColor(o, k));
+      for (int i = 0; i < 3; ++i)
+        outside += c[i] < std::min(x[i], y[i]) - 0.01f || c[i] > std::max(x[i], y[i]) + 0.01f;
+      ++between;
+    }
+  }
+  EXPECT_GT(inTail, 200);
+  EXPECT_GT(away, 5000);
+  EXPECT_GT(between, 100);
+  EXPECT_EQ(outside, 0);
 }
 
 TEST(GroomRegions, FoxTailAlongTheBoneTurnsAsACoatOfThatWeight) {

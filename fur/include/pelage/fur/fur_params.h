@@ -26,6 +26,7 @@ namespace pelage::fur {
 //    skin); Vertex: the vertex colours (COLOR_0, or a creature file's fur colours);
 //  Map: the preset's colour map at the root's texture coordinates.
 enum class ColorSource { Material, Creature, Texture, Vertex, Map };
+inline constexpr int kColorSourceCount = 5;
 // "material", "creature", "texture", "vertex", "map".
 std::string_view colorSourceName(ColorSource source);
 // Parses a colour source name; InputError naming `where` and the accepted names.
@@ -156,6 +157,9 @@ struct FurRegion {
   // [0, kMaxWidthScale] each (per hair: strands drawn and exported that wide, tubes that thick);
   // unset: keep.
   std::optional<Eigen::Vector2f> widthScale = std::nullopt;
+  // Where the hairs of (overcoat, undercoat) take their colour from there (CoatColor::source):
+  // each root's colour blends the sources by their weights at the root; unset: keep.
+  std::optional<std::array<ColorSource, 2>> colorSource = std::nullopt;
   bool operator==(const FurRegion&) const = default;
 };
 inline constexpr std::size_t kMaxFurRegions = 256;

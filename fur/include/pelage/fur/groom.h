@@ -9,6 +9,7 @@
 
 #include <Eigen/Core>
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -54,6 +55,10 @@ inline constexpr float kMaxCombLength2 = 1.0f + 1e-5f;
 //  widthScale: multiplies each coat's hair width (fur_params.h StrandWidth, root and tip) at the
 //    vertex (overcoat, undercoat), [0, kMaxWidthScale]: a hair takes the scale interpolated at its
 //    root at rest (CoatRoots::widthScale), drawn, exported and (tubes) grown that wide.
+//  colorSourceWeight: per colour source (indexed by ColorSource), each coat's weight of that
+//    source at the vertex (overcoat, undercoat), [0, 1], the weights of a coat summing to 1:
+//    a hair's root colour is the sum of the sources' colours at its root times their weights
+//    interpolated there (colors.h colorRoots). All five empty: each coat's own source.
 struct VertexGroom {
   std::vector<float> length;
   std::vector<float> density;
@@ -65,10 +70,12 @@ struct VertexGroom {
   std::vector<Eigen::Vector2f> curlRadius;
   std::vector<Eigen::Vector2f> curlTurns;
   std::vector<Eigen::Vector2f> widthScale;
+  std::array<std::vector<Eigen::Vector2f>, kColorSourceCount> colorSourceWeight;
+  bool hasColorSourceWeights() const { return !colorSourceWeight[0].empty(); }
   bool empty() const {
     return length.empty() && density.empty() && tint.empty() && comb.empty() && clump.empty() &&
            stiffness.empty() && segmentDirectionWeight.empty() && curlRadius.empty() &&
-           curlTurns.empty() && widthScale.empty();
+           curlTurns.empty() && widthScale.empty() && !hasColorSourceWeights();
   }
 };
 
@@ -123,13 +130,15 @@ VertexGroom groomFromRegions(const skin::SkinMesh& skin, const anatomy::Body& bo
 //    "length": [nV metres], "density": [nV], "tint": [nV x [r, g, b]], "comb": [nV x [x, y, z]],
 //    "clump": [nV], "stiffness": [nV x [overcoat, undercoat]],
 //    "segmentDirectionWeight": [nV x [overcoat, undercoat]], "curlRadius": [nV x [o, u]],
-//    "curlTurns": [nV x [o, u]], "widthScale": [nV x [o, u]]}
+//    "curlTurns": [nV x [o, u]], "widthScale": [nV x [o, u]],
+//    "colorSourceWeight": {"material": [nV x [o, u]], "creature": ..., "texture": ...,
+//    "vertex": ..., "map": ...}}
 // (each array optional; floats written with round-trip precision, so a file reads back
 // bit-identically). The hash (meshHash) keys the file to the skin's vertex and triangle order and
 // rest positions; loading it on another mesh is an error naming both meshes. Values: length
 // [0, 10] m, density [0, 100], tint [0, 10] each, comb of length <= 1, clump, stiffness and
 // segment direction weight [0, 1], curl radius [0, 0.5], curl turns [0, 20], width scale [0, 10],
-// all finite.
+// colour source weights [0, 1] (all five sources or none), all finite.
 inline constexpr int kGroomFileVersion = 1;
 
 // FNV-1a 64 over the vertex and triangle counts, the triangles' vertex indices and the rest

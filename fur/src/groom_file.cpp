@@ -194,6 +194,14 @@ VertexGroom parseGroomFile(const std::string& text, const std::string& source,
       if (!w.has(name)) w.fail("missing '" + name + "': give the weights of all five sources");
       g.colorSourceWeight[static_cast<std::size_t>(s)] = readRows<2>(w, name.c_str(), n, 0.0, 1.0);
     }
+    for (std::size_t v = 0; v < n; ++v)
+      for (int c = 0; c < kCoatCount; ++c) {
+        float sum = 0.0f;
+        for (const auto& weights : g.colorSourceWeight) sum += weights[v][c];
+        if (!(std::abs(sum - 1.0f) <= 1e-3f))
+          w.fail(str("the ", c == kOvercoat ? "overcoat" : "undercoat", " weights of vertex ", v,
+                     " sum to ", sum, "; accepted: 1 (a blend of the sources)"));
+      }
   }
   if (j.has("tint")) g.tint = readRows<3>(j, "tint", n, 0.0, static_cast<double>(kMaxGroomTint));
   if (j.has("comb")) {

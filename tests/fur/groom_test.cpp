@@ -239,6 +239,11 @@ TEST(Groom, FileValuesAreChecked) {
   test::expectInputError([&] { parseGroomFile(text, "f.json", g.skin, "grid"); },
                          {"f.json", "colorSourceWeight", "material", "[0, 1]"});
   text = goodSources;
+  text.replace(text.find("[0.75,0.0]"), 10, "[0.5,0.0]");
+  test::expectInputError(
+      [&] { parseGroomFile(text, "f.json", g.skin, "grid"); },
+      {"f.json", "colorSourceWeight", "overcoat weights of vertex 0 sum to 0.75", "accepted: 1"});
+  text = goodSources;
   text.replace(text.find("\"vertex\""), 8, "\"vortex\"");
   test::expectInputError([&] { parseGroomFile(text, "f.json", g.skin, "grid"); },
                          {"f.json", "colorSourceWeight", "vortex"});

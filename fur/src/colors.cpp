@@ -8,6 +8,7 @@
 #include "pelage/util/error.h"
 #include "pelage/util/parallel.h"
 #include "pelage/util/random.h"
+#include "vertex_value.h"
 
 namespace pelage::fur {
 namespace {
@@ -188,15 +189,14 @@ FurColors colorRoots(const skin::SkinMesh& skin, const FurRoots& roots, const Fu
       if (!blended) {
         source = sourceColor(skin, maps, linear, cc.source, cr.triangle[ks], b);
       } else {
-        // Each source's weight at the root, s1 + b2 (s2 - s1) + b3 (s3 - s1): exactly 1 where
-        // the three vertices take one source, so such a hair has that source's colour.
+        // Each source's weight at the root: exactly 1 where the three vertices take one source,
+        // so such a hair has that source's colour.
         const std::int32_t* v =
             skin.triangles.data() + 3 * static_cast<std::size_t>(cr.triangle[ks]);
         for (int s = 0; s < kColorSourceCount; ++s) {
           if (!used[static_cast<std::size_t>(s)]) continue;
-          const auto& w = sourceWeight[static_cast<std::size_t>(s)];
-          const auto at = [&](int i) { return w[static_cast<std::size_t>(v[i])][c]; };
-          const float weight = at(0) + b[1] * (at(1) - at(0)) + b[2] * (at(2) - at(0));
+          const float weight =
+              detail::coatValueAtRoot(sourceWeight[static_cast<std::size_t>(s)], v, b, c);
           if (weight > 0.0f)
             source +=
                 weight * sourceColor(skin, maps, linear, resolved[static_cast<std::size_t>(s)],

@@ -16,6 +16,7 @@
 #include "pelage/util/error.h"
 #include "pelage/util/parallel.h"
 #include "pelage/util/random.h"
+#include "vertex_value.h"
 
 namespace pelage::fur {
 namespace {
@@ -439,13 +440,9 @@ FurRoots growRoots(const skin::SkinMesh& skin, const FurParams& params, const Gr
             };
             cr.clumpScale[ks] = b[0] * at(0) + b[1] * at(1) + b[2] * at(2);
           }
-          // s1 + b2 (s2 - s1) + b3 (s3 - s1) of a per-coat vertex value: exactly s where the
-          // three vertices agree, so a hair there grows as in a coat of that value.
           const auto atRoot = [&](const std::vector<Eigen::Vector2f>& values) {
-            const float* b = roots.barycentric.data() + 4 * cr.tableIndex[ks];
-            const std::int32_t* v = skin.triangles.data() + 3 * t;
-            const auto at = [&](int i) { return values[static_cast<std::size_t>(v[i])][c]; };
-            return at(0) + b[1] * (at(1) - at(0)) + b[2] * (at(2) - at(0));
+            return detail::coatValueAtRoot(values, skin.triangles.data() + 3 * t,
+                                           roots.barycentric.data() + 4 * cr.tableIndex[ks], c);
           };
           if (!cr.floppiness.empty())
             cr.floppiness[ks] = floppiness(atRoot(groom.vertex.stiffness));

@@ -12,13 +12,13 @@
 
 #include "commands.h"
 #include "options.h"
+#include "pelage/render/gl_context.h"
+#include "pelage/render/render_sequence.h"
+#include "pelage/render/video_encoder.h"
 #include "pelage/scene/frame.h"
 #include "pelage/util/atomic_file.h"
 #include "pelage/util/error.h"
 #include "pelage/util/parallel.h"
-#include "pelage/viewer/gl_context.h"
-#include "pelage/viewer/render_sequence.h"
-#include "pelage/viewer/video_encoder.h"
 
 namespace pelage::app {
 namespace {
@@ -53,7 +53,7 @@ std::string clock(double seconds) {
 class Progress {
  public:
   explicit Progress(bool quiet) : quiet_(quiet), tty_(::isatty(STDERR_FILENO) == 1) {}
-  void operator()(const viewer::SequenceProgress& p) {
+  void operator()(const render::SequenceProgress& p) {
     if (quiet_) return;
     const double pct = p.total > 0 ? 100.0 * p.done / p.total : 100.0;
     if (tty_) {
@@ -80,7 +80,7 @@ class Progress {
 };
 
 void runRender(RenderArgs& a) {
-  viewer::SequenceOptions o;
+  render::SequenceOptions o;
   a.view.validate();
   a.range.validateFps();
   if (!a.range.frames.empty()) o.frames = scene::parseFrameRange(a.range.frames);
@@ -117,11 +117,11 @@ void runRender(RenderArgs& a) {
     inputError("--out ", o.outDir,
                " names a file; --out is the directory for frame_NNNNN.png (give the video with "
                "--video)");
-  viewer::validateSequenceOptions(o);  // before the model is built; dynamics once the clip is known
+  render::validateSequenceOptions(o);  // before the model is built; dynamics once the clip is known
   const fur::DynamicsParams dynamics = a.dynamics.resolve();
   const NewFolders folders(o.outDir);  // removed again if the model or a value is bad
   ensureWritableDirectory(o.outDir);
-  if (!o.video.empty() && viewer::findOnPath("ffmpeg").empty())
+  if (!o.video.empty() && render::findOnPath("ffmpeg").empty())
     inputError("--video ", o.video,
                " needs the ffmpeg program, which is not on PATH (Debian: apt-get install ffmpeg)");
   if (!o.video.empty()) {
@@ -143,10 +143,10 @@ void runRender(RenderArgs& a) {
   o.playback.dynamics = a.dynamics.enabled();
   o.playback.dynamicsParams = dynamics;
   o.playback.clock.preRollFrames = a.dynamics.preRoll;
-  viewer::validateSequenceOptions(o);
+  render::validateSequenceOptions(o);
   const scene::Fur fur = scene::growFur(model, params, "fur '" + params.name + "'");
-  auto context = viewer::createHeadlessContext();
-  const viewer::ContextInfo& info = context->info();
+  auto context = render::createHeadlessContext();
+  const render::ContextInfo& info = context->info();
   const int clip = o.playback.clip;
   if (!quiet) {
     std::printf(
@@ -163,8 +163,8 @@ void runRender(RenderArgs& a) {
     std::fflush(stdout);
   }
   Progress progress(quiet);
-  const viewer::SequenceReport r = viewer::renderSequence(
-      model, fur, o, [&](const viewer::SequenceProgress& p) { progress(p); });
+  const render::SequenceReport r = render::renderSequence(
+      model, fur, o, [&](const render::SequenceProgress& p) { progress(p); });
   if (quiet) return;
   std::printf("rendered %d frame(s)%s in %.2f s: %.2f frames/s (%lld hairs drawn in the last)%s\n",
               r.rendered, r.skipped > 0 ? str(", skipped ", r.skipped, " complete").c_str() : "",

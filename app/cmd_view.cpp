@@ -2,6 +2,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <string>
 
 #include "commands.h"
 #include "options.h"
@@ -36,10 +37,12 @@ void addViewCommand(CLI::App& app) {
   cmd->add_option("--screenshot", o->screenshot,
                   "Write the last frame to this .png or .jpg and exit (a window: its back buffer, "
                   "UI included; --headless: the scene)");
-  cmd->add_option("--frames", o->frames,
-                  "Frames to run before exiting [0, 10000000] (default 0: until closed; with "
-                  "--screenshot: 3 in a window, whose panel needs two frames to lay itself out, "
-                  "1 headless)");
+  cmd->add_option(
+      "--frames", o->frames,
+      "Frames to run before exiting [0, " + std::to_string(viewer::kMaxViewerFrames) +
+          "] (default 0: until closed; with "
+          "--screenshot: 3 in a window, whose panel needs two frames to lay itself out, "
+          "1 headless)");
   cmd->add_flag("--headless", o->headless, "No window: render offscreen through EGL (no UI)");
   cmd->add_flag("--benchmark", o->benchmark,
                 "Print ms/frame for several hair counts (offscreen, through EGL; --size defaults "

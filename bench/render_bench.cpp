@@ -14,12 +14,12 @@
 
 #include "pelage/fur/hair_ply.h"
 #include "pelage/fur/preset.h"
+#include "pelage/render/gl_context.h"
+#include "pelage/render/image.h"
+#include "pelage/render/render_sequence.h"
 #include "pelage/scene/frame.h"
 #include "pelage/scene/model.h"
 #include "pelage/util/parallel.h"
-#include "pelage/viewer/gl_context.h"
-#include "pelage/viewer/image.h"
-#include "pelage/viewer/render_sequence.h"
 
 namespace {
 
@@ -39,13 +39,13 @@ scene::Fur polylineFur(double hairs) {
   return scene::growFur(monkey(), p);
 }
 
-viewer::GlContext& context() {
-  static std::unique_ptr<viewer::GlContext> c = viewer::createHeadlessContext();
+render::GlContext& context() {
+  static std::unique_ptr<render::GlContext> c = render::createHeadlessContext();
   return *c;
 }
 
-viewer::SequenceOptions options() {
-  viewer::SequenceOptions o;
+render::SequenceOptions options() {
+  render::SequenceOptions o;
   o.playback.clip = monkey().findClip("walk");
   o.frames = {0, 1000};
   o.width = 1920;
@@ -59,8 +59,8 @@ viewer::SequenceOptions options() {
 void BM_RenderFrame(benchmark::State& st) {
   context();
   const scene::Fur fur = polylineFur(static_cast<double>(st.range(0)));
-  viewer::SequenceRenderer renderer(monkey(), fur, options());
-  viewer::Image img;
+  render::SequenceRenderer renderer(monkey(), fur, options());
+  render::Image img;
   int frame = 0;
   std::int64_t drawn = 0;
   for (auto _ : st) drawn = renderer.render(frame++ % 60, img).hairsDrawn;
@@ -72,11 +72,11 @@ void BM_RenderFrame(benchmark::State& st) {
 void BM_EncodePng(benchmark::State& st) {
   context();
   const scene::Fur fur = polylineFur(500000.0);
-  viewer::SequenceRenderer renderer(monkey(), fur, options());
-  viewer::Image img;
+  render::SequenceRenderer renderer(monkey(), fur, options());
+  render::Image img;
   renderer.render(30, img);
   std::size_t bytes = 0;
-  for (auto _ : st) bytes = viewer::encodePng(img).size();
+  for (auto _ : st) bytes = render::encodePng(img).size();
   st.counters["PNG MB"] = static_cast<double>(bytes) / 1e6;
 }
 

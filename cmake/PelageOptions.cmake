@@ -48,7 +48,7 @@ function(pelage_module name)
                         PRIVATE ${ARG_PRIVATE_DEPS} $<BUILD_INTERFACE:pelage_warnings>)
   install(TARGETS pelage_${name} EXPORT pelageTargets
           ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT dev)
-  # One folder of headers per module folder (viewer/ holds both render and viewer).
+  # One folder of headers per module folder.
   get_directory_property(_installed PELAGE_HEADERS_INSTALLED)
   if(NOT _installed AND EXISTS ${CMAKE_CURRENT_SOURCE_DIR}/include)
     install(DIRECTORY ${CMAKE_CURRENT_SOURCE_DIR}/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}

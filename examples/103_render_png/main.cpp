@@ -12,11 +12,11 @@
 #include <string>
 
 #include "pelage/fur/preset.h"
+#include "pelage/render/gl_context.h"
+#include "pelage/render/image.h"
+#include "pelage/render/render_sequence.h"
 #include "pelage/scene/frame.h"
 #include "pelage/scene/model.h"
-#include "pelage/viewer/gl_context.h"
-#include "pelage/viewer/image.h"
-#include "pelage/viewer/render_sequence.h"
 
 int main(int argc, char** argv) {
   using namespace pelage;
@@ -27,20 +27,20 @@ int main(int argc, char** argv) {
     const scene::Fur fur = scene::growFur(model, fur::loadFurPreset("default"));
 
     // An OpenGL 4.5 core context with no window; the renderer needs it current for its life.
-    const std::unique_ptr<viewer::GlContext> context = viewer::createHeadlessContext();
+    const std::unique_ptr<render::GlContext> context = render::createHeadlessContext();
 
-    viewer::SequenceOptions options;
+    render::SequenceOptions options;
     options.playback.clip = scene::resolveClip(model, "");
     options.width = argc > 4 ? std::stoi(argv[3]) : 640;
     options.height = argc > 4 ? std::stoi(argv[4]) : 360;
     options.camera.preset = scene::CameraPreset::ThreeQuarter;
     options.outDir = std::filesystem::path(out).parent_path().string();  // where the frame goes
     if (options.outDir.empty()) options.outDir = ".";
-    viewer::validateSequenceOptions(options);
-    viewer::SequenceRenderer renderer(model, fur, options);
-    viewer::Image image;
-    const viewer::RenderStats stats = renderer.render(10, image);
-    viewer::writePng(out, image);  // opaque RGBA, written to a temporary file and renamed
+    render::validateSequenceOptions(options);
+    render::SequenceRenderer renderer(model, fur, options);
+    render::Image image;
+    const render::RenderStats stats = renderer.render(10, image);
+    render::writePng(out, image);  // opaque RGBA, written to a temporary file and renamed
     std::printf("%s: %dx%d, %lld hairs drawn on %s\n", out.c_str(), image.width, image.height,
                 static_cast<long long>(stats.hairsDrawn), context->info().renderer.c_str());
   } catch (const std::invalid_argument&) {  // std::stoi on an argument that is not a number

@@ -5,7 +5,7 @@
 //   104_gl_loop [MODEL [FRAMES]]
 //
 // FRAMES (default: until the window closes) bounds the loop. Needs a display (X11 or Wayland).
-#include "pelage/viewer/gl.h"  // OpenGL 4.5 core prototypes (libglvnd), before GLFW's header
+#include "pelage/render/gl.h"  // OpenGL 4.5 core prototypes (libglvnd), before GLFW's header
 
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
@@ -16,10 +16,10 @@
 #include <string>
 
 #include "pelage/fur/preset.h"
+#include "pelage/render/renderer.h"
 #include "pelage/scene/frame.h"
 #include "pelage/scene/model.h"
 #include "pelage/scene/playback.h"
-#include "pelage/viewer/renderer.h"
 
 int main(int argc, char** argv) {
   using namespace pelage;
@@ -49,7 +49,7 @@ int main(int argc, char** argv) {
     options.clip = scene::resolveClip(model, "");
     options.hairSource = scene::HairSource::Gpu;  // hairs computed by compute shaders
     scene::Playback playback(model, fur, options);
-    viewer::Renderer renderer;  // needs the current context for its whole life
+    render::Renderer renderer;  // needs the current context for its whole life
     scene::CameraRig rig;       // the three-quarter preset, framed on the first pose
     const scene::Light light;
     scene::DrawOptions look;

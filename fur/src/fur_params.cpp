@@ -66,10 +66,18 @@ std::string_view colorSourceName(ColorSource source) {
   return kColorSources.name(source);
 }
 
+std::string colorSourceNames() {
+  return kColorSources.list();
+}
+
+std::optional<ColorSource> findColorSource(std::string_view name) {
+  return kColorSources.find(name);
+}
+
 ColorSource parseColorSource(std::string_view name, const std::string& where) {
-  if (const auto s = kColorSources.find(name)) return *s;
-  inputError(where, ": unknown colour source '", excerpt(name),
-             "' (accepted: ", kColorSources.list(), ")");
+  if (const auto s = findColorSource(name)) return *s;
+  inputError(where, ": unknown colour source '", excerpt(name), "' (accepted: ", colorSourceNames(),
+             ")");
 }
 
 void validateFurParams(FurParams& p, const std::string& source) {

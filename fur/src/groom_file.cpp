@@ -185,10 +185,11 @@ VertexGroom parseGroomFile(const std::string& text, const std::string& source,
   if (j.has("colorSourceWeight")) {
     const JsonReader w = j.at("colorSourceWeight");
     if (!w.isObject())
-      w.fail(
-          "expected {\"material\": [...], \"creature\": ..., \"texture\": ..., \"vertex\": ..., "
-          "\"map\": ...}, each nV x [overcoat, undercoat] weights");
-    w.rejectUnknown({"material", "creature", "texture", "vertex", "map"});
+      w.fail("expected an object of the colour sources (" + colorSourceNames() +
+             "), each nV x [overcoat, undercoat] weights");
+    for (const std::string& key : w.keys())
+      if (!findColorSource(key))
+        w.fail("unknown colour source '" + key + "' (accepted: " + colorSourceNames() + ")");
     for (int s = 0; s < kColorSourceCount; ++s) {
       const std::string name(colorSourceName(static_cast<ColorSource>(s)));
       if (!w.has(name)) w.fail("missing '" + name + "': give the weights of all five sources");

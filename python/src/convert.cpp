@@ -228,19 +228,15 @@ fur::VertexGroom vertexGroomFrom(int vertices, const py::object& length, const p
   g.widthScale = pairs(widthScale, "width_scale", "(overcoat, undercoat) width scale");
   if (!colorSourceWeight.is_none()) {
     if (!py::isinstance<py::dict>(colorSourceWeight))
-      throw InputError("color_source_weight",
-                       "must be a dict of the five colour sources (material, creature, texture, "
-                       "vertex, map) to arrays of shape (vertices, 2)");
+      throw InputError("color_source_weight", "must be a dict of the five colour sources (" +
+                                                  fur::colorSourceNames() +
+                                                  ") to arrays of shape (vertices, 2)");
     const auto d = colorSourceWeight.cast<py::dict>();
     for (const auto& item : d) {
       const std::string key = py::str(item.first);
-      bool known = false;
-      for (int s = 0; s < fur::kColorSourceCount; ++s)
-        known = known || key == fur::colorSourceName(static_cast<fur::ColorSource>(s));
-      if (!known)
-        throw InputError(
-            "color_source_weight",
-            str("has '", key, "'; accepted: material, creature, texture, vertex, map"));
+      if (!fur::findColorSource(key))
+        throw InputError("color_source_weight",
+                         str("has '", key, "'; accepted: ", fur::colorSourceNames()));
     }
     for (int s = 0; s < fur::kColorSourceCount; ++s) {
       const std::string name(fur::colorSourceName(static_cast<fur::ColorSource>(s)));

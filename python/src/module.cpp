@@ -38,8 +38,8 @@
 #include "pelage/util/parallel.h"
 #include "pelage/util/version.h"
 #ifdef PELAGE_HAVE_RENDER
-#include "pelage/viewer/gl_context.h"
-#include "pelage/viewer/render_sequence.h"
+#include "pelage/render/gl_context.h"
+#include "pelage/render/render_sequence.h"
 #endif
 
 namespace py = pybind11;
@@ -47,7 +47,7 @@ namespace py = pybind11;
 namespace pelage::python {
 namespace {
 
-// ---- Model ------------------------------------------------------------------------------------
+// ---- Model --------------------------------------------------------------------------------------
 
 struct PyModel {
   std::shared_ptr<scene::Model> model;
@@ -147,8 +147,7 @@ std::shared_ptr<const scene::Fur> furOf(const PyModel& m, const py::object& furA
   return f.fur;
 }
 
-// ---- Hairs
-// ----------------------------------------------------------------------------------------
+// ---- Hairs --------------------------------------------------------------------------------------
 
 // One frame's hairs: the frame's buffers (both coats, one allocation), and per hair its coat, root
 // index, triangle and barycentric coordinates.
@@ -298,8 +297,7 @@ struct FrameIterator {
   }
 };
 
-// ---- Analysis
-// -------------------------------------------------------------------------------------
+// ---- Analysis -----------------------------------------------------------------------------------
 
 py::dict analyze(PyModel& m, const py::object& clip, const py::object& furArg,
                  const py::kwargs& kwargs) {
@@ -346,8 +344,7 @@ py::dict analyze(PyModel& m, const py::object& clip, const py::object& furArg,
   return columns(table);
 }
 
-// ---- Export
-// ---------------------------------------------------------------------------------------
+// ---- Export -------------------------------------------------------------------------------------
 
 std::vector<std::string> exportFrames(PyModel& m, const py::object& clip, const py::object& furArg,
                                       const py::kwargs& kwargs) {
@@ -376,8 +373,7 @@ std::vector<std::string> exportFrames(PyModel& m, const py::object& clip, const 
   return r.files;
 }
 
-// ---- Render
-// ---------------------------------------------------------------------------------------
+// ---- Render -------------------------------------------------------------------------------------
 
 #ifdef PELAGE_HAVE_RENDER
 // An (r, g, b) colour, each in [0, 1] (scene::validateColor names `keyword`).
@@ -396,7 +392,7 @@ Eigen::Vector3f colorOf(const py::object& value, const char* keyword) {
 
 // render()'s background: None (the default colour, opaque), "transparent" (straight alpha), or an
 // (r, g, b) sRGB colour in [0, 1]; returns whether it is transparent.
-bool backgroundOf(const py::object& background, viewer::SequenceOptions& o) {
+bool backgroundOf(const py::object& background, render::SequenceOptions& o) {
   if (background.is_none()) return false;
   if (py::isinstance<py::str>(background)) {
     if (background.cast<std::string>() == "transparent") return true;
@@ -407,15 +403,15 @@ bool backgroundOf(const py::object& background, viewer::SequenceOptions& o) {
   return false;
 }
 
-py::array_t<std::uint8_t> render(PyModel& m, const py::object& clip, const py::object& furArg,
-                                 const py::kwargs& kwargs) {
+py::array_t<std::uint8_t> renderFrame(PyModel& m, const py::object& clip, const py::object& furArg,
+                                      const py::kwargs& kwargs) {
   const Keywords kw("render", kwargs,
                     {"frame", "fps", "time", "size", "camera", "fov", "follow", "hair_source",
                      "shading", "lines", "transparency", "shadows", "self_shadowing", "samples",
                      "dynamics", "skin_color", "background", "light"});
   scene::Model& model = *m.model;
   const std::shared_ptr<const scene::Fur> fur = furOf(m, furArg);
-  viewer::SequenceOptions o;
+  render::SequenceOptions o;
   const Dynamics dyn = dynamicsFrom(kw.object("dynamics"));
   o.playback = playbackOptions(model, clip, kw.get("time", 0.0), kw.get("fps", 30.0), dyn);
   o.playback.hairSource = scene::parseHairSource(kw.get<std::string>("hair_source", "gpu"));
@@ -442,12 +438,12 @@ py::array_t<std::uint8_t> render(PyModel& m, const py::object& clip, const py::o
   const py::object skinColor = kw.object("skin_color");
   if (!skinColor.is_none()) o.skinColor = colorOf(skinColor, "skin_color");
   o.outDir = ".";  // (nothing is written)
-  viewer::validateSequenceOptions(o);
-  viewer::Image image;
+  render::validateSequenceOptions(o);
+  render::Image image;
   {
     py::gil_scoped_release release;
-    auto context = viewer::createHeadlessContext();
-    viewer::SequenceRenderer renderer(model, *fur, o);
+    auto context = render::createHeadlessContext();
+    render::SequenceRenderer renderer(model, *fur, o);
     renderer.render(frame, image);
   }
   flushWarnings();
@@ -697,7 +693,7 @@ PYBIND11_MODULE(_pelage, m) {
   m.def("export", &exportFrames, py::arg("model"), py::arg("clip") = py::none(),
         py::arg("fur") = py::none(), doc::kExportDoc);
 #ifdef PELAGE_HAVE_RENDER
-  m.def("render", &render, py::arg("model"), py::arg("clip") = py::none(),
+  m.def("render", &renderFrame, py::arg("model"), py::arg("clip") = py::none(),
         py::arg("fur") = py::none(), doc::kRenderDoc);
 #endif
 }

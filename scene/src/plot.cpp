@@ -25,16 +25,22 @@ using Color = std::array<std::uint8_t, 3>;
 
 class Canvas {
  public:
-  Canvas(int w, int h)
-      : w_(w), h_(h), rgb_(static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 3, 255) {}
+  // White and opaque; stored as RGB (Rgba8Image::fileChannels 3).
+  Canvas(int w, int h) : w_(w), h_(h) {
+    image_.width = w;
+    image_.height = h;
+    image_.fileChannels = 3;
+    image_.rgba.assign(static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 4, 255);
+  }
 
   // Blends `c` over pixel (x, y) with coverage a in [0, 1].
   void blend(int x, int y, const Color& c, double a) {
     if (x < 0 || y < 0 || x >= w_ || y >= h_ || a <= 0.0) return;
     a = std::min(a, 1.0);
-    std::uint8_t* p = rgb_.data() + (static_cast<std::size_t>(y) * static_cast<std::size_t>(w_) +
-                                     static_cast<std::size_t>(x)) *
-                                        3;
+    std::uint8_t* p =
+        image_.rgba.data() +
+        (static_cast<std::size_t>(y) * static_cast<std::size_t>(w_) + static_cast<std::size_t>(x)) *
+            4;
     for (int k = 0; k < 3; ++k)
       p[k] = static_cast<std::uint8_t>(
           std::lround(p[k] * (1.0 - a) + c[static_cast<std::size_t>(k)] * a));
@@ -90,11 +96,11 @@ class Canvas {
     return stb_easy_font_width(copy.data()) * scale;
   }
 
-  RgbImage take() { return RgbImage{w_, h_, std::move(rgb_)}; }
+  Rgba8Image take() { return std::move(image_); }
 
  private:
   int w_, h_;
-  std::vector<std::uint8_t> rgb_;
+  Rgba8Image image_;
 };
 
 std::string tickLabel(double v, double step) {
@@ -133,7 +139,7 @@ std::array<std::uint8_t, 3> plotColor(int index) {
   return palette[((index % 10) + 10) % 10];
 }
 
-RgbImage renderPlot(const PlotSpec& spec) {
+Rgba8Image renderPlot(const PlotSpec& spec) {
   PELAGE_CHECK(spec.width >= 200 && spec.width <= 8000 && spec.height >= 150 && spec.height <= 8000,
                "plot size ", spec.width, "x", spec.height);
   PELAGE_CHECK(!spec.panels.empty(), "a plot without panels");
@@ -259,8 +265,7 @@ void validatePlotFile(const std::string& path, const std::string& field) {
 
 void writePlotPng(const std::string& path, const PlotSpec& spec) {
   validatePlotFile(path);
-  const RgbImage img = renderPlot(spec);
-  writeImageFile(path, img.rgb.data(), img.width, img.height, 3);
+  writeImageFile(path, renderPlot(spec));
 }
 
 }  // namespace pelage::scene

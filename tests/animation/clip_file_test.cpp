@@ -8,7 +8,7 @@
 #include "pelage/anatomy/body.h"
 #include "pelage/animation/clip_file.h"
 #include "pelage/util/error.h"
-#include "test_support.h"
+#include "support/files.h"
 
 namespace pelage::animation {
 namespace {

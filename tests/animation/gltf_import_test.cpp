@@ -8,13 +8,13 @@
 #include <cmath>
 #include <map>
 
-#include "gltf_test_support.h"
 #include "pelage/animation/gltf_import.h"
 #include "pelage/scene/model.h"
 #include "pelage/skin/deform.h"
 #include "pelage/util/color.h"
 #include "pelage/util/error.h"
-#include "test_support.h"
+#include "support/files.h"
+#include "support/gltf.h"
 
 namespace pelage::animation {
 namespace {

@@ -12,11 +12,11 @@
 #include <limits>
 #include <random>
 
-#include "gltf_test_support.h"
 #include "pelage/animation/gltf_import.h"
 #include "pelage/util/error.h"
 #include "pelage/util/log.h"
-#include "test_support.h"
+#include "support/files.h"
+#include "support/gltf.h"
 
 namespace pelage::animation {
 namespace {

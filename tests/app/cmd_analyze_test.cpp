@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "test_support.h"
+#include "support/files.h"
 
 namespace pelage {
 namespace {

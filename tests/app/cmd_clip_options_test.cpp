@@ -9,9 +9,8 @@
 #include <array>
 #include <sstream>
 
-#include "animation/gltf_test_support.h"
-#include "animation/obj_vertices.h"
-#include "test_support.h"
+#include "support/files.h"
+#include "support/gltf.h"
 
 namespace pelage {
 namespace {

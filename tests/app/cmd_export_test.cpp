@@ -9,9 +9,9 @@
 #include <nlohmann/json.hpp>
 
 #include "pelage/scene/frame_range.h"
-#include "scene/export_test_support.h"
-#include "scene/scene_fixture.h"
-#include "test_support.h"
+#include "support/exports.h"
+#include "support/files.h"
+#include "support/models.h"
 
 namespace pelage::test {
 namespace {
@@ -22,8 +22,7 @@ class ExportCommand : public ::testing::Test {
  protected:
   void SetUp() override { writeText(dir.file("wag.json"), kWagClip); }
   std::string base() const {
-    return std::string(PELAGE_SOURCE_DIR "/tests/scene/critter.json --clip ") +
-           dir.file("wag.json") + " --hairs 2000";
+    return std::string(PELAGE_TEST_CRITTER " --clip ") + dir.file("wag.json") + " --hairs 2000";
   }
   TempDir dir;
 };
@@ -89,8 +88,7 @@ TEST_F(ExportCommand, DynamicFurRangesMatchAWholeRun) {
                 dir.file("short"));
   ASSERT_EQ(r.exitCode, 0) << r.output;
   r = runPelage(
-      std::string("export " PELAGE_SOURCE_DIR
-                  "/tests/scene/critter.json --hairs 100 --dynamics on --format ply --out ") +
+      std::string("export " PELAGE_TEST_CRITTER " --hairs 100 --dynamics on --format ply --out ") +
       dir.file("rest"));
   EXPECT_EQ(r.exitCode, 2) << r.output;
   EXPECT_NE(r.output.find("--dynamics on needs a clip"), std::string::npos) << r.output;
@@ -135,9 +133,7 @@ INSTANTIATE_TEST_SUITE_P(
                   "is not a frame range"},
         BadExport{"negative", "<base> --frames=-3:2 --format ply --out <dir>/o",
                   "--frames -3:2 is out of range"},
-        BadExport{"clip",
-                  PELAGE_SOURCE_DIR
-                  "/tests/scene/critter.json --clip nope --format usda --out <dir>/o.usda",
+        BadExport{"clip", PELAGE_TEST_CRITTER " --clip nope --format usda --out <dir>/o.usda",
                   "has no clip 'nope'"},
         BadExport{"usda name", "<base> --format usda --out <dir>/o.usd", "must end in .usda"},
         BadExport{"unwritable usda", "<base> --format usda --out /proc/o.usda", "/proc"},
@@ -231,7 +227,7 @@ TEST_F(ExportCommand, KilledUsdExportsLeaveNoSpoolFiles) {
     SCOPED_TRACE(signal);
     const RunResult r =
         runShell("bash -c '" + std::string(PELAGE_BIN_DIR) + "/pelage export " +
-                 PELAGE_SOURCE_DIR "/tests/scene/critter.json --clip " + dir.file("wag.json") +
+                 PELAGE_TEST_CRITTER " --clip " + dir.file("wag.json") +
                  " --hairs 200000 --frames 0:400 --format usda --out " + out +
                  " > /dev/null & pid=$!; for i in $(seq 400); do ls -a " + dir.path().string() +
                  " | grep -q walk.usda.spool && break; sleep 0.05; done; kill -" + signal +

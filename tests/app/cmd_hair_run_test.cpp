@@ -2,7 +2,7 @@
 // slow).
 #include <gtest/gtest.h>
 
-#include "test_support.h"
+#include "support/files.h"
 
 namespace pelage {
 namespace {

@@ -4,7 +4,7 @@
 
 #include <filesystem>
 
-#include "test_support.h"
+#include "support/files.h"
 
 namespace pelage {
 namespace {

@@ -10,8 +10,8 @@
 #include <filesystem>
 #include <thread>
 
-#include "scene/scene_fixture.h"
-#include "test_support.h"
+#include "support/files.h"
+#include "support/models.h"
 
 namespace pelage::test {
 namespace {
@@ -47,7 +47,7 @@ class InterruptCommand : public ::testing::TestWithParam<Case> {
   // The command's arguments writing into `out` (and `out`.mp4 for render).
   std::vector<std::string> args(const std::string& out) const {
     std::vector<std::string> a = {GetParam().command,
-                                  PELAGE_SOURCE_DIR "/tests/scene/critter.json",
+                                  PELAGE_TEST_CRITTER,
                                   "--clip",
                                   dir.file("wag.json"),
                                   "--fps",
@@ -134,11 +134,10 @@ TEST(InterruptLeftovers, TheNextRunRemovesAKilledRunsVideoAndLog) {
   // Leftovers of a process that no longer runs (pid 999999999 cannot exist).
   writeText(dir.file(".clip.mp4.tmp-999999999-0"), "half a video");
   writeText(dir.file("tmp/.pelage-ffmpeg.log.tmp-999999999-0"), "ffmpeg log");
-  const RunResult r =
-      runShell("TMPDIR=" + dir.file("tmp") + " " + PELAGE_BIN_DIR +
-               "/pelage render " PELAGE_SOURCE_DIR "/tests/scene/critter.json --clip " +
-               dir.file("wag.json") + " --hairs 500 --size 64x48 --frames 0:1 " + "--out " +
-               dir.file("f") + " --video " + dir.file("clip.mp4"));
+  const RunResult r = runShell("TMPDIR=" + dir.file("tmp") + " " + PELAGE_BIN_DIR +
+                               "/pelage render " PELAGE_TEST_CRITTER " --clip " +
+                               dir.file("wag.json") + " --hairs 500 --size 64x48 --frames 0:1 " +
+                               "--out " + dir.file("f") + " --video " + dir.file("clip.mp4"));
   ASSERT_EQ(r.exitCode, 0) << r.output;
   EXPECT_FALSE(fs::exists(dir.file(".clip.mp4.tmp-999999999-0")));
   EXPECT_FALSE(fs::exists(dir.file("tmp/.pelage-ffmpeg.log.tmp-999999999-0")));

@@ -11,8 +11,7 @@
 
 #include <sstream>
 
-#include "animation/obj_vertices.h"
-#include "test_support.h"
+#include "support/files.h"
 
 namespace pelage {
 namespace {

@@ -12,10 +12,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include "pelage/render/render_sequence.h"
 #include "pelage/scene/light.h"
-#include "pelage/viewer/render_sequence.h"
-#include "scene/scene_fixture.h"
-#include "test_support.h"
+#include "support/files.h"
+#include "support/models.h"
 
 namespace pelage::test {
 namespace {
@@ -28,9 +28,9 @@ class RenderCommand : public ::testing::Test {
   // The critter with its clip, 5000 hairs, a small image.
   std::string args(const std::string& frames, const std::string& out,
                    const std::string& size = "128x96") const {
-    return std::string(PELAGE_SOURCE_DIR "/tests/scene/critter.json --clip ") +
-           dir.file("wag.json") + " --hairs 5000 --fps 12 --camera side --track --size " + size +
-           " --frames " + frames + " --out " + out;
+    return std::string(PELAGE_TEST_CRITTER " --clip ") + dir.file("wag.json") +
+           " --hairs 5000 --fps 12 --camera side --track --size " + size + " --frames " + frames +
+           " --out " + out;
   }
   static std::vector<std::string> frames(const fs::path& d) {
     std::vector<std::string> names;
@@ -77,8 +77,7 @@ TEST_F(RenderCommand, TwoProcessesOnDisjointRangesEqualOneRun) {
 // run here with the environment those engines give each task.
 TEST_F(RenderCommand, RenderFarmScriptsSplitTheRangeIntoTheSameFrames) {
   const std::string whole = dir.file("whole"), slurm = dir.file("slurm"), k8s = dir.file("k8s");
-  const std::string common = std::string(PELAGE_SOURCE_DIR "/tests/scene/critter.json --clip ") +
-                             dir.file("wag.json") +
+  const std::string common = std::string(PELAGE_TEST_CRITTER " --clip ") + dir.file("wag.json") +
                              " --hairs 5000 --fps 12 --camera three-quarter --size 96x72";
   const RunResult one = runPelage("render " + common + " --frames 2:8 --out " + whole);
   ASSERT_EQ(one.exitCode, 0) << one.output;
@@ -137,7 +136,7 @@ TEST_F(RenderCommand, AKilledRunLeavesCompleteFramesAndResumeFinishesIt) {
   int complete = 0;
   for (const std::string& f : frames(out)) {
     if (f.rfind("frame_", 0) != 0) continue;  // temporaries of frames being written
-    EXPECT_TRUE(viewer::isCompletePng(out + "/" + f)) << f << " is truncated";
+    EXPECT_TRUE(render::isCompletePng(out + "/" + f)) << f << " is truncated";
     ++complete;
   }
   EXPECT_GE(complete, 2);
@@ -220,8 +219,8 @@ class RenderCommandErrors : public RenderCommand,
 
 TEST_P(RenderCommandErrors, ExitTwoWithAClearMessage) {
   std::string line = GetParam().args;
-  const std::string base = std::string(PELAGE_SOURCE_DIR "/tests/scene/critter.json --clip ") +
-                           dir.file("wag.json") + " --hairs 2000";
+  const std::string base =
+      std::string(PELAGE_TEST_CRITTER " --clip ") + dir.file("wag.json") + " --hairs 2000";
   if (line.find("--out") == std::string::npos) line += " --out " + dir.file("f");
   for (std::size_t at; (at = line.find("<args>")) != std::string::npos;) line.replace(at, 6, base);
   for (std::size_t at; (at = line.find("<dir>")) != std::string::npos;)
@@ -238,9 +237,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadRender{"reversed", "<args> --frames 9:3", "--frames 9:3 is out of range"},
         BadRender{"not_a_range", "<args> --frames 1-5", "'1-5' is not a frame range"},
         BadRender{"too_far", "<args> --frames 0:10000000", "out of range"},
-        BadRender{"unknown_clip",
-                  PELAGE_SOURCE_DIR
-                  "/tests/scene/critter.json --clip dance --frames 0:1 --out <dir>/f",
+        BadRender{"unknown_clip", PELAGE_TEST_CRITTER " --clip dance --frames 0:1 --out <dir>/f",
                   "has no clip 'dance' (it has no clips"},
         BadRender{"scene_files_gpu", "<args> --frames 0 --scene-files --hair-source gpu",
                   "--scene-files needs the hairs computed on the CPU (hair source cpu)"},

@@ -8,10 +8,10 @@
 #include <filesystem>
 #include <string>
 
-#include "pelage/viewer/image.h"
-#include "test_support.h"
+#include "pelage/render/image.h"
+#include "support/files.h"
 
-namespace pelage::viewer {
+namespace pelage::render {
 namespace {
 
 using test::runPelage;
@@ -186,4 +186,4 @@ TEST(ViewCommand, BadOptionsGetClearMessages) {
 }
 
 }  // namespace
-}  // namespace pelage::viewer
+}  // namespace pelage::render

@@ -12,11 +12,11 @@
 #include <vector>
 
 #include "pelage/fur/dynamics.h"
+#include "pelage/render/render_sequence.h"
 #include "pelage/scene/camera.h"
 #include "pelage/scene/playback.h"
-#include "pelage/viewer/render_sequence.h"
 #include "pelage/viewer/viewer_app.h"
-#include "test_support.h"
+#include "support/files.h"
 
 namespace pelage {
 namespace {
@@ -131,7 +131,7 @@ TEST(SharedOptions, HelpDefaultsAreTheLibrariesDefaults) {
   const scene::PlaybackOptions playback;
   EXPECT_EQ(helpDefault("export", "--fps"), g(playback.clock.fps));
   EXPECT_EQ(helpDefault("render", "--fov"), g(static_cast<double>(scene::kDefaultFovYDegrees)));
-  const viewer::SequenceOptions sequence;
+  const render::SequenceOptions sequence;
   const viewer::ViewerOptions viewer;
   EXPECT_EQ(helpDefault("render", "--size"),
             std::to_string(sequence.width) + "x" + std::to_string(sequence.height));
@@ -163,7 +163,7 @@ struct BadValue {
 
 TEST(SharedOptions, TheSameBadValueGivesTheSameMessageAndStatus2Everywhere) {
   TempDir dir;
-  const std::string critter = PELAGE_SOURCE_DIR "/tests/scene/critter.json";
+  const std::string critter = PELAGE_TEST_CRITTER;
   const std::vector<BadValue> cases = {
       {"--threads", "--threads 2000", "--threads 2000 is out of range [0, 1024]"},
       {"--triangles", "--triangles 5", "--triangles 5 is out of range [2000, 2000000]"},
@@ -209,7 +209,7 @@ TEST(SharedOptions, TheSameBadValueGivesTheSameMessageAndStatus2Everywhere) {
 }
 
 TEST(SharedOptions, ThreadsAreAcceptedBeforeAndAfterTheCommand) {
-  const std::string critter = PELAGE_SOURCE_DIR "/tests/scene/critter.json";
+  const std::string critter = PELAGE_TEST_CRITTER;
   EXPECT_EQ(runPelage("--threads 1 info " + critter).exitCode, 0);
   EXPECT_EQ(runPelage("info " + critter + " --threads 1").exitCode, 0);
 }
@@ -227,7 +227,7 @@ std::string critterClip(const TempDir& dir) {
 
 TEST(SharedOptions, OptionsWithSeveralValuesStopAtTheModel) {
   TempDir dir;
-  const std::string critter = PELAGE_SOURCE_DIR "/tests/scene/critter.json";
+  const std::string critter = PELAGE_TEST_CRITTER;
   const std::string clip = critterClip(dir);
   struct Case {
     std::string line;
@@ -265,7 +265,7 @@ TEST(SharedOptions, OptionsWithSeveralValuesStopAtTheModel) {
 
 TEST(SharedOptions, UsageErrorsExitTwoWithThePrefix) {
   TempDir dir;
-  const std::string critter = PELAGE_SOURCE_DIR "/tests/scene/critter.json";
+  const std::string critter = PELAGE_TEST_CRITTER;
   const std::vector<std::pair<std::string, std::string>> cases = {
       {"", "A subcommand is required"},
       {"comb " + critter, "unknown command 'comb' (commands: info, skin, hair, groom, bench"},
@@ -290,7 +290,7 @@ TEST(SharedOptions, UsageErrorsExitTwoWithThePrefix) {
 
 TEST(SharedOptions, QuietPrintsNothingOnSuccess) {
   TempDir dir;
-  const std::string critter = PELAGE_SOURCE_DIR "/tests/scene/critter.json";
+  const std::string critter = PELAGE_TEST_CRITTER;
   for (const std::string& line :
        {"skin " + critter + " --out " + dir.file("s.obj"),
         "hair " + critter + " --hairs 300 --out " + dir.file("h.ply"),

@@ -11,13 +11,13 @@
 #include <string>
 #include <vector>
 
-#include "fur_test_support.h"
 #include "pelage/fur/groom.h"
 #include "pelage/skin/texture.h"
 #include "pelage/util/color.h"
 #include "pelage/util/error.h"
 #include "pelage/util/image.h"
-#include "test_support.h"
+#include "support/files.h"
+#include "support/skins.h"
 
 namespace pelage::fur {
 namespace {

@@ -4,11 +4,11 @@
 
 #include <cmath>
 
-#include "fur_test_support.h"
 #include "pelage/fur/coverage.h"
 #include "pelage/fur/preset.h"
 #include "pelage/fur/roots.h"
-#include "test_support.h"
+#include "support/files.h"
+#include "support/skins.h"
 
 namespace pelage::fur {
 namespace {

@@ -4,8 +4,8 @@
 
 #include <cmath>
 
-#include "fur/fur_test_support.h"
 #include "pelage/fur/culling.h"
+#include "support/skins.h"
 
 namespace pelage::fur {
 namespace {

@@ -14,7 +14,7 @@
 #include "pelage/skin/deform.h"
 #include "pelage/skin/mesh_io.h"
 #include "pelage/util/log.h"
-#include "test_support.h"
+#include "support/files.h"
 
 namespace pelage::fur {
 namespace {

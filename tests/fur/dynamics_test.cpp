@@ -13,9 +13,9 @@
 #include <cstring>
 #include <vector>
 
-#include "fur/fur_test_support.h"
 #include "pelage/util/error.h"
 #include "pelage/util/parallel.h"
+#include "support/skins.h"
 
 namespace pelage::fur {
 namespace {

@@ -10,10 +10,10 @@
 #include <string>
 #include <vector>
 
-#include "fur/fur_test_support.h"
 #include "pelage/fur/generate.h"
 #include "pelage/fur/preset.h"
 #include "pelage/util/parallel.h"
+#include "support/skins.h"
 
 namespace pelage::fur {
 namespace {

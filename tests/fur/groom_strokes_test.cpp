@@ -5,9 +5,9 @@
 
 #include <gtest/gtest.h>
 
-#include "../test_support.h"
-#include "fur_test_support.h"
 #include "pelage/util/error.h"
+#include "support/files.h"
+#include "support/skins.h"
 
 namespace pelage::fur {
 namespace {

@@ -10,11 +10,11 @@
 #include <functional>
 #include <random>
 
-#include "../test_support.h"
-#include "fur_test_support.h"
 #include "pelage/fur/colors.h"
 #include "pelage/fur/hair_ply.h"
 #include "pelage/util/error.h"
+#include "support/files.h"
+#include "support/skins.h"
 
 namespace pelage::fur {
 namespace {

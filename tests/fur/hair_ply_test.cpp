@@ -4,11 +4,11 @@
 #include <fstream>
 #include <sstream>
 
-#include "fur/fur_test_support.h"
 #include "pelage/fur/hair_ply.h"
 #include "pelage/util/color.h"
 #include "pelage/util/error.h"
-#include "test_support.h"
+#include "support/files.h"
+#include "support/skins.h"
 
 namespace pelage::fur {
 namespace {

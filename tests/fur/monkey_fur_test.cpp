@@ -6,10 +6,10 @@
 #include <algorithm>
 #include <cmath>
 
-#include "fur/fur_test_support.h"
 #include "pelage/fur/culling.h"
 #include "pelage/fur/generate.h"
 #include "pelage/fur/roots.h"
+#include "support/skins.h"
 
 namespace pelage::fur {
 namespace {

@@ -6,7 +6,7 @@
 #include "pelage/fur/preset.h"
 #include "pelage/util/error.h"
 #include "pelage/util/log.h"
-#include "test_support.h"
+#include "support/files.h"
 
 namespace pelage::fur {
 namespace {

@@ -9,11 +9,11 @@
 #include <map>
 #include <numeric>
 
-#include "fur/fur_test_support.h"
 #include "pelage/fur/roots.h"
 #include "pelage/util/error.h"
 #include "pelage/util/parallel.h"
 #include "pelage/util/random.h"
+#include "support/skins.h"
 
 namespace pelage::fur {
 namespace {

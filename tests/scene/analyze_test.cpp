@@ -12,10 +12,10 @@
 #include <string>
 #include <vector>
 
-#include "fur/fur_test_support.h"
 #include "pelage/animation/clip.h"
 #include "pelage/util/error.h"
 #include "pelage/util/parallel.h"
+#include "support/skins.h"
 
 namespace pelage::scene {
 namespace {

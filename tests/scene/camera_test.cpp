@@ -10,7 +10,7 @@
 #include "pelage/scene/frame.h"
 #include "pelage/scene/light.h"
 #include "pelage/util/error.h"
-#include "scene_fixture.h"
+#include "support/models.h"
 
 namespace pelage::scene {
 namespace {

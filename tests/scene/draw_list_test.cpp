@@ -6,7 +6,7 @@
 #include "pelage/scene/frame.h"
 #include "pelage/util/color.h"
 #include "pelage/util/error.h"
-#include "scene_fixture.h"
+#include "support/models.h"
 
 namespace pelage::scene {
 namespace {

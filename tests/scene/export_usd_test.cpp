@@ -9,8 +9,8 @@
 #include "pelage/fur/colors.h"
 #include "pelage/fur/generate.h"
 #include "pelage/util/error.h"
-#include "scene/export_test_support.h"
-#include "test_support.h"
+#include "support/exports.h"
+#include "support/files.h"
 
 namespace pelage::test {
 namespace {

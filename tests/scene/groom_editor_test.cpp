@@ -11,7 +11,7 @@
 #include "pelage/anatomy/pose.h"
 #include "pelage/fur/preset.h"
 #include "pelage/util/error.h"
-#include "scene_fixture.h"
+#include "support/models.h"
 
 namespace pelage::scene {
 namespace {

@@ -9,7 +9,6 @@
 #include <cstdio>
 #include <cstring>
 
-#include "../test_support.h"
 #include "pelage/fur/generate.h"
 #include "pelage/fur/groom.h"
 #include "pelage/fur/groom_strokes.h"
@@ -17,14 +16,14 @@
 #include "pelage/fur/preset.h"
 #include "pelage/skin/deform.h"
 #include "pelage/util/color.h"
-#include "scene_fixture.h"
+#include "support/files.h"
+#include "support/models.h"
 
 namespace pelage {
 namespace {
 
 const scene::Model* fox() {
-  static const std::optional<scene::Model> m = test::loadCreature("Fox");
-  return m ? &*m : nullptr;
+  return test::creature("Fox");
 }
 
 fur::FurParams foxParams() {

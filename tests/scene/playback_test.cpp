@@ -13,7 +13,7 @@
 #include "pelage/animation/clip.h"
 #include "pelage/util/error.h"
 #include "pelage/util/interrupt.h"
-#include "scene/scene_fixture.h"
+#include "support/models.h"
 
 namespace pelage::scene {
 namespace {

@@ -8,7 +8,7 @@
 #include <filesystem>
 
 #include "pelage/util/error.h"
-#include "test_support.h"
+#include "support/files.h"
 
 namespace pelage::scene {
 namespace {
@@ -52,10 +52,10 @@ PlotSpec samplePlot() {
 
 // Pixels of `img` for which `is(r, g, b)` holds.
 template <class Pred>
-int count(const RgbImage& img, Pred is) {
+int count(const Rgba8Image& img, Pred is) {
   int n = 0;
-  for (std::size_t i = 0; i + 2 < img.rgb.size(); i += 3)
-    n += is(img.rgb[i], img.rgb[i + 1], img.rgb[i + 2]);
+  for (std::size_t i = 0; i + 3 < img.rgba.size(); i += 4)
+    n += is(img.rgba[i], img.rgba[i + 1], img.rgba[i + 2]);
   return n;
 }
 bool reddish(int r, int g, int b) {
@@ -75,10 +75,12 @@ bool white(int r, int g, int b) {
 }
 
 TEST(RenderPlot, DrawsEverySeriesAxesAndTextOnWhite) {
-  const RgbImage img = renderPlot(samplePlot());
+  const Rgba8Image img = renderPlot(samplePlot());
   ASSERT_EQ(img.width, 800);
   ASSERT_EQ(img.height, 600);
-  ASSERT_EQ(img.rgb.size(), 800u * 600u * 3u);
+  ASSERT_EQ(img.rgba.size(), 800u * 600u * 4u);
+  EXPECT_EQ(img.fileChannels, 3);  // written as RGB
+  for (std::size_t i = 3; i < img.rgba.size(); i += 4) ASSERT_EQ(img.rgba[i], 255);  // opaque
   const int total = 800 * 600;
   const int background = count(img, white);
   EXPECT_GT(background, total * 6 / 10);  // mostly background
@@ -95,8 +97,7 @@ TEST(RenderPlot, DrawsEverySeriesAxesAndTextOnWhite) {
   int leftDark = 0, rightDark = 0;
   for (int y = 0; y < 600; ++y)
     for (int x = 0; x < 800; ++x) {
-      const std::uint8_t* p =
-          img.rgb.data() + (static_cast<std::size_t>(y) * 800 + static_cast<std::size_t>(x)) * 3;
+      const std::uint8_t* p = img.pixel(x, y);
       const bool isDark = dark(p[0], p[1], p[2]);
       if (isDark && x < 60) ++leftDark;
       if (isDark && x > 700) ++rightDark;

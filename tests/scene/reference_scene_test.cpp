@@ -9,10 +9,10 @@
 #include <cstdint>
 #include <cstring>
 
-#include "../test_support.h"
 #include "pelage/fur/colors.h"
 #include "pelage/scene/frame.h"
-#include "scene_fixture.h"
+#include "support/files.h"
+#include "support/models.h"
 
 namespace pelage::scene {
 namespace {

@@ -6,10 +6,10 @@
 #include <cmath>
 #include <set>
 
-#include "monkey_fixture.h"
 #include "pelage/skin/deform.h"
 #include "pelage/util/error.h"
 #include "pelage/util/parallel.h"
+#include "support/models.h"
 
 namespace pelage::skin {
 namespace {

@@ -6,8 +6,8 @@
 #include <cstdio>
 #include <cstring>
 
-#include "monkey_fixture.h"
 #include "pelage/util/parallel.h"
+#include "support/models.h"
 
 namespace pelage::skin {
 namespace {

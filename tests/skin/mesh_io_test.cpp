@@ -9,10 +9,10 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "monkey_fixture.h"
 #include "pelage/skin/deform.h"
 #include "pelage/util/error.h"
-#include "test_support.h"
+#include "support/files.h"
+#include "support/models.h"
 
 namespace pelage::skin {
 namespace {

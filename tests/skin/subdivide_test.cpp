@@ -10,9 +10,9 @@
 #include <cmath>
 #include <map>
 
-#include "../scene/scene_fixture.h"
 #include "pelage/animation/clip.h"
 #include "pelage/util/error.h"
+#include "support/models.h"
 
 namespace pelage::skin {
 namespace {

@@ -11,7 +11,7 @@
 #include <filesystem>
 
 #include "pelage/util/error.h"
-#include "test_support.h"
+#include "support/files.h"
 
 namespace pelage {
 namespace {

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "pelage/util/error.h"
-#include "test_support.h"
+#include "support/files.h"
 
 namespace pelage {
 namespace {
@@ -127,6 +127,26 @@ TEST(Image, WritesPngAndJpegThatReadBack) {
   EXPECT_THROW(writeImageFile(dir.file("d.bmp"), rgb.data(), 3, 2, 3), InputError);
   EXPECT_THROW(writeImageFile(dir.file("no/such/e.png"), rgb.data(), 3, 2, 3), InputError);
   EXPECT_FALSE(std::filesystem::exists(dir.file("d.bmp")));
+}
+
+TEST(Image, AnImageIsWrittenWithItsFileChannels) {
+  test::TempDir dir;
+  Rgba8Image img;
+  img.width = 2;
+  img.height = 1;
+  img.rgba = {1, 2, 3, 40, 4, 5, 6, 128};
+  img.fileChannels = 3;  // RGB: the alpha is dropped, the colours kept
+  writeImageFile(dir.file("rgb.png"), img);
+  const Rgba8Image rgb = readImageFile(dir.file("rgb.png"));
+  EXPECT_EQ(rgb.fileChannels, 3);
+  EXPECT_EQ(rgb.rgba, (std::vector<std::uint8_t>{1, 2, 3, 255, 4, 5, 6, 255}));
+  const std::vector<std::uint8_t> bytes3 =
+      encodePng(std::vector<std::uint8_t>{1, 2, 3, 4, 5, 6}.data(), 2, 1, 3);
+  EXPECT_EQ(test::readText(dir.file("rgb.png")), std::string(bytes3.begin(), bytes3.end()));
+  img.fileChannels = 4;
+  writeImageFile(dir.file("rgba.png"), img);
+  EXPECT_EQ(readImageFile(dir.file("rgba.png")).rgba, img.rgba);
+  EXPECT_EQ(readImageFile(dir.file("rgba.png")).fileChannels, 4);
 }
 
 }  // namespace

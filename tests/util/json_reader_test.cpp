@@ -10,7 +10,7 @@
 #include <string>
 
 #include "pelage/util/error.h"
-#include "test_support.h"
+#include "support/files.h"
 
 namespace pelage {
 namespace {

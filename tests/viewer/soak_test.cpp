@@ -12,12 +12,12 @@
 #include <fstream>
 #include <string>
 
-#include "gl_fixture.h"
 #include "pelage/fur/hair_ply.h"
 #include "pelage/fur/preset.h"
 #include "pelage/scene/export_gltf.h"
 #include "pelage/scene/frame.h"
-#include "test_support.h"
+#include "support/files.h"
+#include "support/gl.h"
 #include "viewer_session.h"
 
 namespace pelage::viewer::detail {
@@ -60,8 +60,7 @@ void checkFlat(const char* what, int frames, const Memory& early, const Memory& 
 }
 
 const scene::Model& monkey() {
-  static const scene::Model m = scene::loadModel("monkey");
-  return m;
+  return test::defaultMonkey();
 }
 
 class Soak : public test::GlTest {};

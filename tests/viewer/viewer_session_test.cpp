@@ -12,12 +12,12 @@
 #include <filesystem>
 #include <thread>
 
-#include "gl_fixture.h"
 #include "pelage/animation/clip.h"
 #include "pelage/fur/preset.h"
+#include "pelage/render/render_sequence.h"
 #include "pelage/util/color.h"
-#include "pelage/viewer/render_sequence.h"
-#include "test_support.h"
+#include "support/files.h"
+#include "support/gl.h"
 
 namespace pelage::viewer::detail {
 namespace {
@@ -270,7 +270,7 @@ namespace pelage::viewer::detail {
 namespace {
 
 // Mean absolute difference per channel (8-bit codes) between two images of one size.
-double meanDifference(const Image& a, const Image& b) {
+double meanDifference(const render::Image& a, const render::Image& b) {
   double sum = 0.0;
   for (std::size_t i = 0; i < a.rgba.size(); ++i)
     if (i % 4 != 3) sum += std::abs(int(a.rgba[i]) - int(b.rgba[i]));
@@ -280,9 +280,9 @@ double meanDifference(const Image& a, const Image& b) {
 // What the viewer shows is what `pelage render` writes: the Fox (orange, white chest, from its
 // texture) through the session and through the sequence renderer, same frame and camera.
 TEST_F(ViewerSessionTest, TheViewerDrawsTheFrameRenderDraws) {
-  const std::string file = std::string(PELAGE_SHARED_MODELS_DIR) + "/Fox/Fox.glb";
-  if (!std::filesystem::exists(file)) GTEST_SKIP() << "shared models absent: " << file;
-  const scene::Model fox = scene::loadModel(file);
+  const scene::Model* shared = test::creature("Fox");
+  if (!shared) GTEST_SKIP() << "shared models absent: " << PELAGE_SHARED_MODELS_DIR;
+  const scene::Model& fox = *shared;
   ViewerOptions vo = smallOptions();
   vo.fur.setHairCount(30000);
   vo.width = 320;
@@ -290,10 +290,10 @@ TEST_F(ViewerSessionTest, TheViewerDrawsTheFrameRenderDraws) {
   vo.camera = scene::CameraPreset::Side;
   ViewerSession session(vo, fox);
   session.frame(0.0, vo.width, vo.height);
-  const Image viewed = session.renderer().readPixels();
+  const render::Image viewed = session.renderer().readPixels();
 
   const scene::Fur fur = scene::growFur(fox, vo.fur, "test");
-  SequenceOptions so;
+  render::SequenceOptions so;
   so.playback.clip = 0;
   so.playback.hairSource = vo.hairSource;
   so.frames = {0, 0};
@@ -302,8 +302,8 @@ TEST_F(ViewerSessionTest, TheViewerDrawsTheFrameRenderDraws) {
   so.samples = 0;
   so.outDir = ".";
   so.camera.preset = scene::CameraPreset::Side;
-  SequenceRenderer sequence(fox, fur, so);
-  Image rendered;
+  render::SequenceRenderer sequence(fox, fur, so);
+  render::Image rendered;
   sequence.render(0, rendered);
   const double same = meanDifference(viewed, rendered);
   EXPECT_LT(same, 0.5) << "the viewer's frame differs from render's";
@@ -382,8 +382,8 @@ TEST_F(ViewerSessionTest, BrushesGroomTheSkinUnderTheCursorUndoAndSaveFilesThatR
   s.saveStrokes(dir.file("critter.strokes.json"));
   EXPECT_NE(s.message.find("1 strokes"), std::string::npos) << s.message;
   const test::RunResult r = test::runPelage(
-      "groom " PELAGE_SOURCE_DIR "/tests/scene/critter.json --fur default --strokes " +
-      dir.file("critter.strokes.json") + " --out " + dir.file("replayed.groom.json"));
+      "groom " PELAGE_TEST_CRITTER " --fur default --strokes " + dir.file("critter.strokes.json") +
+      " --out " + dir.file("replayed.groom.json"));
   ASSERT_EQ(r.exitCode, 0) << r.output;
   EXPECT_EQ(test::readText(dir.file("replayed.groom.json")),
             test::readText(dir.file("critter.groom.json")));

@@ -111,4 +111,15 @@ void writeImageFile(const std::string& path, const std::uint8_t* pixels, int wid
   w.commit();
 }
 
+void writeImageFile(const std::string& path, const Rgba8Image& image) {
+  if (image.fileChannels != 3) {
+    writeImageFile(path, image.rgba.data(), image.width, image.height, 4);
+    return;
+  }
+  std::vector<std::uint8_t> rgb(image.rgba.size() / 4 * 3);
+  for (std::size_t i = 0, n = rgb.size() / 3; i < n; ++i)
+    for (std::size_t c = 0; c < 3; ++c) rgb[3 * i + c] = image.rgba[4 * i + c];
+  writeImageFile(path, rgb.data(), image.width, image.height, 3);
+}
+
 }  // namespace pelage

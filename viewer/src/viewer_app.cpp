@@ -1,7 +1,7 @@
 // `pelage view`: the window loop (GLFW + Dear ImGui), the headless loop (EGL) and the benchmark.
 #include "pelage/viewer/viewer_app.h"
 
-#include "pelage/viewer/gl.h"  // before GLFW, which must not include the legacy GL header
+#include "pelage/render/gl.h"  // before GLFW, which must not include the legacy GL header
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 #include <backends/imgui_impl_glfw.h>
@@ -17,13 +17,13 @@
 #include <thread>
 
 #include "pelage/fur/preset.h"
+#include "pelage/render/gl.h"
+#include "pelage/render/gl_context.h"
+#include "pelage/render/gl_debug.h"
+#include "pelage/render/image.h"
 #include "pelage/scene/clock.h"
 #include "pelage/util/error.h"
 #include "pelage/util/path.h"
-#include "pelage/viewer/gl.h"
-#include "pelage/viewer/gl_context.h"
-#include "pelage/viewer/gl_debug.h"
-#include "pelage/viewer/image.h"
 #include "pelage/viewer/window.h"
 #include "viewer_panel.h"
 #include "viewer_session.h"
@@ -38,15 +38,15 @@ double msSince(Clock::time_point t0) {
 }
 
 // Throws (a failure, exit 3) when the debug log recorded GL errors.
-void failOnGlErrors(const GlDebugLog* log) {
+void failOnGlErrors(const render::GlDebugLog* log) {
   if (!log) return;
   const std::string errors = log->errors();
   PELAGE_CHECK(errors.empty(), "OpenGL reported errors:\n", errors);
 }
 
 // The window's back buffer as an image (after the UI is drawn, before the swap).
-Image readBackBuffer(int width, int height) {
-  Image img;
+render::Image readBackBuffer(int width, int height) {
+  render::Image img;
   img.width = width;
   img.height = height;
   const std::size_t row = static_cast<std::size_t>(width) * 4;
@@ -143,9 +143,9 @@ class Controls {
 
 int runWindow(const ViewerOptions& o, scene::Model model) {
   GlfwWindow window(o.width, o.height, "pelage view", o.debugGl);
-  std::unique_ptr<GlDebugLog> log;
+  std::unique_ptr<render::GlDebugLog> log;
   if (o.debugGl) {
-    log = std::make_unique<GlDebugLog>();
+    log = std::make_unique<render::GlDebugLog>();
     log->setEcho(true);
   }
   std::printf("pelage view: %s, %s (%s)\n", window.info().renderer.c_str(),
@@ -197,9 +197,9 @@ int runWindow(const ViewerOptions& o, scene::Model model) {
     ++rendered;
     const bool last_frame = frames > 0 && rendered >= frames;
     if (last_frame && !o.screenshot.empty()) {
-      Image shot = readBackBuffer(fbw, fbh);
-      makeOpaque(shot);
-      writeImage(o.screenshot, shot);
+      render::Image shot = readBackBuffer(fbw, fbh);
+      render::makeOpaque(shot);
+      render::writeImage(o.screenshot, shot);
       std::printf("wrote %s (%dx%d, %lld hairs drawn, %d skin triangles)\n", o.screenshot.c_str(),
                   fbw, fbh, static_cast<long long>(session.hairsDrawn()),
                   session.model().skin.numTriangles());
@@ -216,12 +216,12 @@ int runWindow(const ViewerOptions& o, scene::Model model) {
 }
 
 int runHeadless(const ViewerOptions& o, scene::Model model) {
-  ContextOptions co;
+  render::ContextOptions co;
   co.debug = o.debugGl;
-  auto context = createHeadlessContext(co);
-  std::unique_ptr<GlDebugLog> log;
+  auto context = render::createHeadlessContext(co);
+  std::unique_ptr<render::GlDebugLog> log;
   if (o.debugGl) {
-    log = std::make_unique<GlDebugLog>();
+    log = std::make_unique<render::GlDebugLog>();
     log->setEcho(true);
   }
   std::printf("headless view: %s, %s (%s)\n", context->info().renderer.c_str(),
@@ -240,9 +240,9 @@ int runHeadless(const ViewerOptions& o, scene::Model model) {
               frames, o.width, o.height, static_cast<long long>(session.hairsDrawn()),
               session.model().skin.numTriangles(), totalMs / frames);
   if (!o.screenshot.empty()) {
-    writeImage(o.screenshot,
-               session.renderer().readPixels(o.transparentBackground ? FrameAlpha::Straight
-                                                                     : FrameAlpha::Opaque));
+    render::writeImage(o.screenshot, session.renderer().readPixels(
+                                         o.transparentBackground ? render::FrameAlpha::Straight
+                                                                 : render::FrameAlpha::Opaque));
     std::printf("wrote %s\n", o.screenshot.c_str());
   }
   return 0;
@@ -252,8 +252,8 @@ int runHeadless(const ViewerOptions& o, scene::Model model) {
 
 void validateViewerOptions(const ViewerOptions& o) {
   scene::validateImageSize(o.width, o.height);
-  if (o.frames < 0 || o.frames > 10000000)
-    fieldError("frames", o.frames, " is out of range [0, 10000000]");
+  if (o.frames < 0 || o.frames > kMaxViewerFrames)
+    fieldError("frames", o.frames, " is out of range [0, ", kMaxViewerFrames, "]");
   scene::validateSamples(o.samples);
   scene::validateLightAngles(o.lightAzimuth, o.lightElevation);
   scene::validateStartSeconds(o.time);

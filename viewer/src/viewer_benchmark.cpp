@@ -9,21 +9,21 @@
 #include <utility>
 #include <vector>
 
+#include "pelage/render/gl_context.h"
+#include "pelage/render/gl_debug.h"
 #include "pelage/util/error.h"
 #include "pelage/util/parallel.h"
-#include "pelage/viewer/gl_context.h"
-#include "pelage/viewer/gl_debug.h"
 #include "viewer_session.h"
 
 namespace pelage::viewer::detail {
 
 int runBenchmark(const ViewerOptions& options, const scene::Model& model) {
-  ContextOptions co;
+  render::ContextOptions co;
   co.debug = options.debugGl;
-  auto context = createHeadlessContext(co);
-  std::unique_ptr<GlDebugLog> log;
-  if (options.debugGl) log = std::make_unique<GlDebugLog>();
-  const ContextInfo& info = context->info();
+  auto context = render::createHeadlessContext(co);
+  std::unique_ptr<render::GlDebugLog> log;
+  if (options.debugGl) log = std::make_unique<render::GlDebugLog>();
+  const render::ContextInfo& info = context->info();
   std::printf(
       "viewer benchmark: %s | %s | %s | %dx%d | %d CPU threads | hairs on the %s | model "
       "%s\n",

@@ -8,9 +8,9 @@
 #include "pelage/fur/groom.h"
 #include "pelage/fur/groom_strokes.h"
 #include "pelage/fur/preset.h"
+#include "pelage/render/gl_context.h"
 #include "pelage/util/atomic_file.h"
 #include "pelage/util/error.h"
-#include "pelage/viewer/gl_context.h"
 
 namespace pelage::viewer::detail {
 namespace {
@@ -68,9 +68,9 @@ ViewerSession::ViewerSession(const ViewerOptions& options, scene::Model model)
     ownSkinColor = true;
   }
   background = options.background;
-  RendererOptions ro;
+  render::RendererOptions ro;
   ro.samples = options.samples;
-  renderer_ = std::make_unique<Renderer>(ro);
+  renderer_ = std::make_unique<render::Renderer>(ro);
   scene::PlaybackOptions po;
   po.stillPose = stillPose_;
   po.hairSource = hairSource;
@@ -331,7 +331,7 @@ void ViewerSession::frame(double dtSeconds, int width, int height) {
   opt.background = background;
   const Material skin = scene::skinMaterial(skinColor);
   list_ = &playback_->drawList(cam, light, opt, ownSkinColor ? &skin : nullptr);
-  const RenderStats stats = renderer_->render(*list_);
+  const render::RenderStats stats = renderer_->render(*list_);
   hairsDrawn_ = stats.hairsDrawn;
   advance(dtSeconds);  // the first frame shows the start time exactly
 }

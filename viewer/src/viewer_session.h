@@ -11,12 +11,12 @@
 #include <string>
 
 #include "pelage/fur/dynamics.h"
+#include "pelage/render/renderer.h"
 #include "pelage/scene/draw_list.h"
 #include "pelage/scene/dynamic_fur.h"
 #include "pelage/scene/frame.h"
 #include "pelage/scene/groom_editor.h"
 #include "pelage/scene/playback.h"
-#include "pelage/viewer/renderer.h"
 #include "pelage/viewer/viewer_app.h"
 
 namespace pelage::viewer::detail {
@@ -131,7 +131,7 @@ class ViewerSession {
   const scene::Fur& fur() const { return fur_; }
   const scene::FrameState& state() const { return playback_->state(); }
   const scene::DrawList& drawList() const { return *list_; }
-  Renderer& renderer() { return *renderer_; }
+  render::Renderer& renderer() { return *renderer_; }
   bool regrowing() const { return pending_.valid(); }
   double frameMs() const { return frameMs_; }
   // Records one frame's wall time (the status line shows a running average).
@@ -162,7 +162,7 @@ class ViewerSession {
   bool previewing_ = false;                    // the last frame drew the brush preview
   std::unique_ptr<scene::Playback> playback_;  // the frame owner, playing model_ and fur_
   const scene::DrawList* list_ = nullptr;
-  std::unique_ptr<Renderer> renderer_;
+  std::unique_ptr<render::Renderer> renderer_;
   scene::Framing framing_;
   std::optional<scene::CameraPreset>
       pendingPreset_;  // applied on the next frame, at its viewport size

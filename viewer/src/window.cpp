@@ -1,13 +1,13 @@
 #include "pelage/viewer/window.h"
 
-#include "pelage/viewer/gl.h"  // before GLFW, which must not include the legacy GL header
+#include "pelage/render/gl.h"  // before GLFW, which must not include the legacy GL header
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
 #include <mutex>
 
+#include "pelage/render/gl.h"
 #include "pelage/util/error.h"
-#include "pelage/viewer/gl.h"
 
 namespace pelage::viewer {
 namespace {
@@ -52,7 +52,7 @@ GlfwWindow::GlfwWindow(int width, int height, const std::string& title, bool deb
   info_.backend = "glfw";
   const char* platform = glfwGetVersionString();
   info_.device = platform ? platform : "";
-  queryContextInfo(info_);
+  render::queryContextInfo(info_);
 }
 
 GlfwWindow::~GlfwWindow() {

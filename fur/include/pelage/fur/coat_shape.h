@@ -2,7 +2,7 @@
 // (the paper's style templates: the polyline's a(t), b(t) of sec. 3.7, the curve's Bernstein
 // weights and helix of sec. 3.8, the tube's rings), built once per frame from the preset and what
 // the coat's roots carry (makeCoatShape), and the layout its hairs are grown in (coatLayout).
-// The struct is shared with the GPU: viewer/gpu_fur.cpp generates its GLSL block from the same
+// The struct is shared with the GPU: render/gpu_fur.cpp generates its GLSL block from the same
 // member list.
 #pragma once
 
@@ -22,7 +22,7 @@ inline constexpr int kMaxTubeSides = 32;    // M
 
 // Everything per-coat that the per-hair maths needs, precomputed from FurParams (makeCoatShape
 // below). One description for the CPU and the GPU: the member list below declares the C++
-// struct, and viewer/gpu_fur.cpp generates the GLSL std430 block `cs` of hair_math.glsl from the
+// struct, and render/gpu_fur.cpp generates the GLSL std430 block `cs` of hair_math.glsl from the
 // same list and checks every member's offset in the linked program. Members are 4-byte scalars or
 // arrays of them (enums are 32-bit, flags int32 0/1), so std430 places each at its C++ offset and
 // the struct is uploaded as it is.

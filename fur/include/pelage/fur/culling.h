@@ -55,7 +55,7 @@ inline constexpr float kReferenceRootPixels = 0.25f;
 // count, so culling starts where a hair becomes narrower than a quarter pixel, and the hairs left
 // are widened by c back to a quarter pixel (drawn one pixel wide at that coverage): fewer strands,
 // never wider than a pixel. The value is measured: at half a pixel the monkey's 320 vs 1280
-// box-filtered renders differed by 7.8/255, at a quarter by 4.7 (tests/viewer/strand_look_test).
+// box-filtered renders differed by 7.8/255, at a quarter by 4.7 (tests/render/strand_look_test).
 // For the default fur (0.4 mm) at 45 degrees and 1080 pixels: 2.09 m.
 float defaultReferenceDistance(const FurParams& params);
 

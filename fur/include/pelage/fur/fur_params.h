@@ -29,6 +29,10 @@ enum class ColorSource { Material, Creature, Texture, Vertex, Map };
 inline constexpr int kColorSourceCount = 5;
 // "material", "creature", "texture", "vertex", "map".
 std::string_view colorSourceName(ColorSource source);
+// The accepted names, for messages: "material, creature, texture, vertex, map".
+std::string colorSourceNames();
+// The colour source of that name, if any.
+std::optional<ColorSource> findColorSource(std::string_view name);
 // Parses a colour source name; InputError naming `where` and the accepted names.
 ColorSource parseColorSource(std::string_view name, const std::string& where);
 

@@ -128,7 +128,7 @@ std::array<float, kMaxCurvePoints> clumpWeights(const Clump& clump, int K);
 // generateClumpCentres and the GPU.
 bool coatClumps(const FurParams& params, const FurRoots& roots, int coat);
 
-// Clumping where the hairs are built elsewhere (viewer::GpuFur): this frame's strand points (K x
+// Clumping where the hairs are built elsewhere (render::GpuFur): this frame's strand points (K x
 // 3) of every clump centre hair of each coat that clumps, into workspace.clumpCentres, exactly as
 // generateFur computes them (unclumped, no frizz); the vectors of coats that do not clump are
 // cleared. The hairs of a clump then move toward them by clumpWeights (generateFur's rule).

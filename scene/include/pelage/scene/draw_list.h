@@ -57,7 +57,7 @@ HairShading parseHairShading(std::string_view name, std::string_view field = "sh
 enum class HairWidth { Lines, Strands };
 
 // Where a coat's hairs come from: buffers the CPU fur model wrote this frame, or the GPU, which
-// regenerates them from the roots and the deformed skin (viewer/gpu_fur.h).
+// regenerates them from the roots and the deformed skin (render/gpu_fur.h).
 enum class HairSource { Cpu, Gpu };
 // "cpu", "gpu".
 std::string_view hairSourceName(HairSource source);

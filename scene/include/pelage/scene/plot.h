@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "pelage/util/image.h"
+
 namespace pelage::scene {
 
 struct PlotSeries {
@@ -36,20 +38,15 @@ struct PlotSpec {
   std::string markerLabel;
 };
 
-struct RgbImage {
-  int width = 0;
-  int height = 0;
-  std::vector<std::uint8_t> rgb;  // height x width x 3, top row first
-};
-
 // Tick values covering [lo, hi]: multiples of 1, 2 or 5 x 10^k, about `target` of them.
 std::vector<double> niceTicks(double lo, double hi, int target);
 
 // The 10-colour palette used for successive series (matplotlib's "tab10").
 std::array<std::uint8_t, 3> plotColor(int index);
 
-// Draws the plot. PELAGE_CHECK on sizes out of range or a spec without panels.
-RgbImage renderPlot(const PlotSpec& spec);
+// Draws the plot: opaque, stored as RGB (fileChannels 3). PELAGE_CHECK on sizes out of range or a
+// spec without panels.
+Rgba8Image renderPlot(const PlotSpec& spec);
 
 // A plot's file names a .png; InputError naming `field` otherwise.
 void validatePlotFile(const std::string& path, const std::string& field = "plot");

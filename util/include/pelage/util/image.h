@@ -51,6 +51,10 @@ std::vector<std::uint8_t> encodePng(const std::uint8_t* pixels, int width, int h
 void writeImageFile(const std::string& path, const std::uint8_t* pixels, int width, int height,
                     int channels);
 
+// Writes `image` as writeImageFile above: as RGB when its fileChannels is 3 (alpha dropped), else
+// as RGBA.
+void writeImageFile(const std::string& path, const Rgba8Image& image);
+
 // "8192x8192 (256.0 MiB as RGBA8)".
 std::string describeImageSize(long long width, long long height);
 

@@ -18,6 +18,9 @@
 
 namespace pelage::viewer {
 
+// The most frames a run may be asked to show (ViewerOptions::frames).
+inline constexpr int kMaxViewerFrames = 10000000;
+
 struct ViewerOptions {
   // The clip to play: an index into the model's clips (0, the first, by default; none when the
   // model has no clips); -1: the still pose.
@@ -50,8 +53,8 @@ struct ViewerOptions {
   // The headless screenshot with straight alpha, 0 where nothing is drawn (FrameAlpha::Straight);
   // a window's screenshot (the panel with the view) is opaque.
   bool transparentBackground = false;
-  int frames = 0;  // frames to run (0: until the window closes; with a screenshot, 3 in a window
-                   // (the panel needs two to lay itself out), 1 headless)
+  int frames = 0;  // frames to run, [0, kMaxViewerFrames] (0: until the window closes; with a
+                   // screenshot, 3 in a window (the panel needs two to lay itself out), 1 headless)
   bool headless = false;   // EGL, no window, no UI
   bool benchmark = false;  // print ms/frame for benchmarkHairs (headless)
   std::vector<double> benchmarkHairs{500000, 1000000, 5000000};

@@ -5,13 +5,13 @@
 #include <memory>
 #include <string>
 
-#include "pelage/viewer/gl_context.h"
+#include "pelage/render/gl_context.h"
 
 struct GLFWwindow;
 
 namespace pelage::viewer {
 
-class GlfwWindow final : public GlContext {
+class GlfwWindow final : public render::GlContext {
  public:
   // Opens a window of width x height pixels titled `title` and makes its context current. Throws
   // InputError with GLFW's reason when there is no display (e.g. "X11: The DISPLAY environment
@@ -22,7 +22,7 @@ class GlfwWindow final : public GlContext {
   GlfwWindow& operator=(const GlfwWindow&) = delete;
 
   void makeCurrent() override;
-  const ContextInfo& info() const override { return info_; }
+  const render::ContextInfo& info() const override { return info_; }
 
   GLFWwindow* handle() const { return window_; }
   bool shouldClose() const;
@@ -34,7 +34,7 @@ class GlfwWindow final : public GlContext {
 
  private:
   GLFWwindow* window_ = nullptr;
-  ContextInfo info_;
+  render::ContextInfo info_;
 };
 
 }  // namespace pelage::viewer

@@ -40,9 +40,8 @@ void addViewCommand(CLI::App& app) {
   cmd->add_option(
       "--frames", o->frames,
       "Frames to run before exiting [0, " + std::to_string(viewer::kMaxViewerFrames) +
-          "] (default 0: until closed; with "
-          "--screenshot: 3 in a window, whose panel needs two frames to lay itself out, "
-          "1 headless)");
+          "] (default 0: until closed; with --screenshot: 3 in a window, whose panel needs two "
+          "frames to lay itself out, 1 headless)");
   cmd->add_flag("--headless", o->headless, "No window: render offscreen through EGL (no UI)");
   cmd->add_flag("--benchmark", o->benchmark,
                 "Print ms/frame for several hair counts (offscreen, through EGL; --size defaults "

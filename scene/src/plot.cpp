@@ -26,7 +26,7 @@ using Color = std::array<std::uint8_t, 3>;
 class Canvas {
  public:
   // White and opaque; stored as RGB (Rgba8Image::fileChannels 3).
-  Canvas(int w, int h) : w_(w), h_(h) {
+  Canvas(int w, int h) {
     image_.width = w;
     image_.height = h;
     image_.fileChannels = 3;
@@ -35,12 +35,9 @@ class Canvas {
 
   // Blends `c` over pixel (x, y) with coverage a in [0, 1].
   void blend(int x, int y, const Color& c, double a) {
-    if (x < 0 || y < 0 || x >= w_ || y >= h_ || a <= 0.0) return;
+    if (x < 0 || y < 0 || x >= image_.width || y >= image_.height || a <= 0.0) return;
     a = std::min(a, 1.0);
-    std::uint8_t* p =
-        image_.rgba.data() +
-        (static_cast<std::size_t>(y) * static_cast<std::size_t>(w_) + static_cast<std::size_t>(x)) *
-            4;
+    std::uint8_t* p = image_.pixel(x, y);
     for (int k = 0; k < 3; ++k)
       p[k] = static_cast<std::uint8_t>(
           std::lround(p[k] * (1.0 - a) + c[static_cast<std::size_t>(k)] * a));
@@ -64,8 +61,8 @@ class Canvas {
     const int ya = static_cast<int>(std::floor(std::min(y0, y1) - r - 1)),
               yb = static_cast<int>(std::ceil(std::max(y0, y1) + r + 1));
     const double dx = x1 - x0, dy = y1 - y0, len2 = dx * dx + dy * dy;
-    for (int y = std::max(ya, 0); y <= std::min(yb, h_ - 1); ++y)
-      for (int x = std::max(xa, 0); x <= std::min(xb, w_ - 1); ++x) {
+    for (int y = std::max(ya, 0); y <= std::min(yb, image_.height - 1); ++y)
+      for (int x = std::max(xa, 0); x <= std::min(xb, image_.width - 1); ++x) {
         const double px = x + 0.5 - x0, py = y + 0.5 - y0;
         const double t = len2 > 0 ? std::clamp((px * dx + py * dy) / len2, 0.0, 1.0) : 0.0;
         const double ex = px - t * dx, ey = py - t * dy;
@@ -99,7 +96,6 @@ class Canvas {
   Rgba8Image take() { return std::move(image_); }
 
  private:
-  int w_, h_;
   Rgba8Image image_;
 };
 

@@ -74,6 +74,15 @@ void appendBytes(void* ctx, void* data, int size) {
   const auto* p = static_cast<const std::uint8_t*>(data);
   v->insert(v->end(), p, p + size);
 }
+
+// The first three channels of `count` pixels of `channels` each, packed.
+std::vector<std::uint8_t> rgbOf(const std::uint8_t* pixels, std::size_t count, int channels) {
+  std::vector<std::uint8_t> rgb(count * 3);
+  for (std::size_t i = 0; i < count; ++i)
+    for (std::size_t c = 0; c < 3; ++c)
+      rgb[3 * i + c] = pixels[static_cast<std::size_t>(channels) * i + c];
+  return rgb;
+}
 }  // namespace
 
 std::vector<std::uint8_t> encodePng(const std::uint8_t* pixels, int width, int height,
@@ -95,11 +104,8 @@ void writeImageFile(const std::string& path, const std::uint8_t* pixels, int wid
   } else if (ext == ".jpg" || ext == ".jpeg") {
     PELAGE_CHECK(width > 0 && height > 0 && (channels == 3 || channels == 4) && pixels, "image ",
                  width, "x", height, "x", channels);
-    std::vector<std::uint8_t> rgb(static_cast<std::size_t>(width) *
-                                  static_cast<std::size_t>(height) * 3);
-    for (std::size_t i = 0, n = rgb.size() / 3; i < n; ++i)
-      for (std::size_t c = 0; c < 3; ++c)
-        rgb[3 * i + c] = pixels[static_cast<std::size_t>(channels) * i + c];
+    const std::vector<std::uint8_t> rgb =
+        rgbOf(pixels, static_cast<std::size_t>(width) * static_cast<std::size_t>(height), channels);
     stbi_write_jpg_to_func(appendBytes, &bytes, width, height, 3, rgb.data(), 95);
     PELAGE_CHECK(!bytes.empty(), "JPEG encoding failed");
   } else {
@@ -116,9 +122,7 @@ void writeImageFile(const std::string& path, const Rgba8Image& image) {
     writeImageFile(path, image.rgba.data(), image.width, image.height, 4);
     return;
   }
-  std::vector<std::uint8_t> rgb(image.rgba.size() / 4 * 3);
-  for (std::size_t i = 0, n = rgb.size() / 3; i < n; ++i)
-    for (std::size_t c = 0; c < 3; ++c) rgb[3 * i + c] = image.rgba[4 * i + c];
+  const std::vector<std::uint8_t> rgb = rgbOf(image.rgba.data(), image.rgba.size() / 4, 4);
   writeImageFile(path, rgb.data(), image.width, image.height, 3);
 }
 

@@ -30,6 +30,9 @@ struct Rgba8Image {
                           static_cast<std::size_t>(x)) *
                              4;
   }
+  std::uint8_t* pixel(int x, int y) {
+    return const_cast<std::uint8_t*>(static_cast<const Rgba8Image&>(*this).pixel(x, y));
+  }
 };
 
 // Decodes an image held in memory; `source` names it in messages ("Fox.glb: image 0 'Texture'").

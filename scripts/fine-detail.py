@@ -29,17 +29,22 @@ def read_rgba(path):
     return np.frombuffer(raw, np.uint8).reshape(height, width, 4)
 
 
-def fine_detail(rgba):
-    rgb = rgba[..., :3].astype(np.float64)
-    lum = rgb @ np.array([0.2126, 0.7152, 0.0722])
-    inside = rgba[..., 3] == 255
+def window_variance(lum, inside):
+    """The variance of `lum` in each 3 x 3 window, and which windows lie wholly `inside`."""
     h, w = lum.shape
     windows = np.stack([lum[dy:h - 2 + dy, dx:w - 2 + dx] for dy in range(3) for dx in range(3)])
     full = np.stack([inside[dy:h - 2 + dy, dx:w - 2 + dx]
                      for dy in range(3) for dx in range(3)]).all(axis=0)
     if not full.any():
         raise ValueError("no 3 x 3 window lies wholly inside the creature (alpha 255)")
-    return float(windows.std(axis=0)[full].mean()), int(full.sum())
+    return windows.var(axis=0), full
+
+
+def fine_detail(rgba):
+    rgb = rgba[..., :3].astype(np.float64)
+    lum = rgb @ np.array([0.2126, 0.7152, 0.0722])
+    variance, full = window_variance(lum, rgba[..., 3] == 255)
+    return float(np.sqrt(variance[full]).mean()), int(full.sum())
 
 
 def fringe(rgba):

@@ -1,21 +1,30 @@
 #!/usr/bin/python3
 """Measures a pelage frame against its path-traced reference (scripts/reference-render.sh).
 
-Both images have straight alpha (pelage: `--background transparent`; Cycles: film transparent)
-and are composited over the same background colour. Over the creature's pixels (either image's
-alpha above half):
+The images have straight alpha (pelage: `--background transparent`; Cycles: film transparent)
+and are composited over the same background colour. The reference may come as two independent
+renders of the same scene (Cycles seeds 0 and 1): it is then their mean (in linear light), and
+half their difference, which has the same Monte Carlo noise as the mean and none of the image,
+measures that noise: the reference's detail and Laplacian spread are given without it (their
+variances less the noise's), since a path tracer's noise would otherwise count as fur detail.
+Over the creature's pixels (either image's alpha above half):
 - MAE: the mean absolute difference of the 8-bit sRGB channels (/255);
 - luminance: the mean Rec. 709 luminance of the 8-bit sRGB values, and pelage's relative to the
   reference's;
 - detail: scripts/fine-detail.py's fine detail (the mean 3 x 3 standard deviation of luminance
-  inside the creature, where alpha is 255);
+  inside the creature, where alpha is 255); with two references, the reference's is scaled by
+  sqrt(1 - noise variance / variance), both summed over the same windows;
 - Laplacian spread: the standard deviation of the luminance's 4-neighbour Laplacian over the
-  pixels wholly inside the creature;
+  pixels wholly inside the creature; with two references, the reference's is
+  sqrt(var(Laplacian of the mean) - var(Laplacian of the half difference));
+- reference noise (two references): the mean absolute half difference of the channels (/255),
+  about the MAE a perfect frame would still show against the mean;
 - coverage: the creature's pixels in each image.
-Writes the figures as JSON and a side-by-side PNG: pelage | reference | |difference| x 4.
+Writes the figures as JSON and a side-by-side PNG: pelage | reference | |difference| x 4, and
+with two references their mean as a straight-alpha PNG (--reference-mean).
 
-usage: compare.py PELAGE.png REFERENCE.png --background R G B (sRGB 0-1) --json OUT.json
-                  [--side-by-side OUT.png]
+usage: compare.py PELAGE.png REFERENCE.png [REFERENCE2.png] --background R G B (sRGB 0-1)
+                  --json OUT.json [--side-by-side OUT.png] [--reference-mean OUT.png]
 Needs numpy and ffmpeg (no imaging library).
 """
 import argparse
@@ -34,6 +43,7 @@ fine_detail_module = importlib.util.module_from_spec(_spec)
 _spec.loader.exec_module(fine_detail_module)
 read_rgba = fine_detail_module.read_rgba
 fine_detail = fine_detail_module.fine_detail
+window_variance = fine_detail_module.window_variance
 
 LUMA = np.array([0.2126, 0.7152, 0.0722])
 
@@ -65,38 +75,74 @@ def laplacian_spread(lum, inside):
     return float(lap[core].std())
 
 
-def measure(pelage, reference, background):
-    if pelage.shape != reference.shape:
-        raise ValueError("the images differ in size: %s and %s" % (pelage.shape, reference.shape))
+def mean_reference(references):
+    """One or two straight-alpha RGBA8 renders of the same scene as one straight-alpha image (the
+    mean of two in linear light, premultiplied): floats, sRGB 0-255 and alpha 0-255."""
+    if len(references) == 1:
+        return references[0].astype(np.float64)
+    first, second = references
+    if first.shape != second.shape:
+        raise ValueError("the references differ in size: %s and %s" % (first.shape, second.shape))
+    alphas = [r[..., 3:4].astype(np.float64) / 255.0 for r in references]
+    premultiplied = sum(srgb_to_linear(r[..., :3].astype(np.float64) / 255.0) * a
+                        for r, a in zip(references, alphas)) / 2.0
+    alpha = (alphas[0] + alphas[1]) / 2.0
+    colour = np.divide(premultiplied, alpha, out=np.zeros_like(premultiplied), where=alpha > 0)
+    return np.concatenate([255.0 * linear_to_srgb(colour), 255.0 * alpha], axis=2)
+
+
+def measure(pelage, references, background):
+    """pelage's frame against its reference (a list of one or two renders of the same scene):
+    (the figures, pelage's frame and the reference composited, sRGB floats 0-255)."""
+    if any(pelage.shape != r.shape for r in references):
+        raise ValueError("the images differ in size: %s and %s"
+                         % (pelage.shape, [r.shape for r in references]))
+    reference = mean_reference(references)
     a, b = over(pelage, background), over(reference, background)
-    mask = (pelage[..., 3] > 127) | (reference[..., 3] > 127)
+    alpha = reference[..., 3]
+    mask = (pelage[..., 3] > 127) | (alpha > 127)
     if not mask.any():
         raise ValueError("neither image shows the creature")
     la, lb = a @ LUMA, b @ LUMA
+    inside = alpha > 254.5
     out = {
         "pixels": int(mask.sum()),
         "pelage_coverage": int((pelage[..., 3] > 127).sum()),
-        "reference_coverage": int((reference[..., 3] > 127).sum()),
+        "reference_coverage": int((alpha > 127).sum()),
         "mae": float(np.abs(a - b)[mask].mean()),
         "luminance": float(la[mask].mean()),
         "reference_luminance": float(lb[mask].mean()),
     }
     out["luminance_ratio"] = out["luminance"] / out["reference_luminance"]
     out["detail"] = fine_detail(pelage)[0]
-    out["reference_detail"] = fine_detail(reference)[0]
-    out["detail_ratio"] = out["detail"] / out["reference_detail"]
+    variance, full = window_variance(lb, inside)
+    out["reference_detail"] = float(np.sqrt(variance[full]).mean())
     out["laplacian"] = laplacian_spread(la, pelage[..., 3] == 255)
-    out["reference_laplacian"] = laplacian_spread(lb, reference[..., 3] == 255)
+    out["reference_laplacian"] = laplacian_spread(lb, inside)
+    if len(references) == 2:
+        # Half the difference of two independent renders: the mean's noise, without the image.
+        noise = (over(references[0], background) - over(references[1], background)) / 2.0
+        noise_variance, _ = window_variance(noise @ LUMA, inside)
+        kept = max(0.0, 1.0 - noise_variance[full].sum() / variance[full].sum())
+        out["reference_detail_with_noise"] = out["reference_detail"]
+        out["reference_detail"] *= float(np.sqrt(kept))
+        noise_spread = laplacian_spread(noise @ LUMA, inside)
+        out["reference_laplacian_with_noise"] = out["reference_laplacian"]
+        out["reference_laplacian"] = float(
+            np.sqrt(max(0.0, out["reference_laplacian"] ** 2 - noise_spread ** 2)))
+        out["reference_noise"] = float(np.abs(noise)[mask].mean())
+    out["detail_ratio"] = out["detail"] / out["reference_detail"]
     out["laplacian_ratio"] = out["laplacian"] / out["reference_laplacian"]
     return out, a, b
 
 
 def write_png(path, rgb):
-    """Writes an RGB8 image as a PNG, atomically (a temporary file renamed)."""
-    h, w, _ = rgb.shape
+    """Writes an RGB8 or RGBA8 image as a PNG, atomically (a temporary file renamed)."""
+    h, w, channels = rgb.shape
     tmp = path + ".tmp.png"
     subprocess.run(
-        ["ffmpeg", "-v", "error", "-y", "-f", "rawvideo", "-pix_fmt", "rgb24", "-s",
+        ["ffmpeg", "-v", "error", "-y", "-f", "rawvideo", "-pix_fmt",
+         "rgba" if channels == 4 else "rgb24", "-s",
          "%dx%d" % (w, h), "-i", "-", "-frames:v", "1", tmp],
         input=np.ascontiguousarray(rgb).tobytes(), check=True)
     os.replace(tmp, path)
@@ -111,16 +157,21 @@ def write_side_by_side(path, a, b):
 def main(argv):
     parser = argparse.ArgumentParser(description=__doc__.strip().splitlines()[0])
     parser.add_argument("pelage")
-    parser.add_argument("reference")
+    parser.add_argument("reference", nargs="+", help="one render, or two with different seeds")
     parser.add_argument("--background", nargs=3, type=float, required=True)
     parser.add_argument("--json", required=True)
     parser.add_argument("--side-by-side")
+    parser.add_argument("--reference-mean", help="write the two references' mean here (PNG)")
     args = parser.parse_args(argv)
     if not all(0.0 <= c <= 1.0 for c in args.background):
         parser.error("--background: each of R G B in [0, 1]")
+    if len(args.reference) > 2:
+        parser.error("give one reference or two (independent renders of the same scene)")
+    if args.reference_mean and len(args.reference) != 2:
+        parser.error("--reference-mean needs two references")
     try:
-        figures, a, b = measure(read_rgba(args.pelage), read_rgba(args.reference),
-                                args.background)
+        references = [read_rgba(r) for r in args.reference]
+        figures, a, b = measure(read_rgba(args.pelage), references, args.background)
     except (ValueError, subprocess.CalledProcessError) as e:
         print("compare: error: %s" % e, file=sys.stderr)
         return 1
@@ -131,12 +182,19 @@ def main(argv):
     os.replace(tmp, args.json)
     if args.side_by_side:
         write_side_by_side(args.side_by_side, a, b)
+    if args.reference_mean:
+        write_png(args.reference_mean,
+                  np.clip(np.round(mean_reference(references)), 0, 255).astype(np.uint8))
     print("MAE %.1f/255, luminance %.1f vs %.1f (%+.1f %%), detail %.2f vs %.2f (%.0f %%), "
           "Laplacian spread %.2f vs %.2f (%.0f %%), %d px" % (
               figures["mae"], figures["luminance"], figures["reference_luminance"],
               100 * (figures["luminance_ratio"] - 1), figures["detail"],
               figures["reference_detail"], 100 * figures["detail_ratio"], figures["laplacian"],
               figures["reference_laplacian"], 100 * figures["laplacian_ratio"], figures["pixels"]))
+    if "reference_noise" in figures:
+        print("the reference's own noise: %.1f/255 (detail %.2f and Laplacian spread %.2f with it)"
+              % (figures["reference_noise"], figures["reference_detail_with_noise"],
+                 figures["reference_laplacian_with_noise"]))
     return 0
 
 

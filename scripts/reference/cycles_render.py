@@ -3,7 +3,11 @@ reference that pelage's frames are measured against (scripts/reference-render.sh
 
 Run inside Blender (3.4; its Python has no numpy):
   blender -b --factory-startup -noaudio --python scripts/reference/cycles_render.py -- \
-      SCENE.pelscene OUT.png [--samples N] [--as-drawn]
+      SCENE.pelscene OUT.png [OUT2.png ...] [--samples N] [--as-drawn]
+
+Each OUT is an independent render of the scene (N samples per pixel, Cycles' seed 0, 1, ...):
+two of them let the caller estimate the reference's own Monte Carlo noise from their difference
+(scripts/reference/compare.py).
 
 What it builds, so that Lambert in Cycles equals pelage's Kd N.L:
 - the camera: pelage's eye, target and up, `sensor_fit` VERTICAL with `angle_y` = pelage's
@@ -17,7 +21,7 @@ What it builds, so that Lambert in Cycles equals pelage's Kd N.L:
   al. 2016) with direct colouring from each point's colour (the hair's root and tip colours
   mixed by k / (K - 1), as pelage grades them);
 - film transparent (the caller composites over pelage's background), 'Standard' view transform,
-  no denoising (Debian's Blender is built without it).
+  no denoising (Debian's Blender is built without it), a 1-pixel box pixel filter.
 """
 import array
 import json
@@ -73,6 +77,11 @@ def setup_scene(header, samples):
     scene.cycles.samples = samples
     scene.cycles.use_denoising = False
     scene.cycles.use_adaptive_sampling = False
+    # A pixel is the mean over its own square, as pelage's strands are drawn (their coverage of
+    # the pixel): a 1-pixel box filter, not Cycles' default 1.5-pixel Blackman-Harris, which
+    # would blur the reference's strands into their neighbours.
+    scene.cycles.pixel_filter_type = "BOX"
+    scene.cycles.filter_width = 1.0
     scene.cycles.max_bounces = 32
     scene.cycles.transparent_max_bounces = 64
     scene.cycles_curves.shape = "THICK"
@@ -263,19 +272,21 @@ def main(argv):
         else:
             paths.append(args[i])
             i += 1
-    if len(paths) != 2 or not 1 <= samples <= 65536:
+    if len(paths) < 2 or not 1 <= samples <= 65536:
         fail("usage: blender -b --python cycles_render.py -- SCENE.pelscene OUT.png "
-             "[--samples N (1..65536)] [--as-drawn]")
+             "[OUT2.png ...] [--samples N (1..65536)] [--as-drawn]")
     header, values = read_scene(paths[0])
     scene = setup_scene(header, samples)
     add_skin(scene, header, values)
     material = hair_material()
     hairs = sum(add_coat(scene, c, values, as_drawn, material) for c in header["coats"])
-    print("cycles_render: %d hairs, %d skin triangles, %dx%d, %d samples -> %s"
-          % (hairs, header["skin"]["triangles"], header["camera"]["width"],
-             header["camera"]["height"], samples, paths[1]))
-    scene.render.filepath = paths[1]
-    bpy.ops.render.render(write_still=True)
+    for seed, out in enumerate(paths[1:]):
+        print("cycles_render: %d hairs, %d skin triangles, %dx%d, %d samples, seed %d -> %s"
+              % (hairs, header["skin"]["triangles"], header["camera"]["width"],
+                 header["camera"]["height"], samples, seed, out))
+        scene.cycles.seed = seed
+        scene.render.filepath = out
+        bpy.ops.render.render(write_still=True)
 
 
 if __name__ == "__main__":

@@ -2,8 +2,10 @@
 """pelage's frames on fixed views against their committed Cycles references.
 
   views.py render [NAME...]   path-traces the views' references (Blender; scripts/reference-render.sh)
-                              into docs/reference/NAME.png and records pelage's figures against
-                              them in docs/reference/figures.json
+                              into docs/reference/NAME_a.png and NAME_b.png (two renders with
+                              different seeds: their mean is the reference, their difference
+                              its noise) and records pelage's figures against them in
+                              docs/reference/figures.json
   views.py check [NAME...]    renders pelage's frames again and measures them against the
                               committed references (make test runs this; no Blender): each
                               figure must stay within its tolerance of the recorded one
@@ -14,7 +16,7 @@
 
 The views are scripts/reference/views.txt. Environment: PELAGE (the pelage binary, default
 build/bin/pelage), PELAGE_SHARED_MODELS_DIR (the shared models, default ../shared/models),
-SAMPLES (Cycles samples per pixel for render, default 256).
+SAMPLES (Cycles samples per pixel for render, both renders together; default 1024).
 """
 import json
 import os
@@ -32,9 +34,16 @@ REFERENCES = os.path.join(ROOT, "docs", "reference")
 FIGURES = os.path.join(REFERENCES, "figures.json")
 BACKGROUND = (0.80, 0.82, 0.86)  # pelage's default background (sRGB)
 MAX_REFERENCE_BYTES = 300_000
+REFERENCE_HALVES = ("_a", "_b")  # NAME_a.png, NAME_b.png: Cycles' seeds 0 and 1
 # How far a recorded figure may move before check fails: a change of pelage's look shows here
 # (and is then recorded again with `render`, saying why in the commit).
 TOLERANCE = {"mae": 0.5, "luminance_ratio": 0.01, "detail_ratio": 0.05, "laplacian_ratio": 0.05}
+
+
+def references(name):
+    """The view's two committed reference renders (RGBA8)."""
+    return [compare.read_rgba(os.path.join(REFERENCES, name + half + ".png"))
+            for half in REFERENCE_HALVES]
 
 
 def views():
@@ -87,14 +96,17 @@ def render(names):
             figures = json.load(f)
     for name, model, options in selected(names):
         with tempfile.TemporaryDirectory() as tmp:
+            env = dict(os.environ, SAMPLES=os.environ.get("SAMPLES", "1024"))
             subprocess.run([os.path.join(ROOT, "scripts", "reference-render.sh"),
-                            model_path(model), tmp] + options, check=True)
-            size = os.path.getsize(os.path.join(tmp, "cycles.png"))
-            if size > MAX_REFERENCE_BYTES:
-                sys.exit("views.py: %s's reference is %d bytes (at most %d)"
-                         % (name, size, MAX_REFERENCE_BYTES))
-            shutil.copyfile(os.path.join(tmp, "cycles.png"),
-                            os.path.join(REFERENCES, name + ".png"))
+                            model_path(model), tmp] + options, check=True, env=env)
+            for half in REFERENCE_HALVES:
+                size = os.path.getsize(os.path.join(tmp, "cycles%s.png" % half))
+                if size > MAX_REFERENCE_BYTES:
+                    sys.exit("views.py: %s's reference%s is %d bytes (at most %d)"
+                             % (name, half, size, MAX_REFERENCE_BYTES))
+            for half in REFERENCE_HALVES:
+                shutil.copyfile(os.path.join(tmp, "cycles%s.png" % half),
+                                os.path.join(REFERENCES, name + half + ".png"))
             shutil.copyfile(os.path.join(tmp, "side_by_side.png"),
                             os.path.join(REFERENCES, name + "_side_by_side.png"))
             with open(os.path.join(tmp, "figures.json")) as f:
@@ -117,9 +129,7 @@ def check(names, record=False):
             continue
         with tempfile.TemporaryDirectory() as tmp:
             frame = render_pelage(model, options, tmp)
-            got, a, b = compare.measure(compare.read_rgba(frame),
-                                        compare.read_rgba(os.path.join(REFERENCES, name + ".png")),
-                                        BACKGROUND)
+            got, a, b = compare.measure(compare.read_rgba(frame), references(name), BACKGROUND)
         if record:
             recorded[name] = got
             compare.write_side_by_side(os.path.join(REFERENCES, name + "_side_by_side.png"), a, b)

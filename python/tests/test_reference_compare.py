@@ -1,0 +1,134 @@
+"""scripts/reference/compare.py, pelage's frame against a path-traced reference, on images of
+known content: exact figures on a tiny pair, and the reference's Monte Carlo noise measured and
+taken out of its detail from two independent renders (a statistical test on a known texture)."""
+
+import importlib.util
+import json
+import os
+import shutil
+import subprocess
+
+import numpy as np
+import pytest
+
+SOURCE = os.environ.get("PELAGE_SOURCE_DIR",
+                        os.path.join(os.path.dirname(__file__), "..", ".."))
+SCRIPT = os.path.join(SOURCE, "scripts", "reference", "compare.py")
+BACKGROUND = (0.80, 0.82, 0.86)
+pytestmark = pytest.mark.skipif(shutil.which("ffmpeg") is None, reason="needs ffmpeg")
+
+
+def _module():
+    spec = importlib.util.spec_from_file_location("compare", SCRIPT)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def _opaque(grey):
+    """An opaque RGBA8 image of grey levels (H x W)."""
+    out = np.empty(grey.shape + (4,), np.uint8)
+    out[..., :3] = np.clip(np.round(grey), 0, 255).astype(np.uint8)[..., None]
+    out[..., 3] = 255
+    return out
+
+
+def _png(path, rgba):
+    h, w, _ = rgba.shape
+    subprocess.run(["ffmpeg", "-v", "error", "-y", "-f", "rawvideo", "-pix_fmt", "rgba", "-s",
+                    f"{w}x{h}", "-i", "-", str(path)], input=rgba.tobytes(), check=True)
+
+
+def test_one_reference_exact():
+    compare = _module()
+    # Vertical stripes of 50 and 150; the reference is the same stripes 10 levels brighter.
+    stripes = np.where(np.arange(8) % 2 == 0, 50.0, 150.0)[None, :].repeat(6, axis=0)
+    pelage, reference = _opaque(stripes), _opaque(stripes + 10)
+    figures, a, b = compare.measure(pelage, [reference], BACKGROUND)
+    assert figures["pixels"] == 48
+    assert figures["mae"] == pytest.approx(10.0, abs=1e-9)
+    assert figures["luminance_ratio"] == pytest.approx(100.0 / 110.0, rel=1e-9)
+    # The same texture: detail and Laplacian spread alike, and the reference's detail is
+    # fine-detail.py's own figure of it.
+    assert figures["detail_ratio"] == pytest.approx(1.0, abs=1e-9)
+    assert figures["laplacian_ratio"] == pytest.approx(1.0, abs=1e-9)
+    assert figures["reference_detail"] == pytest.approx(compare.fine_detail(reference)[0])
+    assert "reference_noise" not in figures
+    assert np.abs(b - a).max() == pytest.approx(10.0, abs=1e-9)
+    with pytest.raises(ValueError, match="differ in size"):
+        compare.measure(pelage, [reference[:, :7]], BACKGROUND)
+
+
+def test_two_references_mean_in_linear_light():
+    compare = _module()
+    first = np.zeros((4, 4, 4), np.uint8)
+    second = np.zeros((4, 4, 4), np.uint8)
+    first[...] = (200, 100, 50, 255)
+    second[...] = (0, 0, 0, 255)
+    second[0, 0] = (9, 9, 9, 0)  # transparent: the mean there is first's colour at half alpha
+    mean = compare.mean_reference([first, second])
+    assert mean[0, 0, :3] == pytest.approx([200, 100, 50], abs=1e-9)
+    assert mean[0, 0, 3] == pytest.approx(127.5)
+    # Elsewhere half of 200's linear value, not 100: the mean is taken in linear light.
+    half = 255 * compare.linear_to_srgb(compare.srgb_to_linear(200 / 255) / 2)
+    assert mean[1, 1, 0] == pytest.approx(half, abs=1e-9)
+    assert mean[1, 1, 0] > 140
+
+
+def test_reference_noise_is_taken_out_of_its_detail():
+    compare = _module()
+    rng = np.random.default_rng(29)
+    # A known fur-like texture: grey levels 90-150 in 2 x 2 blocks.
+    truth = np.kron(rng.uniform(90, 150, (48, 48)), np.ones((2, 2)))
+    # Two renders of it with independent noise of 8 levels (a path tracer's, at few samples).
+    renders = [_opaque(truth + rng.normal(0, 8, truth.shape)) for _ in range(2)]
+    figures, _, _ = compare.measure(_opaque(truth), renders, BACKGROUND)
+    # The noise inflates the mean's Laplacian spread and detail; without it they are the
+    # truth's (pelage here draws the truth itself): within 3 %.
+    assert figures["reference_laplacian_with_noise"] > 1.05 * figures["laplacian"]
+    assert figures["reference_detail_with_noise"] > 1.02 * figures["detail"]
+    assert figures["laplacian_ratio"] == pytest.approx(1.0, abs=0.03)
+    assert figures["detail_ratio"] == pytest.approx(1.0, abs=0.03)
+    # The mean's noise: N(0, 8 / sqrt 2) per channel, mean |.| = 8 / sqrt(pi) = 4.51; the
+    # truth's MAE against the mean is that floor.
+    assert figures["reference_noise"] == pytest.approx(8 / np.sqrt(np.pi), rel=0.05)
+    assert figures["mae"] == pytest.approx(figures["reference_noise"], rel=0.05)
+    # One render alone keeps its noise in its detail.
+    one, _, _ = compare.measure(_opaque(truth), renders[:1], BACKGROUND)
+    assert one["laplacian_ratio"] < 0.95
+
+
+def test_command_line(tmp_path):
+    rng = np.random.default_rng(7)
+    truth = np.kron(rng.uniform(90, 150, (16, 16)), np.ones((2, 2)))
+    paths = []
+    for i, image in enumerate([_opaque(truth), _opaque(truth + 4), _opaque(truth - 4)]):
+        paths.append(str(tmp_path / f"{i}.png"))
+        _png(paths[-1], image)
+    out = tmp_path / "figures.json"
+    mean = tmp_path / "mean.png"
+    run = subprocess.run(["/usr/bin/python3", SCRIPT, *paths, "--background", "0.8", "0.82",
+                          "0.86", "--json", str(out), "--reference-mean", str(mean)],
+                         capture_output=True, text=True)
+    assert run.returncode == 0, run.stderr
+    assert "the reference's own noise: 4.0/255" in run.stdout
+    figures = json.loads(out.read_text())
+    assert figures["reference_noise"] == pytest.approx(4.0, abs=0.01)
+    written = _module().read_rgba(str(mean))
+    assert written[..., 3].min() == 255
+    assert np.abs(written[..., 0].astype(float) - np.round(truth)).max() <= 1
+    # Three references, or the mean of one, are refused with a message and exit status 2.
+    options = ["--background", "0.8", "0.82", "0.86", "--json", str(out)]
+    for args in ([*paths, paths[0]], [*paths[:2], "--reference-mean", str(mean)]):
+        bad = subprocess.run(["/usr/bin/python3", SCRIPT, *args, *options],
+                             capture_output=True, text=True)
+        assert bad.returncode == 2
+        assert "reference" in bad.stderr.splitlines()[-1]
+    # A file that is not an image: exit 1, the message names the problem, no figures written.
+    (tmp_path / "bad.png").write_text("not a png")
+    out.unlink()
+    bad = subprocess.run(["/usr/bin/python3", SCRIPT, paths[0], str(tmp_path / "bad.png"),
+                          "--background", "0.8", "0.82", "0.86", "--json", str(out)],
+                         capture_output=True, text=True)
+    assert bad.returncode == 1 and "compare: error" in bad.stderr
+    assert not out.exists()

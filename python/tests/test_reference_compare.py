@@ -57,6 +57,11 @@ def test_one_reference_exact():
     assert np.abs(b - a).max() == pytest.approx(10.0, abs=1e-9)
     with pytest.raises(ValueError, match="differ in size"):
         compare.measure(pelage, [reference[:, :7]], BACKGROUND)
+    # A flat reference has no detail to compare with: a message, not a division by zero.
+    flat = _opaque(np.full((6, 8), 120.0))
+    for references in ([flat], [flat, flat]):
+        with pytest.raises(ValueError, match="no detail"):
+            compare.measure(pelage, references, BACKGROUND)
 
 
 def test_two_references_mean_in_linear_light():
@@ -131,4 +136,10 @@ def test_command_line(tmp_path):
                           "--background", "0.8", "0.82", "0.86", "--json", str(out)],
                          capture_output=True, text=True)
     assert bad.returncode == 1 and "compare: error" in bad.stderr
+    assert not out.exists()
+    # A missing file is named.
+    bad = subprocess.run(["/usr/bin/python3", SCRIPT, paths[0], str(tmp_path / "missing.png"),
+                          "--background", "0.8", "0.82", "0.86", "--json", str(out)],
+                         capture_output=True, text=True)
+    assert bad.returncode == 1 and "missing.png: no such file" in bad.stderr
     assert not out.exists()

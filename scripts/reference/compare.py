@@ -123,7 +123,8 @@ def measure(pelage, references, background):
         # Half the difference of two independent renders: the mean's noise, without the image.
         noise = (over(references[0], background) - over(references[1], background)) / 2.0
         noise_variance, _ = window_variance(noise @ LUMA, inside)
-        kept = max(0.0, 1.0 - noise_variance[full].sum() / variance[full].sum())
+        total = variance[full].sum()
+        kept = max(0.0, 1.0 - noise_variance[full].sum() / total) if total > 0 else 0.0
         out["reference_detail_with_noise"] = out["reference_detail"]
         out["reference_detail"] *= float(np.sqrt(kept))
         noise_spread = laplacian_spread(noise @ LUMA, inside)
@@ -131,6 +132,9 @@ def measure(pelage, references, background):
         out["reference_laplacian"] = float(
             np.sqrt(max(0.0, out["reference_laplacian"] ** 2 - noise_spread ** 2)))
         out["reference_noise"] = float(np.abs(noise)[mask].mean())
+    if out["reference_detail"] == 0.0 or out["reference_laplacian"] == 0.0:
+        raise ValueError("the reference shows no detail inside the creature (flat, or nothing "
+                         "but its own noise): its detail cannot be compared with")
     out["detail_ratio"] = out["detail"] / out["reference_detail"]
     out["laplacian_ratio"] = out["laplacian"] / out["reference_laplacian"]
     return out, a, b
@@ -169,6 +173,10 @@ def main(argv):
         parser.error("give one reference or two (independent renders of the same scene)")
     if args.reference_mean and len(args.reference) != 2:
         parser.error("--reference-mean needs two references")
+    for path in [args.pelage] + args.reference:
+        if not os.path.isfile(path):
+            print("compare: error: %s: no such file" % path, file=sys.stderr)
+            return 1
     try:
         references = [read_rgba(r) for r in args.reference]
         figures, a, b = measure(read_rgba(args.pelage), references, args.background)

@@ -103,6 +103,41 @@ def test_reference_noise_is_taken_out_of_its_detail():
     assert one["laplacian_ratio"] < 0.95
 
 
+def test_where_the_error_lies():
+    compare = _module()
+    # 16 x 16 pixels: a 12 x 12 interior (pixels 2-13) of stripes 110 / 130 inside a 2-pixel
+    # fringe of half coverage.
+    reference = _opaque(np.where(np.arange(16) % 2 == 0, 110.0, 130.0)[None, :].repeat(16, 0))
+    reference[:2], reference[-2:], reference[:, :2], reference[:, -2:] = 4 * [(100, 100, 100, 128)]
+    # pelage: the interior in a checkerboard of +-6 about the reference's (strand-scale grain,
+    # no shading difference), the fringe the same.
+    pelage = reference.copy()
+    checker = np.where((np.arange(16)[:, None] + np.arange(16)[None, :]) % 2 == 0, 6, -6)
+    pelage[2:14, 2:14, :3] = (reference[2:14, 2:14, :3]
+                              + checker[2:14, 2:14, None]).astype(np.uint8)
+    figures, _, _ = compare.measure(pelage, [reference], BACKGROUND)
+    assert figures["mae_interior"] == pytest.approx(6.0, abs=1e-9)
+    assert figures["mae_fringe"] == pytest.approx(0.0, abs=1e-9)
+    assert figures["fringe_luminance_ratio"] == pytest.approx(1.0, abs=1e-12)
+    # Averaged over 2 x 2 and 4 x 4 blocks the grain is gone; no 8 x 8 block lies inside.
+    assert figures["mae_block2"] == pytest.approx(0.0, abs=1e-9)
+    assert figures["mae_block4"] == pytest.approx(0.0, abs=1e-9)
+    assert figures["mae_block8"] is None
+    # A shading difference (the interior 5 levels brighter) stays at every scale; a darker
+    # fringe shows as the fringe's error and luminance, and the whole MAE is the two's mix.
+    pelage = reference.copy()
+    pelage[2:14, 2:14, :3] += 5
+    pelage[:2, :, :3] = 80
+    figures, a, b = compare.measure(pelage, [reference], BACKGROUND)
+    for key in ("mae_interior", "mae_block2", "mae_block4"):
+        assert figures[key] == pytest.approx(5.0, abs=1e-9), key
+    fringe_rows = np.abs(a - b)[:2]
+    assert figures["mae_fringe"] == pytest.approx(fringe_rows.mean() * 32 / (256 - 144), rel=1e-9)
+    assert figures["fringe_luminance_ratio"] < 1.0
+    assert figures["mae"] * 256 == pytest.approx(
+        figures["mae_interior"] * 144 + figures["mae_fringe"] * 112, rel=1e-9)
+
+
 def test_command_line(tmp_path):
     rng = np.random.default_rng(7)
     truth = np.kron(rng.uniform(90, 150, (16, 16)), np.ones((2, 2)))

@@ -19,6 +19,11 @@ Over the creature's pixels (either image's alpha above half):
   sqrt(var(Laplacian of the mean) - var(Laplacian of the half difference));
 - reference noise (two references): the mean absolute half difference of the channels (/255),
   about the MAE a perfect frame would still show against the mean;
+- where the MAE comes from: over the fringe (the creature's pixels that are not wholly inside
+  both images: the partly covered outline) and the interior apart, with the fringe's luminance
+  ratio; and at coarser scales, the MAE of the images' means over B x B pixel blocks (B = 2, 4,
+  8) lying wholly inside both, which strand-scale differences (where each hair lands, its grain)
+  average out of and the shading's differences over the body keep;
 - coverage: the creature's pixels in each image.
 Writes the figures as JSON and a side-by-side PNG: pelage | reference | |difference| x 4, and
 with two references their mean as a straight-alpha PNG (--reference-mean).
@@ -75,6 +80,21 @@ def laplacian_spread(lum, inside):
     return float(lap[core].std())
 
 
+def block_mae(a, b, inside, block):
+    """The mean absolute difference of the images' `block` x `block` pixel means (channels)
+    over the blocks wholly `inside` (None without one)."""
+    h, w = inside.shape[0] // block * block, inside.shape[1] // block * block
+
+    def blocks(x):
+        return x[:h, :w].reshape(h // block, block, w // block, block, *x.shape[2:])
+
+    full = blocks(inside).all(axis=(1, 3))
+    if not full.any():
+        return None
+    diff = blocks(a).mean(axis=(1, 3)) - blocks(b).mean(axis=(1, 3))
+    return float(np.abs(diff[full]).mean())
+
+
 def mean_reference(references):
     """One or two straight-alpha RGBA8 renders of the same scene as one straight-alpha image (the
     mean of two in linear light, premultiplied): floats, sRGB 0-255 and alpha 0-255."""
@@ -114,6 +134,14 @@ def measure(pelage, references, background):
         "reference_luminance": float(lb[mask].mean()),
     }
     out["luminance_ratio"] = out["luminance"] / out["reference_luminance"]
+    both = (pelage[..., 3] == 255) & inside
+    fringe = mask & ~both
+    out["mae_interior"] = float(np.abs(a - b)[both].mean()) if both.any() else None
+    out["mae_fringe"] = float(np.abs(a - b)[fringe].mean()) if fringe.any() else None
+    out["fringe_luminance_ratio"] = (float(la[fringe].mean() / lb[fringe].mean())
+                                     if fringe.any() and lb[fringe].mean() > 0 else None)
+    for block in (2, 4, 8):
+        out["mae_block%d" % block] = block_mae(a, b, both, block)
     out["detail"] = fine_detail(pelage)[0]
     variance, full = window_variance(lb, inside)
     out["reference_detail"] = float(np.sqrt(variance[full]).mean())
@@ -199,6 +227,14 @@ def main(argv):
               100 * (figures["luminance_ratio"] - 1), figures["detail"],
               figures["reference_detail"], 100 * figures["detail_ratio"], figures["laplacian"],
               figures["reference_laplacian"], 100 * figures["laplacian_ratio"], figures["pixels"]))
+    if figures["mae_interior"] is not None and figures["fringe_luminance_ratio"] is not None:
+        print("MAE inside %.1f, over the fringe %.1f (its luminance %+.1f %%)" % (
+            figures["mae_interior"], figures["mae_fringe"],
+            100 * (figures["fringe_luminance_ratio"] - 1)))
+    coarse = ["%d px %.1f" % (k, figures["mae_block%d" % k]) for k in (2, 4, 8)
+              if figures["mae_block%d" % k] is not None]
+    if coarse:
+        print("MAE of block means: " + ", ".join(coarse))
     if "reference_noise" in figures:
         print("the reference's own noise: %.1f/255 (detail %.2f and Laplacian spread %.2f with it)"
               % (figures["reference_noise"], figures["reference_detail_with_noise"],

@@ -136,12 +136,16 @@ def check(names, record=False):
             recorded[name] = got
             compare.write_side_by_side(os.path.join(REFERENCES, name + "_side_by_side.png"), a, b)
         was = recorded[name]
-        print("%-14s %8.1f %+9.1f%% %7.0f%% %9.0f%% %8.1f %8.1f %8.1f" % (
+        split = ["%8s" % ("-" if got[k] is None else "%.1f" % got[k])
+                 for k in ("mae_interior", "mae_fringe", "mae_block8")]
+        print("%-14s %8.1f %+9.1f%% %7.0f%% %9.0f%% %s" % (
             name, got["mae"], 100 * (got["luminance_ratio"] - 1), 100 * got["detail_ratio"],
-            100 * got["laplacian_ratio"], got["mae_interior"], got["mae_fringe"],
-            got["mae_block8"]))
+            100 * got["laplacian_ratio"], " ".join(split)))
         for key, tolerance in TOLERANCE.items():
-            if abs(got[key] - was[key]) > tolerance:
+            if got[key] is None or was.get(key) is None:
+                if got[key] != was.get(key):
+                    failed.append("%s: %s %s, recorded %s" % (name, key, got[key], was.get(key)))
+            elif abs(got[key] - was[key]) > tolerance:
                 failed.append("%s: %s %.4f, recorded %.4f (tolerance %g)"
                               % (name, key, got[key], was[key], tolerance))
     if record:

@@ -124,22 +124,24 @@ def measure(pelage, references, background):
     if not mask.any():
         raise ValueError("neither image shows the creature")
     la, lb = a @ LUMA, b @ LUMA
+    error = np.abs(a - b)
     inside = alpha > 254.5
     out = {
         "pixels": int(mask.sum()),
         "pelage_coverage": int((pelage[..., 3] > 127).sum()),
         "reference_coverage": int((alpha > 127).sum()),
-        "mae": float(np.abs(a - b)[mask].mean()),
+        "mae": float(error[mask].mean()),
         "luminance": float(la[mask].mean()),
         "reference_luminance": float(lb[mask].mean()),
     }
     out["luminance_ratio"] = out["luminance"] / out["reference_luminance"]
     both = (pelage[..., 3] == 255) & inside
     fringe = mask & ~both
-    out["mae_interior"] = float(np.abs(a - b)[both].mean()) if both.any() else None
-    out["mae_fringe"] = float(np.abs(a - b)[fringe].mean()) if fringe.any() else None
-    out["fringe_luminance_ratio"] = (float(la[fringe].mean() / lb[fringe].mean())
-                                     if fringe.any() and lb[fringe].mean() > 0 else None)
+    out["mae_interior"] = float(error[both].mean()) if both.any() else None
+    out["mae_fringe"] = float(error[fringe].mean()) if fringe.any() else None
+    fringe_reference = float(lb[fringe].mean()) if fringe.any() else 0.0
+    out["fringe_luminance_ratio"] = (float(la[fringe].mean()) / fringe_reference
+                                     if fringe_reference > 0 else None)
     for block in (2, 4, 8):
         out["mae_block%d" % block] = block_mae(a, b, both, block)
     out["detail"] = fine_detail(pelage)[0]

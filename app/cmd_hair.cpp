@@ -169,7 +169,8 @@ void addHairCommand(CLI::App& app) {
           static_cast<double>(frame.cullingFactor), static_cast<long long>(frame.drawn()),
           static_cast<long long>(roots.total()));
     summarise(frame, params);
-    printCoverage(fur::estimateCoverage(m.skin, fur.params, fur.roots.lengths(m.skin)));
+    printCoverage(
+        fur::estimateCoverage(m.skin, fur.params, fur.roots.lengths(m.skin), &fur.groom.vertex));
     std::printf("wrote %lld vertices, %lld edges, %lld faces\n", static_cast<long long>(n.vertices),
                 static_cast<long long>(n.edges), static_cast<long long>(n.faces));
   });

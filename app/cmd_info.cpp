@@ -55,7 +55,7 @@ void addInfoCommand(CLI::App& app) {
     }
     const float* groomed = fur::groomedLengths(m.skin, groom);
     const fur::FurParams params = fur::fitCoverageToBudget(m.skin, asked, groomed);
-    const fur::FurCoverage coverage = fur::estimateCoverage(m.skin, params, groomed);
+    const fur::FurCoverage coverage = fur::estimateCoverage(m.skin, params, groomed, &groom);
     // Which regions grow fur: those with a vertex whose fur length is above 0.
     std::vector<bool> furred(m.skin.regionNames.size(), false);
     const float* lengths = m.skin.furLengths();

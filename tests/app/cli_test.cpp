@@ -27,6 +27,26 @@ TEST(Cli, InfoJsonDescribesTheBuiltInMonkey) {
   EXPECT_TRUE(j["segments"][0]["parent"].is_null());
 }
 
+TEST(Cli, InfoCountsAWidthGroomInTheCoverage) {
+  // A width groom of 2 over the whole monkey: each coat's mean width and optical depth, as `info`
+  // reports them, double; the hair count (the preset's coverage) stays.
+  const auto plain = runPelage("info --json --triangles 2000");
+  const auto wide = runPelage(
+      R"(info --json --triangles 2000 --fur-set 'regions=[{"match": "*", "widthScale": 2}]')");
+  ASSERT_EQ(plain.exitCode, 0) << plain.output;
+  ASSERT_EQ(wide.exitCode, 0) << wide.output;
+  const auto a = nlohmann::json::parse(plain.output)["fur"];
+  const auto b = nlohmann::json::parse(wide.output)["fur"];
+  for (std::size_t c = 0; c < 2; ++c) {
+    EXPECT_EQ(b["coats"][c]["hairs"], a["coats"][c]["hairs"]);
+    EXPECT_NEAR(b["coats"][c]["meanWidthMm"].get<double>(),
+                2.0 * a["coats"][c]["meanWidthMm"].get<double>(), 1e-6);
+    EXPECT_NEAR(b["coats"][c]["opticalDepth"].get<double>(),
+                2.0 * a["coats"][c]["opticalDepth"].get<double>(), 1e-6);
+  }
+  EXPECT_GT(b["hiddenShare"].get<double>(), a["hiddenShare"].get<double>());
+}
+
 TEST(Cli, SkinWritesAPosedObj) {
   test::TempDir dir;
   test::writeText(dir.file("pose.json"),

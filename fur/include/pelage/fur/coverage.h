@@ -9,6 +9,7 @@
 #include <array>
 
 #include "pelage/fur/fur_params.h"
+#include "pelage/fur/groom.h"
 #include "pelage/skin/skin_mesh.h"
 
 namespace pelage::fur {
@@ -44,14 +45,21 @@ FurParams fitCoverageToBudget(const skin::SkinMesh& skin, FurParams params,
 
 // The coats' expected density and optical depth on `skin` (its rest pose and per-vertex fur
 // lengths, or `lengths` (nV, a groom's: fur/groom.h) when given; the preset's lengthScale and
-// relative lengths; a length map, lengthRegion, density groom or width scale groom is not
-// counted). The hair count is
-// params' (hairs, density or coverage). The other functions here take `lengths` the same way.
+// relative lengths). The hair count is params' (hairs, density or coverage). With `groom`, its
+// per-vertex density and width scale count as the roots get them (roots.h growRoots, CoatRoots::
+// widthScale): a triangle's hairs are its share of the furred area weighted by the mean of its
+// vertices' densities, and each hair's length and width scale are interpolated at its root, so a
+// coat's mean length, mean width and optical depth n E[L w] are means over its hairs, E[L s] over a
+// triangle being the exact mean of the product of two linear interpolants. A density or length map
+// and lengthRegion are not counted; the expected share hidden takes the coat's mean optical depth
+// as if spread evenly (where the depth varies, the skin hides somewhat less).
 FurCoverage estimateCoverage(const skin::SkinMesh& skin, const FurParams& params,
-                             const float* lengths = nullptr);
+                             const float* lengths = nullptr, const VertexGroom* groom = nullptr);
 
 // The total hair count N for which the expected share of skin hidden is `hiddenShare` (in
 // (0, kMaxCoverage]) with params' widths, lengths and undercoat share; 0 on a skin without fur.
+// It counts the lengths, not a density or width groom: with those, estimateCoverage(..., groom)
+// reports the share the groomed hairs hide.
 double hairsForCoverage(const skin::SkinMesh& skin, const FurParams& params, double hiddenShare,
                         const float* lengths = nullptr);
 

@@ -138,6 +138,32 @@ def test_where_the_error_lies():
         figures["mae_interior"] * 144 + figures["mae_fringe"] * 112, rel=1e-9)
 
 
+def test_luminance_and_colour_apart():
+    compare = _module()
+    rng = np.random.default_rng(3)
+    reference = _opaque(rng.uniform(60, 200, (12, 12)))
+    reference[..., 0] = np.clip(reference[..., 0].astype(float) * 1.2, 0, 255).astype(np.uint8)
+    # pelage: the reference at 0.8 of its brightness, its colour kept: all of the interior's
+    # error is luminance's, none colour's.
+    pelage = reference.copy()
+    pelage[..., :3] = np.round(reference[..., :3] * 0.8).astype(np.uint8)
+    figures, a, b = compare.measure(pelage, [reference], BACKGROUND)
+    ratio = ((a @ compare.LUMA) / (b @ compare.LUMA))[..., None]
+    assert figures["mae_luminance_alone"] == pytest.approx(np.abs(b * ratio - b).mean(), rel=1e-12)
+    assert figures["mae_luminance_alone"] == pytest.approx(figures["mae_interior"], rel=0.02)
+    # (Only the 8-bit rounding of pelage's channels is left: at most 0.5 / 0.8 a channel.)
+    assert figures["mae_colour_alone"] < 0.625
+    assert figures["mae_colour_alone"] < 0.01 * figures["mae_luminance_alone"]
+    # Red and blue swapped, scaled to the reference's luminance: the colour is all of the error.
+    pelage = reference.copy()
+    pelage[..., 0], pelage[..., 2] = reference[..., 2], reference[..., 0]
+    figures, a, b = compare.measure(pelage, [reference], BACKGROUND)
+    ratio = ((a @ compare.LUMA) / (b @ compare.LUMA))[..., None]
+    assert figures["mae_colour_alone"] == pytest.approx(np.abs(a / ratio - b).mean(), rel=1e-12)
+    assert figures["mae_colour_alone"] > 0.5 * figures["mae_interior"]
+    assert figures["mae_luminance_alone"] < 0.5 * figures["mae_colour_alone"]
+
+
 def test_command_line(tmp_path):
     rng = np.random.default_rng(7)
     truth = np.kron(rng.uniform(90, 150, (16, 16)), np.ones((2, 2)))

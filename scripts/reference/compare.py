@@ -24,6 +24,10 @@ Over the creature's pixels (either image's alpha above half):
   ratio; and at coarser scales, the MAE of the images' means over B x B pixel blocks (B = 2, 4,
   8) lying wholly inside both, which strand-scale differences (where each hair lands, its grain)
   average out of and the shading's differences over the body keep;
+- what the interior's MAE owes to luminance and to colour: the MAE were pelage's pixels recoloured
+  to the reference's colour at their own luminance (the reference's pixel scaled to pelage's
+  luminance: luminance alone) and were they brought to the reference's luminance in their own
+  colour (pelage's pixel scaled to the reference's: colour alone);
 - coverage: the creature's pixels in each image.
 Writes the figures as JSON and a side-by-side PNG: pelage | reference | |difference| x 4, and
 with two references their mean as a straight-alpha PNG (--reference-mean).
@@ -144,6 +148,13 @@ def measure(pelage, references, background):
                                      if fringe_reference > 0 else None)
     for block in (2, 4, 8):
         out["mae_block%d" % block] = block_mae(a, b, both, block)
+    lit = both & (la > 0) & (lb > 0)
+    if lit.any():
+        ratio = (la[lit] / lb[lit])[:, None]
+        out["mae_luminance_alone"] = float(np.abs(b[lit] * ratio - b[lit]).mean())
+        out["mae_colour_alone"] = float(np.abs(a[lit] / ratio - b[lit]).mean())
+    else:
+        out["mae_luminance_alone"] = out["mae_colour_alone"] = None
     out["detail"] = fine_detail(pelage)[0]
     variance, full = window_variance(lb, inside)
     out["reference_detail"] = float(np.sqrt(variance[full]).mean())
@@ -233,6 +244,9 @@ def main(argv):
         print("MAE inside %.1f, over the fringe %.1f (its luminance %+.1f %%)" % (
             figures["mae_interior"], figures["mae_fringe"],
             100 * (figures["fringe_luminance_ratio"] - 1)))
+    if figures["mae_luminance_alone"] is not None:
+        print("MAE inside from luminance alone %.1f, from colour alone %.1f" % (
+            figures["mae_luminance_alone"], figures["mae_colour_alone"]))
     coarse = ["%d px %.1f" % (k, figures["mae_block%d" % k]) for k in (2, 4, 8)
               if figures["mae_block%d" % k] is not None]
     if coarse:

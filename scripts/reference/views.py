@@ -38,7 +38,8 @@ REFERENCE_HALVES = ("_a", "_b")  # NAME_a.png, NAME_b.png: Cycles' seeds 0 and 1
 # How far a recorded figure may move before check fails: a change of pelage's look shows here
 # (and is then recorded again with `render`, saying why in the commit).
 TOLERANCE = {"mae": 0.5, "luminance_ratio": 0.01, "detail_ratio": 0.05, "laplacian_ratio": 0.05,
-             "mae_fringe": 1.0, "mae_block8": 0.5}
+             "mae_fringe": 1.0, "mae_block8": 0.5, "mae_luminance_alone": 0.5,
+             "mae_colour_alone": 0.5}
 
 
 def references(name):
@@ -123,8 +124,9 @@ def check(names, record=False):
     with open(FIGURES) as f:
         recorded = json.load(f)
     failed = []
-    print("%-14s %8s %10s %8s %10s %8s %8s %8s" % ("view", "MAE/255", "luminance", "detail",
-                                                  "Laplacian", "inside", "fringe", "8x8"))
+    print("%-14s %8s %10s %8s %10s %8s %8s %8s %8s %8s" % (
+        "view", "MAE/255", "luminance", "detail", "Laplacian", "inside", "fringe", "8x8",
+        "lum.", "colour"))
     for name, model, options in selected(names):
         if "$SHARED" in model and not os.path.isdir(shared_models()):
             print("%-14s skipped: the shared models are not here" % name)
@@ -137,7 +139,8 @@ def check(names, record=False):
             compare.write_side_by_side(os.path.join(REFERENCES, name + "_side_by_side.png"), a, b)
         was = recorded[name]
         split = ["%8s" % ("-" if got[k] is None else "%.1f" % got[k])
-                 for k in ("mae_interior", "mae_fringe", "mae_block8")]
+                 for k in ("mae_interior", "mae_fringe", "mae_block8", "mae_luminance_alone",
+                           "mae_colour_alone")]
         print("%-14s %8.1f %+9.1f%% %7.0f%% %9.0f%% %s" % (
             name, got["mae"], 100 * (got["luminance_ratio"] - 1), 100 * got["detail_ratio"],
             100 * got["laplacian_ratio"], " ".join(split)))

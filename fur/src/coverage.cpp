@@ -43,6 +43,8 @@ SkinFur skinFur(const skin::SkinMesh& skin, const float* lengths,
     const std::array<double, 3> l{len[v[0]], len[v[1]], len[v[2]]};
     const double meanL = (l[0] + l[1] + l[2]) / 3.0;
     s.area += a;
+    // (Summed in float as before: the area-weighted mean, and so a coverage's hair count,
+    // stays bit for bit what it was.)
     lengthArea += a * static_cast<double>(len[v[0]] + len[v[1]] + len[v[2]]) / 3.0;
     double d = 1.0;
     if (density) {

@@ -46,14 +46,7 @@ SkinFur skinFur(const skin::SkinMesh& skin, const float* lengths,
     // (Summed in float as before: the area-weighted mean, and so a coverage's hair count,
     // stays bit for bit what it was.)
     lengthArea += a * static_cast<double>(len[v[0]] + len[v[1]] + len[v[2]]) / 3.0;
-    double d = 1.0;
-    if (density) {
-      d = 0.0;
-      for (int i = 0; i < 3; ++i)
-        d += static_cast<double>(groom->density[static_cast<std::size_t>(v[i])]);
-      d /= 3.0;
-    }
-    const double w = a * d;
+    const double w = density ? a * static_cast<double>(triangleDensity(groom->density, v)) : a;
     weighted += w;
     for (int c = 0; c < kCoatCount; ++c) {
       std::array<double, 3> k{1.0, 1.0, 1.0};

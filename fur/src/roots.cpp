@@ -336,10 +336,7 @@ FurRoots growRoots(const skin::SkinMesh& skin, const FurParams& params, const Gr
     const std::int32_t* tri = skin.triangles.data();
     for (std::int32_t t = 0; t < nT; ++t) {
       const std::int32_t* v = tri + 3 * static_cast<std::int64_t>(t);
-      densityMean[static_cast<std::size_t>(t)] *= (vertexDensity[static_cast<std::size_t>(v[0])] +
-                                                   vertexDensity[static_cast<std::size_t>(v[1])] +
-                                                   vertexDensity[static_cast<std::size_t>(v[2])]) /
-                                                  3.0f;
+      densityMean[static_cast<std::size_t>(t)] *= triangleDensity(vertexDensity, v);
     }
   }
   if (weighted) {

@@ -137,4 +137,12 @@ std::vector<double> triangleAreas(const skin::SkinMesh& skin);
 // (nV; the skin's or a groom's).
 bool triangleHasFur(const skin::SkinMesh& skin, const float* lengths, std::int32_t t);
 
+// A groom's density weight of the triangle with vertices v[0..2]: the mean of their densities
+// (`density`, nV), by which growRoots multiplies the triangle's share of the hairs.
+inline float triangleDensity(const std::vector<float>& density, const std::int32_t* v) {
+  return (density[static_cast<std::size_t>(v[0])] + density[static_cast<std::size_t>(v[1])] +
+          density[static_cast<std::size_t>(v[2])]) /
+         3.0f;
+}
+
 }  // namespace pelage::fur

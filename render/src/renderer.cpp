@@ -42,6 +42,12 @@ bool skinShadows(const scene::DrawList& list) {
   return list.light.shadows || list.hairShading == scene::HairShading::Physical;
 }
 
+// The physical model's coat light spread sideways (Light::coatSpread, coat_spread.frag): the share
+// of the coat's direct light kept at each hair (k_d) and the share reaching the coat spread (k_s),
+// fitted with lighting.glsl's g and k_a on the six committed reference views (README).
+constexpr float kCoatLightKept = 0.5f;
+constexpr float kCoatLightSpread = 0.6f;
+
 }  // namespace
 
 struct Renderer::Impl {
@@ -51,12 +57,16 @@ struct Renderer::Impl {
   Eigen::Vector3f background = scene::kDefaultBackground;  // the last frame's (linear)
 
   Program skinProgram, skinTexturedProgram, hairProgram, strandProgram, strandOitProgram,
-      compositeProgram, depthProgram;
+      compositeProgram, spreadProgram, depthProgram;
 
   Framebuffer msaaFbo, resolveFbo, shadowFbo, oitFbo;
   Renderbuffer msaaColor, msaaDepth, resolveDepth;
-  Texture resolveColor, shadowMap, oitAccum, oitReveal;
+  Texture resolveColor, shadowMap, oitAccum, oitReveal, oitCoat;
+  // The coat's spread light (coat_spread.frag): (E m, m) at half resolution or less, ping-ponged.
+  Framebuffer spreadFbo[2];
+  Texture spreadTarget[2];
   int shadowSize = 0;
+  float spreadPixels = 0.0f;  // this frame's coat light spread, pixels (0: none)
   std::unique_ptr<detail::DeepOpacityMap> opacityMap;  // the fur's self-shadow (made on first use)
 
   detail::VertexArray skinVao;
@@ -117,6 +127,9 @@ struct Renderer::Impl {
     };
     strandProgram.reset(strand("hair strands", "#define STRAND 1"));
     strandOitProgram.reset(strand("hair strands (transparent)", "#define STRAND 1\n#define OIT 1"));
+    spreadProgram.reset(detail::buildProgram(
+        "coat light spread", {ShaderStage{GL_VERTEX_SHADER, {"oit_composite.vert"}},
+                              ShaderStage{GL_FRAGMENT_SHADER, {"coat_spread.frag"}}}));
     compositeProgram.reset(detail::buildProgram(
         "transparency resolve", {ShaderStage{GL_VERTEX_SHADER, {"oit_composite.vert"}},
                                  ShaderStage{GL_FRAGMENT_SHADER, {"oit_composite.frag"}}}));
@@ -260,6 +273,7 @@ struct Renderer::Impl {
     oitFbo.reset();
     oitAccum.reset();
     oitReveal.reset();
+    oitCoat.reset();
 
     const auto texture = [&](GLenum format) { return makeTexture(format, 1, w, h); };
     // sRGB colour: shading is in linear space, the framebuffer encodes (GL_FRAMEBUFFER_SRGB while
@@ -281,15 +295,25 @@ struct Renderer::Impl {
     // pixel at 5 million hairs stay exact enough) and the revealage (R32F).
     oitAccum = texture(GL_RGBA32F);
     oitReveal = texture(GL_R32F);
+    oitCoat = texture(GL_RGBA32F);  // the physical model's coat albedo and irradiance, weighted
     glCreateFramebuffers(1, &id);
     oitFbo.reset(id);
     glNamedFramebufferTexture(id, GL_COLOR_ATTACHMENT0, oitAccum.get(), 0);
     glNamedFramebufferTexture(id, GL_COLOR_ATTACHMENT1, oitReveal.get(), 0);
+    glNamedFramebufferTexture(id, GL_COLOR_ATTACHMENT2, oitCoat.get(), 0);
     glNamedFramebufferRenderbuffer(id, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, resolveDepth.get());
-    const GLenum buffers[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
-    glNamedFramebufferDrawBuffers(id, 2, buffers);
+    const GLenum buffers[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
+    glNamedFramebufferDrawBuffers(id, 3, buffers);
     PELAGE_CHECK(glCheckNamedFramebufferStatus(id, GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE,
                  "transparency framebuffer incomplete");
+    for (int i = 0; i < 2; ++i) {
+      spreadTarget[i] = makeTexture(GL_RG32F, 1, (w + 1) / 2, (h + 1) / 2, GL_LINEAR, GL_LINEAR);
+      glCreateFramebuffers(1, &id);
+      spreadFbo[i].reset(id);
+      glNamedFramebufferTexture(id, GL_COLOR_ATTACHMENT0, spreadTarget[i].get(), 0);
+      PELAGE_CHECK(glCheckNamedFramebufferStatus(id, GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE,
+                   "coat spread framebuffer incomplete");
+    }
     if (samples > 0) {
       glCreateRenderbuffers(1, &id);
       msaaColor.reset(id);
@@ -424,6 +448,8 @@ struct Renderer::Impl {
     setInt(p, "uPerHairColor", f.perHairColor ? 1 : 0);
     setInt(p, "uPerHairWidth", f.perHairWidth ? 1 : 0);
     setFloat(p, "uAmbientRatio", f.ambientRatio);
+    setFloat(p, "uCoatDirect",
+             p == strandOitProgram.get() && spreadPixels > 0.0f ? kCoatLightKept : 1.0f);
     glBindTextureUnit(1, b.colorTexture());
     if (p == strandProgram.get() || p == strandOitProgram.get()) {
       glProgramUniform2f(p, uniform(p, "uViewport"), static_cast<float>(width),
@@ -467,6 +493,52 @@ struct Renderer::Impl {
     l.layerEnds = {0.25f * L, 0.5f * L, L, 2.0f * L};
     l.fibreOpacity = list.light.fibreOpacity;
     return l;
+  }
+
+  // The coat light's spread for this frame in pixels: Light::coatSpread hair lengths seen at the
+  // creature's distance; 0 without the physical model's transparent strands.
+  float coatSpreadPixels(const scene::DrawList& list, bool transparentStrands) const {
+    if (!transparentStrands || list.hairShading != scene::HairShading::Physical ||
+        !(list.light.coatSpread > 0.0f) || !(list.hairLength > 0.0f) || list.bounds.isEmpty())
+      return 0.0f;
+    const float dist = std::max((list.bounds.center() - list.camera.eye).norm(), 1e-6f);
+    const float projScale = 0.5f * static_cast<float>(height) * list.camera.projection()(1, 1);
+    return std::min(list.light.coatSpread * list.hairLength * projScale / dist, 1000.0f);
+  }
+
+  // The coat's direct irradiance spread sideways (coat_spread.frag) from the transparent strands'
+  // targets into spreadTarget[0]; sets the resolve's uniforms.
+  void spreadCoatLight(const scene::DrawList& list) {
+    const GLuint composite = compositeProgram.get();
+    setFloat(composite, "uCoatSpreadShare", spreadPixels > 0.0f ? kCoatLightSpread : 0.0f);
+    setVec3(composite, "uLightColor", list.light.color);
+    glBindTextureUnit(9, oitCoat.get());
+    glBindTextureUnit(10, spreadTarget[0].get());  // bound, unread without the spread
+    if (!(spreadPixels > 0.0f)) return;
+    // At 1 / factor resolution (2 to 16), the Gaussian about 3 low-resolution pixels wide or more.
+    const int factor = std::clamp(static_cast<int>(spreadPixels / 3.0f), 2, 16);
+    const int lw = (width + factor - 1) / factor, lh = (height + factor - 1) / factor;
+    const GLuint p = spreadProgram.get();
+    glUseProgram(p);
+    setInt(p, "uFactor", factor);
+    glProgramUniform2i(p, uniform(p, "uSize"), lw, lh);
+    setFloat(p, "uSigma", std::max(spreadPixels / static_cast<float>(factor), 0.5f));
+    glBindTextureUnit(3, oitAccum.get());
+    glViewport(0, 0, lw, lh);
+    const int dirs[3][2] = {{0, 0}, {1, 0}, {0, 1}};
+    for (int pass = 0; pass < 3; ++pass) {
+      const int to = pass == 1 ? 1 : 0;  // average -> 0, blur x -> 1, blur y -> 0
+      if (pass > 0) glBindTextureUnit(10, spreadTarget[1 - to].get());
+      glBindFramebuffer(GL_FRAMEBUFFER, spreadFbo[to].get());
+      setInt(p, "uPass", pass);
+      glProgramUniform2i(p, uniform(p, "uDir"), dirs[pass][0], dirs[pass][1]);
+      glDrawArrays(GL_TRIANGLES, 0, 3);
+    }
+    glViewport(0, 0, width, height);
+    glBindTextureUnit(10, spreadTarget[0].get());
+    setFloat(composite, "uSpreadFactor", static_cast<float>(factor));
+    glProgramUniform2f(composite, uniform(composite, "uSpreadSize"), static_cast<float>(lw),
+                       static_cast<float>(lh));
   }
 
   RenderStats render(const scene::DrawList& list) {
@@ -578,11 +650,11 @@ struct Renderer::Impl {
              coats[static_cast<std::size_t>(f.coat)].layout().topology == fur::HairTopology::Strand;
     };
     bool anyTransparent = false;
+    for (const scene::FurDrawItem& f : list.fur)
+      anyTransparent = anyTransparent || isTransparent(f);
+    spreadPixels = coatSpreadPixels(list, anyTransparent);
     for (const scene::FurDrawItem& f : list.fur) {
-      if (isTransparent(f)) {
-        anyTransparent = true;
-        continue;
-      }
+      if (isTransparent(f)) continue;
       const HairVertexBuffers& b = coats[static_cast<std::size_t>(f.coat)];
       const bool strand = strands && b.layout().topology == fur::HairTopology::Strand;
       drawFurItem(f, strand ? strandProgram.get() : hairProgram.get(), list, light, bias);
@@ -598,14 +670,20 @@ struct Renderer::Impl {
       const float zero[4] = {0, 0, 0, 0}, one[4] = {1, 1, 1, 1};
       glClearNamedFramebufferfv(oitFbo.get(), GL_COLOR, 0, zero);
       glClearNamedFramebufferfv(oitFbo.get(), GL_COLOR, 1, one);
+      glClearNamedFramebufferfv(oitFbo.get(), GL_COLOR, 2, zero);
       glDepthMask(GL_FALSE);
       glEnable(GL_BLEND);
       glBlendFunci(0, GL_ONE, GL_ONE);
       glBlendFunci(1, GL_ZERO, GL_ONE_MINUS_SRC_COLOR);
+      glBlendFunci(2, GL_ONE, GL_ONE);
       for (const scene::FurDrawItem& f : list.fur)
         if (isTransparent(f)) drawFurItem(f, strandOitProgram.get(), list, light, bias);
-      glBindFramebuffer(GL_FRAMEBUFFER, resolveFbo.get());
       glDisable(GL_DEPTH_TEST);
+      glDisable(GL_BLEND);
+      glBindVertexArray(skinVao.get());  // any VAO: the triangles come from gl_VertexID
+      spreadCoatLight(list);
+      glEnable(GL_BLEND);
+      glBindFramebuffer(GL_FRAMEBUFFER, resolveFbo.get());
       // Colour: the strands' mean over what lies behind (c a + dst (1 - a)); alpha: coverage
       // composited over (a + dst_a (1 - a)), a = 1 - revealage.
       glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);

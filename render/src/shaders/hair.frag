@@ -27,6 +27,7 @@ uniform int uShading;  // scene::HairShading: 0 paper, 1 Kajiya-Kay, 2 Marschner
 uniform bool uPerHairColor;  // the hair's colour is its diffuse, times uAmbientRatio its ambient
 uniform float uAmbientRatio;
 uniform float uShadowBias;
+uniform float uCoatDirect;  // the physical model's k_d (lighting.glsl): 1 unless the coat spreads
 #ifdef OIT
 // Weighted blended order-independent transparency (McGuire and Bavoil 2013): every strand fragment
 // adds its premultiplied colour times a weight to the accumulation target and multiplies the
@@ -36,6 +37,9 @@ uniform float uShadowBias;
 uniform vec2 uDepthRange;  // distance from the eye to the creature's bounds: near, far
 layout(location = 0) out vec4 fAccum;
 layout(location = 1) out float fReveal;
+// Under the physical model: the coat albedo and direct irradiance E = s max(N.L, 0), weighted as
+// the colour, that coat_spread.frag spreads sideways (a = 0 elsewhere).
+layout(location = 2) out vec4 fCoat;
 #else
 layout(location = 0) out vec4 fColor;
 #endif
@@ -51,7 +55,7 @@ void main() {
   float s = shadowFactor(P_IN, uShadowBias);
   vec3 kd = uPerHairColor ? C_IN : uKd;
   vec3 ka = uPerHairColor ? C_IN * uAmbientRatio : uKa;
-  vec3 c = uShading == 3   ? physicalFur(u, T_IN, P_IN, kd, s)
+  vec3 c = uShading == 3   ? physicalFur(u, T_IN, P_IN, kd, s, uCoatDirect)
            : uShading == 2 ? marschner(u, P_IN, ka, kd, uKs, s)
            : uShading == 1 ? kajiyaKay(u, P_IN, ka, kd, uKs, uShininess, s)
                            : phong(u, P_IN, ka, kd, uKs, uShininess, s);
@@ -61,6 +65,7 @@ void main() {
   float w = a * (0.05 + 10.0 * pow(1.0 - t, 3.0));
   fAccum = vec4(c * a, a) * w;
   fReveal = a;
+  fCoat = uShading == 3 ? vec4(coatAlbedo(kd), s * max(dot(u, uLightDir), 0.0)) * (a * w) : vec4(0.0);
 #else
   fColor = vec4(c, 1.0);
 #endif

@@ -149,7 +149,11 @@ vec3 marschner(vec3 T, vec3 P, vec3 Ka, vec3 Kd, vec3 Ks, float s) {
 //   multiple-scattering albedo of a finite coat, A = c^g (fewer bounces than Chiang's
 //   infinite-volume colour mapping assumes, so paler than the colour c), keeping a share k_a of
 //   the ambient (the rest stopped by the coat and the body);
-//     coat = A (k_a La + s Ld max(N.L, 0));
+//     coat = A (k_a La + k_d s Ld max(N.L, 0)),
+//   k_d = 1 where the strands are opaque (lines, tubes, strands without transparency); with
+//   transparent strands, k_d = 0.5 of it stays at the hair and k_s = 0.6 more reaches the coat
+//   spread sideways over about two hair lengths, as light scattered many times among the hairs
+//   leaves the coat away from where it entered (coat_spread.frag, Light::coatSpread);
 // - the fibre, about the strand's tangent T (absent for lines and tubes, which carry none):
 //   Marschner's R, TT and TRT lobes with Chiang's roughness (longitudinal width beta = 0.726 r +
 //   0.812 r^2 for Cycles' default r = 0.3, cuticle tilt 2 deg), the dielectric's Fresnel
@@ -160,14 +164,19 @@ vec3 marschner(vec3 T, vec3 P, vec3 Ka, vec3 Kd, vec3 Ks, float s) {
 //     fibre = s Ld cos(theta_i) (F_r M_R N_R + (1 - F_t)^2 T_abs M_TT N_TT
 //                                 + (1 - F_t)^2 F_t T_abs^2 M_TRT N_TRT) / cos^2(theta_d),
 //   M_p N_p from hairLobes(), F_r at cos(theta_d) cos(phi / 2), F_t at cos(theta_d).
-// g and k_a were fitted on the six committed views (docs/reference/figures.json, README).
+// g, k_a and the spread light's shares (k_d, k_s: renderer.cpp's kCoatLightKept and
+// kCoatLightSpread) were fitted on the six committed views (docs/reference/figures.json, README).
 const float kPhysGamma = 0.7;    // g: the coat's albedo exponent
-const float kPhysAmbient = 0.7;  // k_a: the share of the ambient the coat keeps
-vec3 physicalFur(vec3 N, vec3 T, vec3 P, vec3 c, float s) {
+const float kPhysAmbient = 0.6;  // k_a: the share of the ambient the coat keeps
+// The coat's multiple-scattering albedo A = c^g.
+vec3 coatAlbedo(vec3 c) { return pow(max(c, vec3(1e-4)), vec3(kPhysGamma)); }
+// The physical model's colour for a hair point: coatDirect is k_d above.
+vec3 physicalFur(vec3 N, vec3 T, vec3 P, vec3 c, float s, float coatDirect) {
   vec3 L = uLightDir;
   vec3 V = normalize(uEye - P);
-  vec3 albedo = pow(max(c, vec3(1e-4)), vec3(kPhysGamma));
-  vec3 color = albedo * (kPhysAmbient * uAmbientLight + s * uLightColor * max(dot(N, L), 0.0));
+  vec3 albedo = coatAlbedo(c);
+  vec3 color =
+      albedo * (kPhysAmbient * uAmbientLight + coatDirect * s * uLightColor * max(dot(N, L), 0.0));
   if (dot(T, T) < 0.5) return color;
   const float r = 0.3;
   const float beta = 0.726 * r + 0.812 * r * r;

@@ -37,6 +37,11 @@ struct Light {
   // (95 % coverage) at 74 % of its unshadowed brightness on the Fox (opaque fibres: 38 %); its
   // calibration against a path tracer is open.
   float fibreOpacity = 0.1f;
+  // How far the physical fur model's coat spreads its direct light sideways, in hair lengths (the
+  // standard deviation of the spread; transparent strands only): light scattered many times among
+  // the hairs leaves the coat away from where it entered, so the body's shadow edges are soft and
+  // shadowed fur beside lit fur is filled. 0 = none (every hair shaded where it is).
+  float coatSpread = 2.0f;
 };
 
 // The skin's lighting material (linear) for a typed, sRGB-encoded diffuse colour (the same ambient,

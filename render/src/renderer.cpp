@@ -438,6 +438,15 @@ struct Renderer::Impl {
     setMatrix(program, "uViewProj", list.camera.viewProjection());
   }
 
+  // Pixels per metre across the view at unit distance from the eye (0.5 H P11).
+  float projScale(const scene::DrawList& list) const {
+    return 0.5f * static_cast<float>(height) * list.camera.projection()(1, 1);
+  }
+  // The distance from the eye to the creature's bounds' centre (1 without bounds).
+  static float creatureDistance(const scene::DrawList& list) {
+    return list.bounds.isEmpty() ? 1.0f : (list.bounds.center() - list.camera.eye).norm();
+  }
+
   // Draws coat `f` with `program` (lines, tubes, or strands with or without transparency).
   void drawFurItem(const scene::FurDrawItem& f, GLuint p, const scene::DrawList& list,
                    const LightFrame& light, float bias) {
@@ -457,11 +466,11 @@ struct Renderer::Impl {
       setFloat(p, "uRootWidth", 1e-3f * f.width.rootMm);
       setFloat(p, "uTipWidth", 1e-3f * f.width.tipMm);
       setFloat(p, "uWiden", std::max(f.cullFactor, 1.0f));
-      setFloat(p, "uProjScale", 0.5f * static_cast<float>(height) * list.camera.projection()(1, 1));
+      setFloat(p, "uProjScale", projScale(list));
       if (p == strandOitProgram.get()) {
         // The creature's bounds as seen from the eye: the weights' depth range.
         const Eigen::AlignedBox3f& box = list.bounds;
-        const float dist = box.isEmpty() ? 1.0f : (box.center() - list.camera.eye).norm();
+        const float dist = creatureDistance(list);
         const float r = box.isEmpty() ? 1.0f : 0.5f * box.diagonal().norm();
         glProgramUniform2f(p, uniform(p, "uDepthRange"), std::max(dist - r, 0.0f), dist + r);
       }
@@ -501,9 +510,9 @@ struct Renderer::Impl {
     if (!transparentStrands || list.hairShading != scene::HairShading::Physical ||
         !(list.light.coatSpread > 0.0f) || !(list.hairLength > 0.0f) || list.bounds.isEmpty())
       return 0.0f;
-    const float dist = std::max((list.bounds.center() - list.camera.eye).norm(), 1e-6f);
-    const float projScale = 0.5f * static_cast<float>(height) * list.camera.projection()(1, 1);
-    return std::min(list.light.coatSpread * list.hairLength * projScale / dist, 1000.0f);
+    return std::min(list.light.coatSpread * list.hairLength * projScale(list) /
+                        std::max(creatureDistance(list), 1e-6f),
+                    1000.0f);
   }
 
   // The coat's direct irradiance spread sideways (coat_spread.frag) from the transparent strands'

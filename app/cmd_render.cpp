@@ -107,6 +107,8 @@ void runRender(RenderArgs& a) {
   o.selfShadowing = a.view.selfShadowed();
   o.lightAzimuth = a.view.lightAzimuth();
   o.lightElevation = a.view.lightElevation();
+  o.lightColor = a.view.keyLightColor();
+  o.ambient = a.view.ambientLight();
   o.skinColor = a.view.skin();
   o.look.background = a.view.backgroundColor();
   o.transparentBackground = a.view.transparentBackground();

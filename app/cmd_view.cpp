@@ -74,6 +74,8 @@ void addViewCommand(CLI::App& app) {
     o->selfShadowing = view->selfShadowed();
     o->lightAzimuth = view->lightAzimuth();
     o->lightElevation = view->lightElevation();
+    o->lightColor = view->keyLightColor();
+    o->ambient = view->ambientLight();
     o->noCulling = view->noCulling;
     o->skinColor = view->skin();
     o->background = view->backgroundColor();

@@ -45,7 +45,8 @@ int& sharedThreads() {
 }  // namespace
 
 std::string_view optionForField(std::string_view field) {
-  static constexpr std::array<std::pair<std::string_view, std::string_view>, 30> kOptions{{
+  static constexpr std::array<std::pair<std::string_view, std::string_view>, 32> kOptions{{
+      {"ambient", "--ambient"},
       {"benchmark frames", "--benchmark-frames"},
       {"benchmark hairs", "--benchmark-hairs"},
       {"camera", "--camera"},
@@ -58,6 +59,7 @@ std::string_view optionForField(std::string_view field) {
       {"frames", "--frames"},
       {"hair source", "--hair-source"},
       {"light", "--light"},
+      {"light color", "--light-color"},
       {"hold", "--hold"},
       {"no fur", "--no-fur"},
       {"out", "--out"},
@@ -462,6 +464,38 @@ void ViewOptions::add(CLI::App& cmd) {
                      number(static_cast<double>(scene::kKeyLightAzimuthDegrees)) + " " +
                      number(static_cast<double>(scene::kKeyLightElevationDegrees)) + ")")
       ->expected(2);
+  const scene::Light defaults;
+  cmd.add_option("--light-color", lightColor,
+                 "The key light's colour and strength: I, or R G B (linear, each in [0, " +
+                     number(static_cast<double>(scene::kMaxLightIntensity)) + "]; default " +
+                     number(static_cast<double>(defaults.color.x())) +
+                     "; 0 leaves the ambient light alone)")
+      ->expected(1, 3);
+  cmd.add_option("--ambient", ambient,
+                 "The ambient light: I, or R G B (linear, each in [0, " +
+                     number(static_cast<double>(scene::kMaxLightIntensity)) + "]; default " +
+                     number(static_cast<double>(defaults.ambient.x())) +
+                     "; 0 leaves the key light alone)")
+      ->expected(1, 3);
+}
+
+namespace {
+// I (grey) or R G B from an option's values; `fallback` when not given.
+Eigen::Vector3f intensity(const std::vector<float>& v, const char* option,
+                          const Eigen::Vector3f& fallback) {
+  if (v.empty()) return fallback;
+  if (v.size() == 1) return Eigen::Vector3f::Constant(v[0]);
+  if (v.size() != 3) inputError(option, " takes I or R G B, got ", v.size(), " values");
+  return {v[0], v[1], v[2]};
+}
+}  // namespace
+
+Eigen::Vector3f ViewOptions::keyLightColor() const {
+  return intensity(lightColor, "--light-color", scene::Light{}.color);
+}
+
+Eigen::Vector3f ViewOptions::ambientLight() const {
+  return intensity(ambient, "--ambient", scene::Light{}.ambient);
 }
 
 float ViewOptions::lightAzimuth() const {
@@ -544,6 +578,8 @@ void ViewOptions::validate() const {
     scene::validateColor(Eigen::Vector3f(skinColor[0], skinColor[1], skinColor[2]), "skin color");
   }
   scene::validateLightAngles(lightAzimuth(), lightElevation());
+  scene::validateLightIntensity(keyLightColor(), "light color");
+  scene::validateLightIntensity(ambientLight(), "ambient");
 }
 
 // ---- Output folders --------------------------------------------------------------------------

@@ -155,6 +155,8 @@ struct ViewOptions {
   std::vector<float> skinColor;
   std::vector<std::string> background;  // "transparent", or R G B (sRGB, [0, 1])
   std::vector<float> light;             // the key light's azimuth and elevation (degrees)
+  std::vector<float> lightColor;        // the key light's colour: I or R G B (linear)
+  std::vector<float> ambient;           // the ambient light: I or R G B (linear)
   void add(CLI::App& cmd);
   int width() const;
   int height() const;
@@ -172,6 +174,9 @@ struct ViewOptions {
   // --light AZ EL, or the default place (scene/light.h).
   float lightAzimuth() const;
   float lightElevation() const;
+  // --light-color and --ambient (one value: grey), or scene::Light's defaults (linear RGB).
+  Eigen::Vector3f keyLightColor() const;
+  Eigen::Vector3f ambientLight() const;
   // Parses and checks every value (size, samples, fov, names, colour).
   void validate() const;
 };

@@ -195,6 +195,9 @@ Args:
     lines, transparency, shadows, self_shadowing: bools as the command line's switches.
     light: (azimuth, elevation) of the key light, degrees (azimuth about +Z from +X in
         [-360, 360], elevation above the ground in [-90, 90]); default (35, 50).
+    light_color, ambient: the key light's colour and the ambient light, linear: one intensity or
+        (r, g, b), each in [0, 16]; default 1 and 0.35. The frame is linear in them: with one
+        of them 0 it holds the other's part of the light.
     samples: MSAA samples (-1: 4 on a GPU, none on a software rasteriser).
     dynamics: as Fur.hairs(); skin_color: (r, g, b) in [0, 1].
     background: None (the default colour), (r, g, b) sRGB in [0, 1], or "transparent".

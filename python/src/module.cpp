@@ -390,6 +390,24 @@ Eigen::Vector3f colorOf(const py::object& value, const char* keyword) {
   return rgb;
 }
 
+// render()'s light_color and ambient: one intensity (grey) or (r, g, b), linear, each in [0, 16].
+Eigen::Vector3f intensityOf(const py::object& value, const char* keyword) {
+  std::vector<float> c;
+  try {
+    if (py::isinstance<py::float_>(value) || py::isinstance<py::int_>(value))
+      c.assign(3, value.cast<float>());
+    else
+      c = value.cast<std::vector<float>>();
+  } catch (const py::cast_error&) {
+  }
+  if (c.size() != 3)
+    throw py::value_error(std::string(keyword) +
+                          ": one intensity or three values (r, g, b), linear, each in [0, 16]");
+  const Eigen::Vector3f rgb(c[0], c[1], c[2]);
+  scene::validateLightIntensity(rgb, keyword);
+  return rgb;
+}
+
 // render()'s background: None (the default colour, opaque), "transparent" (straight alpha), or an
 // (r, g, b) sRGB colour in [0, 1]; returns whether it is transparent.
 bool backgroundOf(const py::object& background, render::SequenceOptions& o) {
@@ -406,9 +424,10 @@ bool backgroundOf(const py::object& background, render::SequenceOptions& o) {
 py::array_t<std::uint8_t> renderFrame(PyModel& m, const py::object& clip, const py::object& furArg,
                                       const py::kwargs& kwargs) {
   const Keywords kw("render", kwargs,
-                    {"frame", "fps", "time", "size", "camera", "fov", "follow", "hair_source",
-                     "shading", "lines", "transparency", "shadows", "self_shadowing", "samples",
-                     "dynamics", "skin_color", "background", "light"});
+                    {"frame",        "fps",        "time",           "size",        "camera",
+                     "fov",          "follow",     "hair_source",    "shading",     "lines",
+                     "transparency", "shadows",    "self_shadowing", "samples",     "dynamics",
+                     "skin_color",   "background", "light",          "light_color", "ambient"});
   scene::Model& model = *m.model;
   const std::shared_ptr<const scene::Fur> fur = furOf(m, furArg);
   render::SequenceOptions o;
@@ -434,6 +453,10 @@ py::array_t<std::uint8_t> renderFrame(PyModel& m, const py::object& clip, const 
                                                              scene::kKeyLightElevationDegrees));
   o.lightAzimuth = light.first;
   o.lightElevation = light.second;
+  if (const py::object c = kw.object("light_color"); !c.is_none())
+    o.lightColor = intensityOf(c, "light_color");
+  if (const py::object a = kw.object("ambient"); !a.is_none())
+    o.ambient = intensityOf(a, "ambient");
   o.transparentBackground = backgroundOf(kw.object("background"), o);
   const py::object skinColor = kw.object("skin_color");
   if (!skinColor.is_none()) o.skinColor = colorOf(skinColor, "skin_color");

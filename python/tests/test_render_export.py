@@ -48,6 +48,36 @@ def test_render_look_options_match_the_command_line(monkey, cli, tmp_path):
         render(monkey, "walk", fur=fur, frame=3, size=(192, 108), light=(0, 95))
 
 
+@pytest.mark.skipif(render is None, reason="built without the renderer (PELAGE_BUILD_VIEWER)")
+def test_render_light_parts_match_the_command_line(monkey, cli, tmp_path):
+    from PIL import Image
+
+    fur = monkey.fur(hairs=6000)
+    common = dict(fur=fur, frame=3, size=(160, 90), background="transparent")
+    key = render(monkey, "walk", light_color=(1.2, 1.0, 0.8), ambient=0, **common)
+    cli("render", "--clip", "walk", "--hairs", 6000, "--frames", 3, "--size", "160x90",
+        "--background", "transparent", "--light-color", 1.2, 1.0, 0.8, "--ambient", 0, "--out",
+        tmp_path)
+    png = np.asarray(Image.open(tmp_path / "frame_00003.png"))
+    np.testing.assert_array_equal(key, png)
+    # The frame lit by both is, in linear light, the key light's part plus the ambient's.
+    ambient = render(monkey, "walk", light_color=0, ambient=0.35, **common)
+    both = render(monkey, "walk", light_color=(1.2, 1.0, 0.8), ambient=0.35, **common)
+
+    def linear(rgba):
+        c = rgba[..., :3] / 255.0
+        lin = np.where(c <= 0.04045, c / 12.92, ((c + 0.055) / 1.055) ** 2.4)
+        return lin * (rgba[..., 3:] / 255.0)
+
+    parts = linear(key) + linear(ambient)
+    assert linear(key).sum() > 0.2 * linear(both).sum()
+    assert np.abs(linear(both) - parts).mean() < 0.002
+    with pytest.raises(ValueError, match=r"ambient.*out of range \[0, 16\]"):
+        render(monkey, "walk", ambient=(0.3, 0.3, 17), **common)
+    with pytest.raises(ValueError, match=r"light_color: one intensity or three values"):
+        render(monkey, "walk", light_color=(1, 1), **common)
+
+
 def _files(directory):
     return sorted(os.listdir(directory))
 

@@ -48,6 +48,8 @@ void validateSequenceOptions(const SequenceOptions& o) {
     fieldError("dynamics", "on needs a clip: the rest pose does not move");
   if (o.skinColor) scene::validateColor(*o.skinColor, "skin color");
   scene::validateLightAngles(o.lightAzimuth, o.lightElevation);
+  scene::validateLightIntensity(o.lightColor, "light color");
+  scene::validateLightIntensity(o.ambient, "ambient");
   if (o.sceneFiles && o.playback.hairSource != scene::HairSource::Cpu)
     fieldError("scene files", "needs the hairs computed on the CPU (hair source cpu)");
   if (!o.video.empty()) {
@@ -81,6 +83,8 @@ struct SequenceRenderer::Impl {
   scene::Light light() const {
     scene::Light l;
     l.direction = scene::lightDirection(options.lightAzimuth, options.lightElevation);
+    l.color = options.lightColor;
+    l.ambient = options.ambient;
     l.shadows = options.shadows;
     l.selfShadowing = options.selfShadowing;
     return l;

@@ -29,6 +29,13 @@ void validateColor(const Eigen::Vector3f& rgb, std::string_view field) {
       fieldError(std::string(field), "RGB"[c], " = ", rgb[c], " is out of range [0, 1]");
 }
 
+void validateLightIntensity(const Eigen::Vector3f& rgb, std::string_view field) {
+  for (int c = 0; c < 3; ++c)
+    if (!(rgb[c] >= 0.0f && rgb[c] <= kMaxLightIntensity))
+      fieldError(std::string(field), "RGB"[c], " = ", rgb[c], " is out of range [0, ",
+                 kMaxLightIntensity, "]");
+}
+
 Material skinMaterial(const Eigen::Vector3f& color) {
   Material m;
   m.ambient = color;

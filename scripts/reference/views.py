@@ -13,10 +13,19 @@
                               the committed references, with new side-by-sides (no Blender):
                               after a change of pelage's look that leaves the hairs as they were
                               (shading, lighting)
+  views.py parts OUT [NAME...]
+                              the light's two parts apart (Blender; nothing committed): each view
+                              path-traced and drawn by pelage once lit by the key light alone
+                              (--ambient 0) and once by the ambient alone (--light-color 0), into
+                              OUT/NAME_key/ and OUT/NAME_ambient/ (reference-render.sh's files);
+                              prints each part's mean linear luminance over the creature in
+                              pelage and Cycles, their ratio and the part's MAE, and writes them
+                              to OUT/parts.json. A shading model is calibrated part by part with
+                              it: a wrong balance between the parts cancels in the full frame
 
 The views are scripts/reference/views.txt. Environment: PELAGE (the pelage binary, default
 build/bin/pelage), PELAGE_SHARED_MODELS_DIR (the shared models, default ../shared/models),
-SAMPLES (Cycles samples per pixel for render, both renders together; default 1024).
+SAMPLES (Cycles samples per pixel for render, both renders together; default 1024; parts: 256).
 """
 import json
 import os
@@ -24,6 +33,8 @@ import shutil
 import subprocess
 import sys
 import tempfile
+
+import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.normpath(os.path.join(HERE, "..", ".."))
@@ -120,6 +131,50 @@ def render(names):
     return 0
 
 
+# The light's parts: the option that leaves each alone (pelage render's --ambient, --light-color).
+PARTS = (("key", "--ambient"), ("ambient", "--light-color"))
+
+
+def part_luminance(rgba):
+    """The mean linear luminance of a straight-alpha RGBA8 image's creature, premultiplied, over
+    its pixels with alpha above half."""
+    alpha = rgba[..., 3].astype(np.float64) / 255.0
+    lum = compare.srgb_to_linear(rgba[..., :3].astype(np.float64) / 255.0) @ compare.LUMA
+    return lum, alpha
+
+
+def parts(out, names):
+    os.makedirs(out, exist_ok=True)
+    table = {}
+    print("%-14s %-8s %9s %9s %7s %8s" % ("view", "part", "pelage", "Cycles", "ratio", "MAE/255"))
+    for name, model, options in selected(names):
+        table[name] = {}
+        for part, option in PARTS:
+            folder = os.path.join(out, "%s_%s" % (name, part))
+            env = dict(os.environ, SAMPLES=os.environ.get("SAMPLES", "256"))
+            subprocess.run([os.path.join(ROOT, "scripts", "reference-render.sh"),
+                            model_path(model), folder] + options + [option, "0"],
+                           check=True, env=env, stdout=subprocess.DEVNULL)
+            frames = sorted(f for f in os.listdir(os.path.join(folder, "pelage"))
+                            if f.endswith(".png"))
+            pel = compare.read_rgba(os.path.join(folder, "pelage", frames[0]))
+            cyc = compare.read_rgba(os.path.join(folder, "cycles.png"))
+            (lp, ap), (lc, ac) = part_luminance(pel), part_luminance(cyc)
+            creature = (ap > 0.5) | (ac > 0.5)
+            with open(os.path.join(folder, "figures.json")) as f:
+                mae = json.load(f)["mae"]
+            entry = {"pelage": float((lp * ap)[creature].mean()),
+                     "cycles": float((lc * ac)[creature].mean()), "mae": mae}
+            entry["ratio"] = entry["cycles"] / max(entry["pelage"], 1e-12)
+            table[name][part] = entry
+            print("%-14s %-8s %9.4f %9.4f %7.2f %8.1f" % (name, part, entry["pelage"],
+                                                          entry["cycles"], entry["ratio"], mae))
+    with open(os.path.join(out, "parts.json"), "w") as f:
+        json.dump(table, f, indent=1, sort_keys=True)
+        f.write("\n")
+    return 0
+
+
 def check(names, record=False):
     with open(FIGURES) as f:
         recorded = json.load(f)
@@ -162,11 +217,13 @@ def check(names, record=False):
 
 
 def main(argv):
-    if not argv or argv[0] not in ("render", "check", "record"):
+    if not argv or argv[0] not in ("render", "check", "record", "parts") or argv == ["parts"]:
         print(__doc__.strip(), file=sys.stderr)
         return 2
     if argv[0] == "render":
         return render(argv[1:])
+    if argv[0] == "parts":
+        return parts(argv[1], argv[2:])
     return check(argv[1:], record=argv[0] == "record")
 
 

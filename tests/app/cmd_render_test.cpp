@@ -187,6 +187,17 @@ TEST_F(RenderCommand, SceneFilesBesideTheFrames) {
   const Eigen::Vector3f towards = scene::lightDirection(-150.0f, 20.0f).normalized();
   for (int a = 0; a < 3; ++a)
     EXPECT_NEAR(header["light"]["direction"][a].get<float>(), towards[a], 1e-6f) << a;
+  // The key light's colour and the ambient (--light-color, --ambient) reach the scene, so the
+  // path tracer renders the same light's parts (scripts/reference/views.py parts).
+  const RunResult k = runPelage("render " + args("2", dir.file("k")) + light +
+                                " --scene-files --light-color 2 1 0.5 --ambient 0");
+  ASSERT_EQ(k.exitCode, 0) << k.output;
+  const std::string keyScene = readText(dir.file("k/frame_00002.pelscene"));
+  std::memcpy(&length, keyScene.data() + 8, 8);
+  const nlohmann::json keyHeader = nlohmann::json::parse(keyScene.substr(16, length));
+  EXPECT_EQ(keyHeader["light"]["color"], nlohmann::json({2.0, 1.0, 0.5}));
+  EXPECT_EQ(keyHeader["light"]["ambient"], nlohmann::json({0.0, 0.0, 0.0}));
+  EXPECT_NE(readText(dir.file("k/frame_00002.png")), readText(dir.file("plain/frame_00002.png")));
 }
 
 TEST_F(RenderCommand, MissingFfmpegFailsBeforeRendering) {
@@ -245,6 +256,12 @@ INSTANTIATE_TEST_SUITE_P(
                   "--light azimuth 400 is out of range [-360, 360]"},
         BadRender{"light_elevation", "<args> --frames 0 --light 0 95",
                   "--light elevation 95 is out of range [-90, 90]"},
+        BadRender{"light_color", "<args> --frames 0 --light-color 1 17 1",
+                  "--light-color G = 17 is out of range [0, 16]"},
+        BadRender{"light_color_count", "<args> --frames 0 --light-color 1 1",
+                  "--light-color takes I or R G B, got 2 values"},
+        BadRender{"ambient", "<args> --frames 0 --ambient -0.5",
+                  "--ambient R = -0.5 is out of range [0, 16]"},
         BadRender{"camera", "<args> --frames 0:1 --camera overhead",
                   "unknown camera preset 'overhead'"},
         BadRender{"camera_file", "<args> --frames 0:1 --camera-file <dir>/none.json", "none.json"},

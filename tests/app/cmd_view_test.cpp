@@ -167,6 +167,7 @@ TEST(ViewCommand, BadOptionsGetClearMessages) {
       {"--headless --frames -1", "--frames -1 is out of range"},
       {"--headless --style fuzzy", "accepted: line, polyline, curve, tube"},
       {"--headless --skin-color 0.5 2 0.5", "--skin-color G = 2 is out of range [0, 1]"},
+      {"--headless --ambient 0.3 0.3 20", "--ambient B = 20 is out of range [0, 16]"},
       {dir.file("missing.obj") + " --headless", "missing.obj", true},
       {"--headless --screenshot " + dir.file("no/such/dir/x.png"), "x.png"},
   };

@@ -529,6 +529,52 @@ TEST_F(FurRenderTest, PhysicalCoatSpreadsItsLightIntoTheBodysShadow) {
   EXPECT_NEAR(allB / allA, 1.0, 0.15);
 }
 
+TEST_F(FurRenderTest, FrameIsTheSumOfItsKeyAndAmbientLight) {
+  // Every shading term is linear in the light (Light::color, Light::ambient): a frame over black
+  // equals, in linear light, the frame lit by the key light alone plus the frame lit by the
+  // ambient alone (pelage render --ambient 0 / --light-color 0: the parts scripts/reference/
+  // views.py measures against a path tracer's). The default look: physical fur, transparent
+  // strands with the coat's spread light, the shadow map and self-shadowing.
+  const scene::Fur fur = scene::growFur(critter(), testFur(30000));
+  const scene::Camera cam = camera(scene::CameraPreset::ThreeQuarter, 160, fur);
+  scene::DrawOptions opt;
+  opt.hairSource = scene::HairSource::Gpu;
+  opt.hairShading = scene::HairShading::Physical;
+  opt.background = Eigen::Vector3f::Zero();
+  scene::Light both = plainLight(true, true, 0.1f);
+  both.color = Eigen::Vector3f(1.2f, 1.0f, 0.8f);
+  both.ambient = Eigen::Vector3f(0.3f, 0.35f, 0.45f);
+  scene::Light key = both, ambient = both;
+  key.ambient.setZero();
+  ambient.color.setZero();
+  const Image full = render(&fur, cam, opt, both).image;
+  const Image k = render(&fur, cam, opt, key).image;
+  const Image a = render(&fur, cam, opt, ambient).image;
+  double error = 0, worst = 0, sumFull = 0, sumKey = 0, sumAmbient = 0;
+  int n = 0;
+  for (int y = 0; y < full.height; ++y)
+    for (int x = 0; x < full.width; ++x)
+      for (int c = 0; c < 3; ++c) {
+        const double f = test::decoded(full.pixel(x, y)[c]);
+        const double parts = test::decoded(k.pixel(x, y)[c]) + test::decoded(a.pixel(x, y)[c]);
+        error += std::abs(f - parts);
+        worst = std::max(worst, std::abs(f - parts));
+        sumFull += f;
+        sumKey += test::decoded(k.pixel(x, y)[c]);
+        sumAmbient += test::decoded(a.pixel(x, y)[c]);
+        ++n;
+      }
+  std::printf(
+      "light parts: key %.3f + ambient %.3f of the frame; mean |frame - sum| %.5f, max %.4f\n",
+      sumKey / sumFull, sumAmbient / sumFull, error / n, worst);
+  // Both parts light the creature; their sum is the frame to within 8-bit rounding (three
+  // roundings of at most half a step each: 0.006 in linear light at the top of the range).
+  EXPECT_GT(sumKey, 0.2 * sumFull);
+  EXPECT_GT(sumAmbient, 0.1 * sumFull);
+  EXPECT_LT(error / n, 0.002);
+  EXPECT_LT(worst, 0.02);
+}
+
 TEST_F(FurRenderTest, CpuAndGpuHairsGiveTheSameImage) {
   const scene::Fur fur = scene::growFur(critter(), testFur(20000));
   const scene::Camera cam = camera(scene::CameraPreset::Front, 200, fur);

@@ -256,6 +256,8 @@ void validateViewerOptions(const ViewerOptions& o) {
     fieldError("frames", o.frames, " is out of range [0, ", kMaxViewerFrames, "]");
   scene::validateSamples(o.samples);
   scene::validateLightAngles(o.lightAzimuth, o.lightElevation);
+  scene::validateLightIntensity(o.lightColor, "light color");
+  scene::validateLightIntensity(o.ambient, "ambient");
   scene::validateStartSeconds(o.time);
   if (o.skinColor) scene::validateColor(*o.skinColor, "skin color");
   if (o.benchmarkFrames < 1 || o.benchmarkFrames > 100000)

@@ -57,6 +57,8 @@ ViewerSession::ViewerSession(const ViewerOptions& options, scene::Model model)
   selfShadowing = options.selfShadowing;
   lightAzimuth = options.lightAzimuth;
   lightElevation = options.lightElevation;
+  lightColor = options.lightColor;
+  ambient = options.ambient;
   dynamics = options.dynamics;
   dynamicsParams = options.dynamicsParams;
   fur::validateDynamicsParams(dynamicsParams, "dynamics");
@@ -320,6 +322,8 @@ void ViewerSession::frame(double dtSeconds, int width, int height) {
   if (drawFur) playback_->evaluateFur(cam);
   scene::Light light;
   light.direction = scene::lightDirection(lightAzimuth, lightElevation);
+  light.color = lightColor;
+  light.ambient = ambient;
   light.shadows = shadows;
   light.selfShadowing = selfShadowing;
   scene::DrawOptions opt;

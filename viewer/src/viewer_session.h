@@ -51,6 +51,8 @@ class ViewerSession {
   bool drawFur = true;
   float lightAzimuth = scene::kKeyLightAzimuthDegrees;
   float lightElevation = scene::kKeyLightElevationDegrees;
+  Eigen::Vector3f lightColor = scene::Light{}.color;
+  Eigen::Vector3f ambient = scene::Light{}.ambient;
   bool shadows = false;
   bool selfShadowing = true;
   bool playing = true;

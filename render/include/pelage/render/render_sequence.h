@@ -48,6 +48,9 @@ struct SequenceOptions {
   // The key light's place (scene::lightDirection), degrees.
   float lightAzimuth = scene::kKeyLightAzimuthDegrees;
   float lightElevation = scene::kKeyLightElevationDegrees;
+  // The key light's colour and the ambient light (linear; scene::Light's defaults).
+  Eigen::Vector3f lightColor = scene::Light{}.color;
+  Eigen::Vector3f ambient = scene::Light{}.ambient;
   std::string outDir;      // frames go to outDir/frame_NNNNN.png
   bool resume = false;     // skip frames whose PNG is already complete
   std::string video;       // "" or an .mp4/.gif path (ffmpeg)

@@ -52,6 +52,12 @@ Material skinMaterial(const Eigen::Vector3f& color);
 void validateLightAngles(float azimuthDegrees, float elevationDegrees,
                          std::string_view field = "light");
 
+// The most a light's intensity may be per channel (Light::color, Light::ambient; linear).
+inline constexpr float kMaxLightIntensity = 16.0f;
+// Checks a light's intensity (linear R, G, B, each in [0, kMaxLightIntensity]); InputError naming
+// `field` otherwise ("ambient G = -1 is out of range [0, 16]").
+void validateLightIntensity(const Eigen::Vector3f& rgb, std::string_view field);
+
 // Checks that each of r, g, b is in [0, 1] (a typed colour: skin, background); InputError naming
 // `field` and the channel otherwise ("skin color G = 2 is out of range [0, 1]").
 void validateColor(const Eigen::Vector3f& rgb, std::string_view field);

@@ -45,6 +45,8 @@ struct ViewerOptions {
   bool selfShadowing = true;                            // the fur's deep opacity shadow
   float lightAzimuth = scene::kKeyLightAzimuthDegrees;  // the key light's place, degrees
   float lightElevation = scene::kKeyLightElevationDegrees;
+  Eigen::Vector3f lightColor = scene::Light{}.color;  // the key light's colour (linear)
+  Eigen::Vector3f ambient = scene::Light{}.ambient;   // the ambient light (linear)
   bool noCulling = false;
   bool dynamics = false;  // dynamic fur (fur/dynamics.h): hair ends lag through damped springs
   fur::DynamicsParams dynamicsParams;

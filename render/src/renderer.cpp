@@ -47,6 +47,11 @@ bool skinShadows(const scene::DrawList& list) {
 // fitted with lighting.glsl's g and k_a on the six committed reference views (README).
 constexpr float kCoatLightKept = 0.5f;
 constexpr float kCoatLightSpread = 0.6f;
+// The physical model's ambient by how the coat is seen (oit_composite.frag): the coat seen at a
+// grazing angle shows its outer layer, whose hairs see the whole sky, and face-on its depths, so
+// k_g La A (1 - |N.V|) more, N the skin's normal under the pixel. k_g fitted on the ambient's part
+// of the seven reference views against Cycles' (views.py parts, README).
+constexpr float kCoatGrazingAmbient = 0.6f;
 
 }  // namespace
 
@@ -62,6 +67,9 @@ struct Renderer::Impl {
   Framebuffer msaaFbo, resolveFbo, shadowFbo, oitFbo;
   Renderbuffer msaaColor, msaaDepth, resolveDepth;
   Texture resolveColor, shadowMap, oitAccum, oitReveal, oitCoat;
+  // The skin's depth as a texture for the transparency resolve (the coat's grazing ambient).
+  Texture skinDepth;
+  Framebuffer skinDepthFbo;
   // The coat's spread light (coat_spread.frag): (E m, m) at half resolution or less, ping-ponged.
   Framebuffer spreadFbo[2];
   Texture spreadTarget[2];
@@ -296,6 +304,11 @@ struct Renderer::Impl {
     oitAccum = texture(GL_RGBA32F);
     oitReveal = texture(GL_R32F);
     oitCoat = texture(GL_RGBA32F);  // the physical model's coat albedo and irradiance, weighted
+    skinDepth = makeTexture(GL_DEPTH_COMPONENT24, 1, w, h, GL_NEAREST, GL_NEAREST);
+    glCreateFramebuffers(1, &id);
+    skinDepthFbo.reset(id);
+    glNamedFramebufferTexture(id, GL_DEPTH_ATTACHMENT, skinDepth.get(), 0);
+    glNamedFramebufferDrawBuffer(id, GL_NONE);
     glCreateFramebuffers(1, &id);
     oitFbo.reset(id);
     glNamedFramebufferTexture(id, GL_COLOR_ATTACHMENT0, oitAccum.get(), 0);
@@ -521,6 +534,7 @@ struct Renderer::Impl {
     const GLuint composite = compositeProgram.get();
     setFloat(composite, "uCoatSpreadShare", spreadPixels > 0.0f ? kCoatLightSpread : 0.0f);
     setVec3(composite, "uLightColor", list.light.color);
+    setVec3(composite, "uAmbientLight", list.light.ambient);
     glBindTextureUnit(9, oitCoat.get());
     glBindTextureUnit(10, spreadTarget[0].get());  // bound, unread without the spread
     if (!(spreadPixels > 0.0f)) return;
@@ -548,6 +562,19 @@ struct Renderer::Impl {
     setFloat(composite, "uSpreadFactor", static_cast<float>(factor));
     glProgramUniform2f(composite, uniform(composite, "uSpreadSize"), static_cast<float>(lw),
                        static_cast<float>(lh));
+  }
+
+  // The physical model's grazing ambient (kCoatGrazingAmbient): the skin's depth copied for the
+  // resolve, which takes the skin's normal from it; off without the physical model or a skin.
+  void seeCoatGrazing(const scene::DrawList& list) {
+    const GLuint composite = compositeProgram.get();
+    const bool on = list.hairShading == scene::HairShading::Physical && list.skin.positions;
+    setFloat(composite, "uCoatGrazing", on ? kCoatGrazingAmbient : 0.0f);
+    if (!on) return;
+    glBlitNamedFramebuffer(resolveFbo.get(), skinDepthFbo.get(), 0, 0, width, height, 0, 0, width,
+                           height, GL_DEPTH_BUFFER_BIT, GL_NEAREST);
+    glBindTextureUnit(11, skinDepth.get());
+    setMatrix(composite, "uInverseProjection", list.camera.projection().inverse());
   }
 
   RenderStats render(const scene::DrawList& list) {
@@ -687,6 +714,7 @@ struct Renderer::Impl {
       glBlendFunci(2, GL_ONE, GL_ONE);
       for (const scene::FurDrawItem& f : list.fur)
         if (isTransparent(f)) drawFurItem(f, strandOitProgram.get(), list, light, bias);
+      seeCoatGrazing(list);
       glDisable(GL_DEPTH_TEST);
       glDisable(GL_BLEND);
       glBindVertexArray(skinVao.get());  // any VAO: the triangles come from gl_VertexID

@@ -529,6 +529,47 @@ TEST_F(FurRenderTest, PhysicalCoatSpreadsItsLightIntoTheBodysShadow) {
   EXPECT_NEAR(allB / allA, 1.0, 0.15);
 }
 
+TEST_F(FurRenderTest, PhysicalCoatAmbientGrowsWhereTheCoatIsSeenAtAGrazingAngle) {
+  // Ambient light alone on transparent strands: where no skin lies behind (the fringe) the coat is
+  // all outer layer, |N.V| = 0, and gets k_a La A + k_g La A (lighting.glsl's k_a = 0.6,
+  // renderer.cpp's k_g = 0.6, oit_composite.frag), twice the k_a La A of coat seen face-on.
+  const scene::Fur fur = scene::growFur(critter(), testFur(30000));
+  const scene::Camera cam = camera(scene::CameraPreset::Side, 320, fur);
+  scene::DrawOptions opt;
+  opt.hairSource = scene::HairSource::Gpu;
+  opt.hairShading = scene::HairShading::Physical;
+  scene::Light dark = plainLight();
+  dark.color = Eigen::Vector3f::Zero();
+  RendererOptions ro;
+  ro.samples = 0;
+  Renderer r(ro);
+  render(nullptr, cam, opt, dark, &r);
+  const Image bare = r.readPixels(FrameAlpha::Straight);
+  render(&fur, cam, opt, dark, &r);
+  const Image s = r.readPixels(FrameAlpha::Straight);
+  const Material mat = linearMaterial(fur.params.coats[0].material);
+  const auto lum = [](const Eigen::Vector3f& c) {
+    return 0.2126 * c.x() + 0.7152 * c.y() + 0.0722 * c.z();
+  };
+  Eigen::Vector3f albedo;
+  for (int c = 0; c < 3; ++c) albedo[c] = std::pow(mat.diffuse[c], 0.7f);
+  const double faceOn = lum(0.6f * dark.ambient.cwiseProduct(albedo));
+  std::vector<double> fringe;
+  for (int y = 0; y < s.height; ++y)
+    for (int x = 0; x < s.width; ++x) {
+      const std::uint8_t* p = s.pixel(x, y);
+      if (bare.pixel(x, y)[3] != 0 || p[3] < 128) continue;  // skin behind, or little coverage
+      fringe.push_back(
+          lum(Eigen::Vector3f(test::decoded(p[0]), test::decoded(p[1]), test::decoded(p[2]))));
+    }
+  ASSERT_GT(fringe.size(), 200u);
+  std::sort(fringe.begin(), fringe.end());
+  const double median = fringe[fringe.size() / 2];
+  std::printf("grazing ambient: the fringe's coat %.3f times face-on coat's k_a La A\n",
+              median / faceOn);
+  EXPECT_NEAR(median / faceOn, 2.0, 0.15);
+}
+
 TEST_F(FurRenderTest, FrameIsTheSumOfItsKeyAndAmbientLight) {
   // Every shading term is linear in the light (Light::color, Light::ambient): a frame over black
   // equals, in linear light, the frame lit by the key light alone plus the frame lit by the

@@ -152,8 +152,10 @@ vec3 marschner(vec3 T, vec3 P, vec3 Ka, vec3 Kd, vec3 Ks, float s) {
 //     coat = A (k_a La + k_d s Ld max(N.L, 0)),
 //   k_d = 1 where the strands are opaque (lines, tubes, strands without transparency); with
 //   transparent strands, k_d = 0.5 of it stays at the hair and k_s = 0.6 more reaches the coat
-//   spread sideways over about two hair lengths, as light scattered many times among the hairs
-//   leaves the coat away from where it entered (coat_spread.frag, Light::coatSpread);
+//   spread sideways over 0.7 hair lengths, as light scattered many times among the hairs
+//   leaves the coat away from where it entered (coat_spread.frag, Light::coatSpread), and the
+//   coat seen at a grazing angle, its outer layer, gets k_g La A (1 - |N.V|) more ambient, N the
+//   skin's normal (oit_composite.frag, renderer.cpp's kCoatGrazingAmbient);
 // - the fibre, about the strand's tangent T (absent for lines and tubes, which carry none):
 //   Marschner's R, TT and TRT lobes with Chiang's roughness (longitudinal width beta = 0.726 r +
 //   0.812 r^2 for Cycles' default r = 0.3, cuticle tilt 2 deg), the dielectric's Fresnel
@@ -165,7 +167,9 @@ vec3 marschner(vec3 T, vec3 P, vec3 Ka, vec3 Kd, vec3 Ks, float s) {
 //                                 + (1 - F_t)^2 F_t T_abs^2 M_TRT N_TRT) / cos^2(theta_d),
 //   M_p N_p from hairLobes(), F_r at cos(theta_d) cos(phi / 2), F_t at cos(theta_d).
 // g, k_a and the spread light's shares (k_d, k_s: renderer.cpp's kCoatLightKept and
-// kCoatLightSpread) were fitted on the six committed views (docs/reference/figures.json, README).
+// kCoatLightSpread) were fitted on the six committed views (docs/reference/figures.json, README);
+// k_g, the spread's width and the deep opacity map's fibre opacity on the light's two parts apart
+// against Cycles' (scripts/reference/views.py parts, README).
 const float kPhysGamma = 0.7;    // g: the coat's albedo exponent
 const float kPhysAmbient = 0.6;  // k_a: the share of the ambient the coat keeps
 // The coat's multiple-scattering albedo A = c^g.

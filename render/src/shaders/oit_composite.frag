@@ -4,15 +4,44 @@
 // coverage, composited over the alpha below (renderer.cpp).
 // Under the physical fur model the strands' mean coat albedo A (uCoat's rgb, weighted as the
 // colour) also receives the coat's spread direct light (coat_spread.frag): colour += k_s Ld A E~,
-// E~ the spread irradiance at this pixel (bilinear from the low-resolution target).
+// E~ the spread irradiance at this pixel (bilinear from the low-resolution target); and an ambient
+// by how the coat is seen (renderer.cpp's kCoatGrazingAmbient, k_g): colour += k_g La A (1 - |N.V|),
+// N the skin's normal under the pixel from its depth (the nearer of the two one-sided differences
+// 3 pixels along x and y, as screen-space ambient occlusion takes normals from depth), V towards
+// the eye; where no skin lies behind (the fringe) the coat is all outer layer, |N.V| = 0.
 layout(binding = 3) uniform sampler2D uAccum;
 layout(binding = 4) uniform sampler2D uReveal;
 layout(binding = 9) uniform sampler2D uCoat;
 layout(binding = 10) uniform sampler2D uSpread;  // (E~ m, m) at 1 / uSpreadFactor resolution
+layout(binding = 11) uniform sampler2D uSkinDepth;  // the skin's depth (with uCoatGrazing)
 uniform float uCoatSpreadShare;                  // k_s; 0: no spread light
 uniform float uSpreadFactor;
 uniform vec2 uSpreadSize;                        // the low-resolution target's used size
 uniform vec3 uLightColor;
+uniform vec3 uAmbientLight;
+uniform float uCoatGrazing;  // k_g; 0: off
+uniform mat4 uInverseProjection;
+// The skin's point under pixel q in eye space.
+vec3 skinPoint(ivec2 q, ivec2 size) {
+  q = clamp(q, ivec2(0), size - 1);
+  vec4 ndc = vec4((vec2(q) + 0.5) / vec2(size) * 2.0 - 1.0,
+                  texelFetch(uSkinDepth, q, 0).r * 2.0 - 1.0, 1.0);
+  vec4 v = uInverseProjection * ndc;
+  return v.xyz / v.w;
+}
+// |N.V| of the skin under pixel p (0 without skin).
+float skinFacing(ivec2 p) {
+  ivec2 size = textureSize(uSkinDepth, 0);
+  if (texelFetch(uSkinDepth, p, 0).r >= 1.0) return 0.0;
+  const int o = 3;
+  vec3 P = skinPoint(p, size);
+  vec3 xp = skinPoint(p + ivec2(o, 0), size) - P, xm = P - skinPoint(p - ivec2(o, 0), size);
+  vec3 yp = skinPoint(p + ivec2(0, o), size) - P, ym = P - skinPoint(p - ivec2(0, o), size);
+  vec3 dx = abs(xp.z) < abs(xm.z) ? xp : xm;
+  vec3 dy = abs(yp.z) < abs(ym.z) ? yp : ym;
+  vec3 n = cross(dx, dy);
+  return dot(n, n) > 0.0 ? abs(dot(normalize(n), normalize(-P))) : 0.0;
+}
 layout(location = 0) out vec4 fColor;
 void main() {
   ivec2 p = ivec2(gl_FragCoord.xy);
@@ -26,5 +55,7 @@ void main() {
     vec2 e = texture(uSpread, q / vec2(textureSize(uSpread, 0))).rg;
     c += uCoatSpreadShare * uLightColor * (texelFetch(uCoat, p, 0).rgb / w) * (e.x / max(e.y, 1e-12));
   }
+  if (uCoatGrazing > 0.0)
+    c += uCoatGrazing * uAmbientLight * (texelFetch(uCoat, p, 0).rgb / w) * (1.0 - skinFacing(p));
   fColor = vec4(c, 1.0 - reveal);
 }

@@ -35,7 +35,7 @@ struct Light {
   // scatter most of the light they meet on through the coat (mostly forward), so a dense coat is
   // lit deep inside, not black under its top layer. 1 = opaque fibres. 0.15 fitted on the key
   // light's part of the seven reference views against Cycles' (scripts/reference/views.py parts:
-  // its luminance within 0.83 to 1.16 times Cycles'; 0.1 left it 1.2 to 1.6 times too bright).
+  // Cycles' luminance 0.83 to 1.16 times pelage's; 0.1 left pelage's 1.2 to 1.6 times too bright).
   float fibreOpacity = 0.15f;
   // How far the physical fur model's coat spreads its direct light sideways, in hair lengths (the
   // standard deviation of the spread; transparent strands only): light scattered many times among

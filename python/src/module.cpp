@@ -377,33 +377,30 @@ std::vector<std::string> exportFrames(PyModel& m, const py::object& clip, const 
 
 #ifdef PELAGE_HAVE_RENDER
 // An (r, g, b) colour, each in [0, 1] (scene::validateColor names `keyword`).
-Eigen::Vector3f colorOf(const py::object& value, const char* keyword) {
+// A sequence of three numbers as (r, g, b); ValueError naming `keyword` with `accepted` otherwise.
+Eigen::Vector3f rgbOf(const py::object& value, const char* keyword, const char* accepted) {
   std::vector<float> c;
   try {
     c = value.cast<std::vector<float>>();
   } catch (const py::cast_error&) {
   }
-  if (c.size() != 3)
-    throw py::value_error(std::string(keyword) + ": three values (r, g, b), each in [0, 1]");
-  const Eigen::Vector3f rgb(c[0], c[1], c[2]);
+  if (c.size() != 3) throw py::value_error(std::string(keyword) + ": " + accepted);
+  return {c[0], c[1], c[2]};
+}
+
+Eigen::Vector3f colorOf(const py::object& value, const char* keyword) {
+  const Eigen::Vector3f rgb = rgbOf(value, keyword, "three values (r, g, b), each in [0, 1]");
   scene::validateColor(rgb, keyword);
   return rgb;
 }
 
 // render()'s light_color and ambient: one intensity (grey) or (r, g, b), linear, each in [0, 16].
 Eigen::Vector3f intensityOf(const py::object& value, const char* keyword) {
-  std::vector<float> c;
-  try {
-    if (py::isinstance<py::float_>(value) || py::isinstance<py::int_>(value))
-      c.assign(3, value.cast<float>());
-    else
-      c = value.cast<std::vector<float>>();
-  } catch (const py::cast_error&) {
-  }
-  if (c.size() != 3)
-    throw py::value_error(std::string(keyword) +
-                          ": one intensity or three values (r, g, b), linear, each in [0, 16]");
-  const Eigen::Vector3f rgb(c[0], c[1], c[2]);
+  const Eigen::Vector3f rgb =
+      py::isinstance<py::float_>(value) || py::isinstance<py::int_>(value)
+          ? Eigen::Vector3f::Constant(value.cast<float>())
+          : rgbOf(value, keyword,
+                  "one intensity or three values (r, g, b), linear, each in [0, 16]");
   scene::validateLightIntensity(rgb, keyword);
   return rgb;
 }

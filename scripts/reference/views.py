@@ -96,6 +96,11 @@ def render_pelage(model, options, out_dir):
     """pelage's frame as users render it (culling on), straight alpha; its PNG's path."""
     subprocess.run([pelage(), "render", model_path(model), "--out", out_dir, "--background",
                     "transparent", "--quiet"] + options, check=True)
+    return only_frame(out_dir)
+
+
+def only_frame(out_dir):
+    """The path of the one PNG frame in out_dir (exits otherwise)."""
     frames = sorted(f for f in os.listdir(out_dir) if f.endswith(".png"))
     if len(frames) != 1:
         sys.exit("views.py: expected one frame in %s, got %d" % (out_dir, len(frames)))
@@ -155,9 +160,7 @@ def parts(out, names):
             subprocess.run([os.path.join(ROOT, "scripts", "reference-render.sh"),
                             model_path(model), folder] + options + [option, "0"],
                            check=True, env=env, stdout=subprocess.DEVNULL)
-            frames = sorted(f for f in os.listdir(os.path.join(folder, "pelage"))
-                            if f.endswith(".png"))
-            pel = compare.read_rgba(os.path.join(folder, "pelage", frames[0]))
+            pel = compare.read_rgba(only_frame(os.path.join(folder, "pelage")))
             cyc = compare.read_rgba(os.path.join(folder, "cycles.png"))
             (lp, ap), (lc, ac) = part_luminance(pel), part_luminance(cyc)
             creature = (ap > 0.5) | (ac > 0.5)

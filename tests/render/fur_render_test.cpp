@@ -44,6 +44,27 @@ scene::Light plainLight(bool shadows = false, bool selfShadowing = false,
   return l;
 }
 
+// The default look's drawing options: GPU hairs, the physical fur model (transparent strands).
+scene::DrawOptions physicalLook() {
+  scene::DrawOptions o;
+  o.hairSource = scene::HairSource::Gpu;
+  o.hairShading = scene::HairShading::Physical;
+  return o;
+}
+
+// The physical model's coat albedo A = c^0.7 (lighting.glsl's g) of a linear colour.
+Eigen::Vector3f coatAlbedo(const Eigen::Vector3f& c) {
+  return c.array().pow(0.7f).matrix();
+}
+
+// Linear luminance of a linear colour, and of a read-back (sRGB-encoded) pixel.
+double luminance(const Eigen::Vector3f& c) {
+  return 0.2126 * c.x() + 0.7152 * c.y() + 0.0722 * c.z();
+}
+double luminance(const std::uint8_t* p) {
+  return luminance(Eigen::Vector3f(test::decoded(p[0]), test::decoded(p[1]), test::decoded(p[2])));
+}
+
 struct Shot {
   Image image;
   std::int64_t drawn = 0;
@@ -424,9 +445,7 @@ TEST_F(FurRenderTest, MarschnerLobesWearTheHairColourAndScatterForward) {
 TEST_F(FurRenderTest, PhysicalFurIsThePalerCoatAlbedoShadedByTheBody) {
   const scene::Fur fur = scene::growFur(critter(), testFur(30000));
   const scene::Camera cam = camera(scene::CameraPreset::Side, 320, fur);
-  scene::DrawOptions opt;
-  opt.hairSource = scene::HairSource::Gpu;
-  opt.hairShading = scene::HairShading::Physical;
+  scene::DrawOptions opt = physicalLook();
   {
     // Ambient light alone, 1-pixel lines (no tangent: the coat term only): every fur pixel is
     // k_a La c^g exactly (lighting.glsl: k_a = 0.6, g = 0.7), c the coat's linear diffuse colour.
@@ -436,10 +455,10 @@ TEST_F(FurRenderTest, PhysicalFurIsThePalerCoatAlbedoShadedByTheBody) {
     dark.color = Eigen::Vector3f::Zero();
     const Shot s = render(&fur, cam, opt, dark), bare = render(nullptr, cam, opt, dark);
     const Material mat = linearMaterial(fur.params.coats[0].material);
+    const Eigen::Vector3f albedo = coatAlbedo(mat.diffuse);
     std::array<float, 3> want{};
     for (int c = 0; c < 3; ++c)
-      want[static_cast<std::size_t>(c)] =
-          test::encoded255(0.6f * dark.ambient[c] * std::pow(mat.diffuse[c], 0.7f));
+      want[static_cast<std::size_t>(c)] = test::encoded255(0.6f * dark.ambient[c] * albedo[c]);
     int n = 0;
     for (int y = 0; y < s.image.height; ++y)
       for (int x = 0; x < s.image.width; ++x) {
@@ -472,9 +491,7 @@ TEST_F(FurRenderTest, PhysicalCoatSpreadsItsLightIntoTheBodysShadow) {
   for (fur::CoatParams& c : params.coats) c.material.diffuse = Eigen::Vector3f::Constant(0.8f);
   const scene::Fur fur = scene::growFur(critter(), params);
   const scene::Camera cam = camera(scene::CameraPreset::Side, 320, fur);
-  scene::DrawOptions opt;
-  opt.hairSource = scene::HairSource::Gpu;
-  opt.hairShading = scene::HairShading::Physical;  // transparent strands: the default
+  const scene::DrawOptions opt = physicalLook();  // transparent strands: the default
   const Eigen::Vector3f toEye = (cam.eye - cam.target).normalized();
   scene::Light side = plainLight(false, true, 0.1f);
   side.direction =
@@ -485,11 +502,7 @@ TEST_F(FurRenderTest, PhysicalCoatSpreadsItsLightIntoTheBodysShadow) {
   still.coatSpread = 0.0f;
   const Shot a = render(&fur, cam, opt, still), b = render(&fur, cam, opt, side);
   // Linear luminance of the fur pixels (those the coat changes), with and without the spread.
-  const auto lum = [](const Image& im, int x, int y) {
-    const std::uint8_t* p = im.pixel(x, y);
-    return 0.2126 * test::decoded(p[0]) + 0.7152 * test::decoded(p[1]) +
-           0.0722 * test::decoded(p[2]);
-  };
+  const auto lum = [](const Image& im, int x, int y) { return luminance(im.pixel(x, y)); };
   std::vector<std::pair<double, double>> pixels;
   double lapA = 0, lapB = 0;
   int inner = 0;
@@ -535,9 +548,7 @@ TEST_F(FurRenderTest, PhysicalCoatAmbientGrowsWhereTheCoatIsSeenAtAGrazingAngle)
   // renderer.cpp's k_g = 0.6, oit_composite.frag), twice the k_a La A of coat seen face-on.
   const scene::Fur fur = scene::growFur(critter(), testFur(30000));
   const scene::Camera cam = camera(scene::CameraPreset::Side, 320, fur);
-  scene::DrawOptions opt;
-  opt.hairSource = scene::HairSource::Gpu;
-  opt.hairShading = scene::HairShading::Physical;
+  const scene::DrawOptions opt = physicalLook();
   scene::Light dark = plainLight();
   dark.color = Eigen::Vector3f::Zero();
   RendererOptions ro;
@@ -548,19 +559,13 @@ TEST_F(FurRenderTest, PhysicalCoatAmbientGrowsWhereTheCoatIsSeenAtAGrazingAngle)
   render(&fur, cam, opt, dark, &r);
   const Image s = r.readPixels(FrameAlpha::Straight);
   const Material mat = linearMaterial(fur.params.coats[0].material);
-  const auto lum = [](const Eigen::Vector3f& c) {
-    return 0.2126 * c.x() + 0.7152 * c.y() + 0.0722 * c.z();
-  };
-  Eigen::Vector3f albedo;
-  for (int c = 0; c < 3; ++c) albedo[c] = std::pow(mat.diffuse[c], 0.7f);
-  const double faceOn = lum(0.6f * dark.ambient.cwiseProduct(albedo));
+  const double faceOn = luminance(0.6f * dark.ambient.cwiseProduct(coatAlbedo(mat.diffuse)));
   std::vector<double> fringe;
   for (int y = 0; y < s.height; ++y)
     for (int x = 0; x < s.width; ++x) {
       const std::uint8_t* p = s.pixel(x, y);
       if (bare.pixel(x, y)[3] != 0 || p[3] < 128) continue;  // skin behind, or little coverage
-      fringe.push_back(
-          lum(Eigen::Vector3f(test::decoded(p[0]), test::decoded(p[1]), test::decoded(p[2]))));
+      fringe.push_back(luminance(p));
     }
   ASSERT_GT(fringe.size(), 200u);
   std::sort(fringe.begin(), fringe.end());
@@ -578,9 +583,7 @@ TEST_F(FurRenderTest, FrameIsTheSumOfItsKeyAndAmbientLight) {
   // strands with the coat's spread light, the shadow map and self-shadowing.
   const scene::Fur fur = scene::growFur(critter(), testFur(30000));
   const scene::Camera cam = camera(scene::CameraPreset::ThreeQuarter, 160, fur);
-  scene::DrawOptions opt;
-  opt.hairSource = scene::HairSource::Gpu;
-  opt.hairShading = scene::HairShading::Physical;
+  scene::DrawOptions opt = physicalLook();
   opt.background = Eigen::Vector3f::Zero();
   scene::Light both = plainLight(true, true, 0.1f);
   both.color = Eigen::Vector3f(1.2f, 1.0f, 0.8f);

@@ -149,10 +149,11 @@ def part_luminance(rgba):
 
 
 def parts(out, names):
+    chosen = selected(names)  # unknown names exit before anything is written
     os.makedirs(out, exist_ok=True)
     table = {}
     print("%-14s %-8s %9s %9s %7s %8s" % ("view", "part", "pelage", "Cycles", "ratio", "MAE/255"))
-    for name, model, options in selected(names):
+    for name, model, options in chosen:
         table[name] = {}
         for part, option in PARTS:
             folder = os.path.join(out, "%s_%s" % (name, part))

@@ -442,6 +442,7 @@ struct Renderer::Impl {
     setVec3(program, "uLightColor", list.light.color);
     setVec3(program, "uAmbientLight", list.light.ambient);
     setVec3(program, "uEye", list.camera.eye);
+    setFloat(program, "uAlongFibreDarkening", list.light.alongFibreDarkening);
     setInt(program, "uShadows", skinShadows(list) ? 1 : 0);
     setMatrix(program, "uLightViewProj", light.viewProj);
     setFloat(program, "uShadowBias", bias);

@@ -80,11 +80,15 @@ class FurRenderTest : public test::GlTest {
   }
 
   Shot render(const scene::Fur* fur, const scene::Camera& cam, scene::DrawOptions opt = {},
-              const scene::Light& light = plainLight(), Renderer* reuse = nullptr) {
+              const scene::Light& light = plainLight(), Renderer* reuse = nullptr,
+              const Material* skin = nullptr) {
     if (fur)
       scene::evaluateFur(critter(), *fur, cam, opt.hairSource == scene::HairSource::Cpu, frame_);
     Shot s;
-    scene::buildDrawList(critter(), frame_, fur, cam, light, opt, s.list);
+    if (skin)
+      scene::buildDrawList(critter(), frame_, fur, cam, light, opt, *skin, s.list);
+    else
+      scene::buildDrawList(critter(), frame_, fur, cam, light, opt, s.list);
     RendererOptions ro;
     ro.samples = 0;
     Renderer local(ro);
@@ -545,7 +549,8 @@ TEST_F(FurRenderTest, PhysicalCoatSpreadsItsLightIntoTheBodysShadow) {
 TEST_F(FurRenderTest, PhysicalCoatAmbientGrowsWhereTheCoatIsSeenAtAGrazingAngle) {
   // Ambient light alone on transparent strands: where no skin lies behind (the fringe) the coat is
   // all outer layer, |N.V| = 0, and gets k_a La A + k_g La A (lighting.glsl's k_a = 0.6,
-  // renderer.cpp's k_g = 0.6, oit_composite.frag), twice the k_a La A of coat seen face-on.
+  // renderer.cpp's k_g = 0.6, oit_composite.frag), twice the k_a La A of coat seen face-on (a
+  // little more: the eye sees the fringe's hairs across, Light::alongFibreDarkening).
   const scene::Fur fur = scene::growFur(critter(), testFur(30000));
   const scene::Camera cam = camera(scene::CameraPreset::Side, 320, fur);
   const scene::DrawOptions opt = physicalLook();
@@ -573,6 +578,68 @@ TEST_F(FurRenderTest, PhysicalCoatAmbientGrowsWhereTheCoatIsSeenAtAGrazingAngle)
   std::printf("grazing ambient: the fringe's coat %.3f times face-on coat's k_a La A\n",
               median / faceOn);
   EXPECT_NEAR(median / faceOn, 2.0, 0.15);
+}
+
+TEST_F(FurRenderTest, PhysicalCoatAmbientIsDarkerWhereTheEyeLooksAlongTheHairs) {
+  // Ambient light alone, the coat's ambient k_a La A (1 + k_v (0.35 - |T.V|)) (lighting.glsl,
+  // Light::alongFibreDarkening = k_v) against the same frame with k_v = 0, over a black skin (the
+  // pixels are the strands' alone): every pixel's ratio lies in [1 - 0.65 k_v, 1 + 0.35 k_v].
+  // Stiff hairs stand along the skin's normal: where the skin faces the eye it looks along them
+  // (darker), near the outline across them (brighter).
+  fur::FurParams params = testFur(30000);
+  for (fur::CoatParams& c : params.coats) c.stiffness = 0.98f;  // floppiness 0.02, the least
+  const scene::Fur fur = scene::growFur(critter(), params);
+  const scene::Camera cam = camera(scene::CameraPreset::Side, 320, fur);
+  const scene::DrawOptions opt = physicalLook();
+  scene::Light seen = plainLight(), same = plainLight();
+  seen.color.setZero();
+  same.color.setZero();
+  seen.ambient = same.ambient = Eigen::Vector3f::Constant(3.0f);  // bright enough for 8 bits
+  same.alongFibreDarkening = 0.0f;
+  ASSERT_EQ(seen.alongFibreDarkening, 0.5f);
+  Material black;
+  black.ambient = black.diffuse = black.specular = Eigen::Vector3f::Zero();
+  RendererOptions ro;
+  ro.samples = 0;
+  Renderer r(ro);
+  render(nullptr, cam, opt, same, &r, &black);
+  const Image bare = r.readPixels(FrameAlpha::Straight);
+  const Image a = render(&fur, cam, opt, seen, &r, &black).image;
+  const Image b = render(&fur, cam, opt, same, &r, &black).image;
+  // The skin's pixels whose whole 15 x 15 neighbourhood is skin: where it faces the eye.
+  auto inside = [&](int x, int y) {
+    for (int dy = -7; dy <= 7; ++dy)
+      for (int dx = -7; dx <= 7; ++dx) {
+        const int u = std::clamp(x + dx, 0, bare.width - 1);
+        const int v = std::clamp(y + dy, 0, bare.height - 1);
+        if (bare.pixel(u, v)[3] == 0) return false;
+      }
+    return true;
+  };
+  double rimA = 0, rimB = 0, innerA = 0, innerB = 0, lowest = 2, highest = 0;
+  int inner = 0, bright = 0;
+  for (int y = 0; y < a.height; ++y)
+    for (int x = 0; x < a.width; ++x) {
+      if (bare.pixel(x, y)[3] == 0) continue;  // the skin's pixels only (opaque)
+      const double la = luminance(a.pixel(x, y)), lb = luminance(b.pixel(x, y));
+      if (lb > 0.05 && lb < 0.95) {  // 8-bit rounding: at most 1.6 % there; no clipping
+        ++bright;
+        lowest = std::min(lowest, la / lb);
+        highest = std::max(highest, la / lb);
+      }
+      if (inside(x, y))
+        innerA += la, innerB += lb, ++inner;
+      else
+        rimA += la, rimB += lb;
+    }
+  ASSERT_GT(inner, 2000);
+  ASSERT_GT(bright, 1000);
+  std::printf("ambient seen along the hairs: inside x%.3f, rim x%.3f, pixels x%.3f to x%.3f\n",
+              innerA / innerB, rimA / rimB, lowest, highest);
+  EXPECT_GT(lowest, 1.0 - 0.65 * 0.5 - 0.035);
+  EXPECT_LT(highest, 1.0 + 0.35 * 0.5 + 0.035);
+  EXPECT_LT(innerA / innerB, 0.9);
+  EXPECT_GT(rimA / rimB, innerA / innerB + 0.1);
 }
 
 TEST_F(FurRenderTest, FrameIsTheSumOfItsKeyAndAmbientLight) {

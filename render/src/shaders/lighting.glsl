@@ -4,6 +4,7 @@ uniform vec3 uLightDir;      // world, unit, towards the light
 uniform vec3 uLightColor;
 uniform vec3 uAmbientLight;
 uniform vec3 uEye;           // world camera position
+uniform float uAlongFibreDarkening;  // k_v below (Light::alongFibreDarkening)
 uniform bool uShadows;
 uniform mat4 uLightViewProj;
 layout(binding = 0) uniform sampler2DShadow uShadowMap;
@@ -148,8 +149,12 @@ vec3 marschner(vec3 T, vec3 P, vec3 Ka, vec3 Kd, vec3 Ks, float s) {
 //   surface about the style's normal N (the skin's normal carried along the hair), of the
 //   multiple-scattering albedo of a finite coat, A = c^g (fewer bounces than Chiang's
 //   infinite-volume colour mapping assumes, so paler than the colour c), keeping a share k_a of
-//   the ambient (the rest stopped by the coat and the body);
-//     coat = A (k_a La + k_d s Ld max(N.L, 0)),
+//   the ambient (the rest stopped by the coat and the body), less where the eye looks along the
+//   hair and more where it looks across it: along the fibres it sees deeper into the coat, which
+//   the coat's own fibres hide from the sky; across them, the fibres' sides in the coat's top;
+//     coat = A (k_a (1 + k_v (t_0 - |T.V|)) La + k_d s Ld max(N.L, 0)),
+//   k_v = Light::alongFibreDarkening (0.5), t_0 = 0.35 (the three-quarter views' mean |T.V|, where
+//   the ambient stays k_a La A; no change for lines and tubes, which carry no tangent);
 //   k_d = 1 where the strands are opaque (lines, tubes, strands without transparency); with
 //   transparent strands, k_d = 0.5 of it stays at the hair and k_s = 0.6 more reaches the coat
 //   spread sideways over 0.7 hair lengths, as light scattered many times among the hairs
@@ -172,6 +177,7 @@ vec3 marschner(vec3 T, vec3 P, vec3 Ka, vec3 Kd, vec3 Ks, float s) {
 // against Cycles' (scripts/reference/views.py parts, README).
 const float kPhysGamma = 0.7;    // g: the coat's albedo exponent
 const float kPhysAmbient = 0.6;  // k_a: the share of the ambient the coat keeps
+const float kAlongFibrePivot = 0.35;  // t_0: the |T.V| at which the ambient is k_a La A
 // The coat's multiple-scattering albedo A = c^g.
 vec3 coatAlbedo(vec3 c) { return pow(max(c, vec3(1e-4)), vec3(kPhysGamma)); }
 // The physical model's colour for a hair point: coatDirect is k_d above.
@@ -179,8 +185,9 @@ vec3 physicalFur(vec3 N, vec3 T, vec3 P, vec3 c, float s, float coatDirect) {
   vec3 L = uLightDir;
   vec3 V = normalize(uEye - P);
   vec3 albedo = coatAlbedo(c);
-  vec3 color =
-      albedo * (kPhysAmbient * uAmbientLight + coatDirect * s * uLightColor * max(dot(N, L), 0.0));
+  float seen = dot(T, T) < 0.5 ? 1.0 : 1.0 + uAlongFibreDarkening * (kAlongFibrePivot - abs(dot(T, V)));
+  vec3 color = albedo * (kPhysAmbient * seen * uAmbientLight +
+                         coatDirect * s * uLightColor * max(dot(N, L), 0.0));
   if (dot(T, T) < 0.5) return color;
   const float r = 0.3;
   const float beta = 0.726 * r + 0.812 * r * r;

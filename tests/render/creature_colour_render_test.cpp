@@ -50,6 +50,9 @@ TEST_F(CreatureColourRenderTest, FoxChestAndTailTipFurIsLighterThanItsBack) {
     scene::DrawOptions opt;
     opt.hairSource = scene::HairSource::Cpu;
     opt.hairWidth = scene::HairWidth::Lines;  // opaque: each fur pixel is one hair's colour
+    // The paper's shading, linear in the hair's colour: the test is of the colours, not of the
+    // physical model's coat albedo (which takes pale colours down most, lighting.glsl's k_p).
+    opt.hairShading = scene::HairShading::Paper;
     scene::buildDrawList(fox, frame, f, cam, scene::Light{}, opt, list);
     RendererOptions ro;
     ro.samples = 0;

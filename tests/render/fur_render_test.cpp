@@ -52,9 +52,10 @@ scene::DrawOptions physicalLook() {
   return o;
 }
 
-// The physical model's coat albedo A = c^0.7 (lighting.glsl's g) of a linear colour.
+// The physical model's coat albedo A = c^0.7 (1 - 0.2 c) (lighting.glsl's g and k_p) of a linear
+// colour.
 Eigen::Vector3f coatAlbedo(const Eigen::Vector3f& c) {
-  return c.array().pow(0.7f).matrix();
+  return (c.array().pow(0.7f) * (1.0f - 0.2f * c.array())).matrix();
 }
 
 // Linear luminance of a linear colour, and of a read-back (sRGB-encoded) pixel.
@@ -452,7 +453,8 @@ TEST_F(FurRenderTest, PhysicalFurIsThePalerCoatAlbedoShadedByTheBody) {
   scene::DrawOptions opt = physicalLook();
   {
     // Ambient light alone, 1-pixel lines (no tangent: the coat term only): every fur pixel is
-    // k_a La c^g exactly (lighting.glsl: k_a = 0.6, g = 0.7), c the coat's linear diffuse colour.
+    // k_a La A exactly (lighting.glsl: k_a = 0.66, A = c^0.7 (1 - 0.2 c)), c the coat's linear
+    // diffuse colour.
     SCOPED_TRACE("ambient alone");
     opt.hairWidth = scene::HairWidth::Lines;
     scene::Light dark = plainLight();
@@ -462,7 +464,7 @@ TEST_F(FurRenderTest, PhysicalFurIsThePalerCoatAlbedoShadedByTheBody) {
     const Eigen::Vector3f albedo = coatAlbedo(mat.diffuse);
     std::array<float, 3> want{};
     for (int c = 0; c < 3; ++c)
-      want[static_cast<std::size_t>(c)] = test::encoded255(0.6f * dark.ambient[c] * albedo[c]);
+      want[static_cast<std::size_t>(c)] = test::encoded255(0.66f * dark.ambient[c] * albedo[c]);
     int n = 0;
     for (int y = 0; y < s.image.height; ++y)
       for (int x = 0; x < s.image.width; ++x) {
@@ -548,9 +550,10 @@ TEST_F(FurRenderTest, PhysicalCoatSpreadsItsLightIntoTheBodysShadow) {
 
 TEST_F(FurRenderTest, PhysicalCoatAmbientGrowsWhereTheCoatIsSeenAtAGrazingAngle) {
   // Ambient light alone on transparent strands: where no skin lies behind (the fringe) the coat is
-  // all outer layer, |N.V| = 0, and gets k_a La A + k_g La A (lighting.glsl's k_a = 0.6,
-  // renderer.cpp's k_g = 0.6, oit_composite.frag), twice the k_a La A of coat seen face-on (a
-  // little more: the eye sees the fringe's hairs across, Light::alongFibreDarkening).
+  // all outer layer, |N.V| = 0, and gets k_a La A + k_g La A (lighting.glsl's k_a = 0.66,
+  // renderer.cpp's k_g = 0.6, oit_composite.frag), 1 + k_g / k_a = 1.91 times the k_a La A of coat
+  // seen face-on (a little more: the eye sees the fringe's hairs across,
+  // Light::alongFibreDarkening).
   const scene::Fur fur = scene::growFur(critter(), testFur(30000));
   const scene::Camera cam = camera(scene::CameraPreset::Side, 320, fur);
   const scene::DrawOptions opt = physicalLook();
@@ -564,7 +567,7 @@ TEST_F(FurRenderTest, PhysicalCoatAmbientGrowsWhereTheCoatIsSeenAtAGrazingAngle)
   render(&fur, cam, opt, dark, &r);
   const Image s = r.readPixels(FrameAlpha::Straight);
   const Material mat = linearMaterial(fur.params.coats[0].material);
-  const double faceOn = luminance(0.6f * dark.ambient.cwiseProduct(coatAlbedo(mat.diffuse)));
+  const double faceOn = luminance(0.66f * dark.ambient.cwiseProduct(coatAlbedo(mat.diffuse)));
   std::vector<double> fringe;
   for (int y = 0; y < s.height; ++y)
     for (int x = 0; x < s.width; ++x) {
@@ -577,7 +580,7 @@ TEST_F(FurRenderTest, PhysicalCoatAmbientGrowsWhereTheCoatIsSeenAtAGrazingAngle)
   const double median = fringe[fringe.size() / 2];
   std::printf("grazing ambient: the fringe's coat %.3f times face-on coat's k_a La A\n",
               median / faceOn);
-  EXPECT_NEAR(median / faceOn, 2.0, 0.15);
+  EXPECT_NEAR(median / faceOn, 1.0 + 0.6 / 0.66, 0.15);
 }
 
 TEST_F(FurRenderTest, PhysicalCoatAmbientIsDarkerWhereTheEyeLooksAlongTheHairs) {
@@ -596,7 +599,7 @@ TEST_F(FurRenderTest, PhysicalCoatAmbientIsDarkerWhereTheEyeLooksAlongTheHairs) 
   same.color.setZero();
   seen.ambient = same.ambient = Eigen::Vector3f::Constant(3.0f);  // bright enough for 8 bits
   same.alongFibreDarkening = 0.0f;
-  ASSERT_EQ(seen.alongFibreDarkening, 0.5f);
+  ASSERT_EQ(seen.alongFibreDarkening, 0.6f);
   Material black;
   black.ambient = black.diffuse = black.specular = Eigen::Vector3f::Zero();
   RendererOptions ro;
@@ -636,8 +639,8 @@ TEST_F(FurRenderTest, PhysicalCoatAmbientIsDarkerWhereTheEyeLooksAlongTheHairs) 
   ASSERT_GT(bright, 1000);
   std::printf("ambient seen along the hairs: inside x%.3f, rim x%.3f, pixels x%.3f to x%.3f\n",
               innerA / innerB, rimA / rimB, lowest, highest);
-  EXPECT_GT(lowest, 1.0 - 0.65 * 0.5 - 0.035);
-  EXPECT_LT(highest, 1.0 + 0.35 * 0.5 + 0.035);
+  EXPECT_GT(lowest, 1.0 - 0.65 * 0.6 - 0.035);
+  EXPECT_LT(highest, 1.0 + 0.35 * 0.6 + 0.035);
   EXPECT_LT(innerA / innerB, 0.9);
   EXPECT_GT(rimA / rimB, innerA / innerB + 0.1);
 }

@@ -147,13 +147,14 @@ vec3 marschner(vec3 T, vec3 P, vec3 Ka, vec3 Kd, vec3 Ks, float s) {
 // Karis 2016 ("Physically based hair shading in Unreal") splits a strand's light:
 // - the coat: light scattered many times among the hairs leaves the coat much as from a diffuse
 //   surface about the style's normal N (the skin's normal carried along the hair), of the
-//   multiple-scattering albedo of a finite coat, A = c^g (fewer bounces than Chiang's
-//   infinite-volume colour mapping assumes, so paler than the colour c), keeping a share k_a of
+//   multiple-scattering albedo of a finite coat, A = c^g (1 - k_p c) (fewer bounces than
+//   Chiang's infinite-volume colour mapping assumes, so paler than the colour c; and a pale coat,
+//   whose light scatters deeper, loses more of it to the skin beneath), keeping a share k_a of
 //   the ambient (the rest stopped by the coat and the body), less where the eye looks along the
 //   hair and more where it looks across it: along the fibres it sees deeper into the coat, which
 //   the coat's own fibres hide from the sky; across them, the fibres' sides in the coat's top;
 //     coat = A (k_a (1 + k_v (t_0 - |T.V|)) La + k_d s Ld max(N.L, 0)),
-//   k_v = Light::alongFibreDarkening (0.5), t_0 = 0.35 (the three-quarter views' mean |T.V|, where
+//   k_v = Light::alongFibreDarkening (0.6), t_0 = 0.35 (the three-quarter views' mean |T.V|, where
 //   the ambient stays k_a La A; no change for lines and tubes, which carry no tangent);
 //   k_d = 1 where the strands are opaque (lines, tubes, strands without transparency); with
 //   transparent strands, k_d = 0.5 of it stays at the hair and k_s = 0.6 more reaches the coat
@@ -174,12 +175,16 @@ vec3 marschner(vec3 T, vec3 P, vec3 Ka, vec3 Kd, vec3 Ks, float s) {
 // g, k_a and the spread light's shares (k_d, k_s: renderer.cpp's kCoatLightKept and
 // kCoatLightSpread) were fitted on the six committed views (docs/reference/figures.json, README);
 // k_g, the spread's width and the deep opacity map's fibre opacity on the light's two parts apart
-// against Cycles' (scripts/reference/views.py parts, README).
-const float kPhysGamma = 0.7;    // g: the coat's albedo exponent
-const float kPhysAmbient = 0.6;  // k_a: the share of the ambient the coat keeps
+// against Cycles' (scripts/reference/views.py parts, README); k_p, k_v (and k_a again, 0.6 ->
+// 0.66) on the ambient part and the full frames (README).
+const float kPhysGamma = 0.7;     // g: the coat's albedo exponent
+const float kPhysPaleLoss = 0.2;  // k_p: the share of a white coat's light lost to the skin
+const float kPhysAmbient = 0.66;  // k_a: the share of the ambient the coat keeps
 const float kAlongFibrePivot = 0.35;  // t_0: the |T.V| at which the ambient is k_a La A
-// The coat's multiple-scattering albedo A = c^g.
-vec3 coatAlbedo(vec3 c) { return pow(max(c, vec3(1e-4)), vec3(kPhysGamma)); }
+// The coat's multiple-scattering albedo A = c^g (1 - k_p c).
+vec3 coatAlbedo(vec3 c) {
+  return pow(max(c, vec3(1e-4)), vec3(kPhysGamma)) * (1.0 - kPhysPaleLoss * c);
+}
 // The physical model's colour for a hair point: coatDirect is k_d above.
 vec3 physicalFur(vec3 N, vec3 T, vec3 P, vec3 c, float s, float coatDirect) {
   vec3 L = uLightDir;

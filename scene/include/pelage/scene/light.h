@@ -47,10 +47,10 @@ struct Light {
   // How much of the physical fur model's ambient the coat loses where the eye looks along its
   // hairs, k_v: the coat's ambient is k_a La A (1 + k_v (0.35 - |T.V|)) (lighting.glsl), T the
   // hair's tangent: looking along the fibres the eye sees deeper into the coat, which the fibres
-  // hide from the sky. 0 = the same from every side. 0.5 fitted on the ambient part of the
+  // hide from the sky. 0 = the same from every side. 0.6 fitted on the ambient part of the
   // reference views against Cycles' (Cycles' over pelage's ambient, by each pixel's mean |T.V|:
-  // 1.1 below 0.2, 0.7 to 0.8 above 0.8).
-  float alongFibreDarkening = 0.5f;
+  // up to 1.12 below 0.2, 0.64 to 0.89 above 0.8) and on the full frames.
+  float alongFibreDarkening = 0.6f;
 };
 
 // The skin's lighting material (linear) for a typed, sRGB-encoded diffuse colour (the same ambient,

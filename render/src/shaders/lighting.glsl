@@ -190,7 +190,9 @@ vec3 physicalFur(vec3 N, vec3 T, vec3 P, vec3 c, float s, float coatDirect) {
   vec3 L = uLightDir;
   vec3 V = normalize(uEye - P);
   vec3 albedo = coatAlbedo(c);
-  float seen = dot(T, T) < 0.5 ? 1.0 : 1.0 + uAlongFibreDarkening * (kAlongFibrePivot - abs(dot(T, V)));
+  float seen = dot(T, T) < 0.5
+                   ? 1.0
+                   : 1.0 + uAlongFibreDarkening * (kAlongFibrePivot - abs(dot(T, V)));
   vec3 color = albedo * (kPhysAmbient * seen * uAmbientLight +
                          coatDirect * s * uLightColor * max(dot(N, L), 0.0));
   if (dot(T, T) < 0.5) return color;

@@ -376,7 +376,6 @@ std::vector<std::string> exportFrames(PyModel& m, const py::object& clip, const 
 // ---- Render -------------------------------------------------------------------------------------
 
 #ifdef PELAGE_HAVE_RENDER
-// An (r, g, b) colour, each in [0, 1] (scene::validateColor names `keyword`).
 // A sequence of three numbers as (r, g, b); ValueError naming `keyword` with `accepted` otherwise.
 Eigen::Vector3f rgbOf(const py::object& value, const char* keyword, const char* accepted) {
   std::vector<float> c;
@@ -388,6 +387,7 @@ Eigen::Vector3f rgbOf(const py::object& value, const char* keyword, const char* 
   return {c[0], c[1], c[2]};
 }
 
+// An (r, g, b) colour, each in [0, 1] (scene::validateColor names `keyword`).
 Eigen::Vector3f colorOf(const py::object& value, const char* keyword) {
   const Eigen::Vector3f rgb = rgbOf(value, keyword, "three values (r, g, b), each in [0, 1]");
   scene::validateColor(rgb, keyword);

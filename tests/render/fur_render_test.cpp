@@ -52,6 +52,9 @@ scene::DrawOptions physicalLook() {
   return o;
 }
 
+// The share of the ambient the physical model's coat keeps (lighting.glsl's k_a).
+constexpr float kCoatAmbient = 0.66f;
+
 // The physical model's coat albedo A = c^0.7 (1 - 0.2 c) (lighting.glsl's g and k_p) of a linear
 // colour.
 Eigen::Vector3f coatAlbedo(const Eigen::Vector3f& c) {
@@ -464,7 +467,8 @@ TEST_F(FurRenderTest, PhysicalFurIsThePalerCoatAlbedoShadedByTheBody) {
     const Eigen::Vector3f albedo = coatAlbedo(mat.diffuse);
     std::array<float, 3> want{};
     for (int c = 0; c < 3; ++c)
-      want[static_cast<std::size_t>(c)] = test::encoded255(0.66f * dark.ambient[c] * albedo[c]);
+      want[static_cast<std::size_t>(c)] =
+          test::encoded255(kCoatAmbient * dark.ambient[c] * albedo[c]);
     int n = 0;
     for (int y = 0; y < s.image.height; ++y)
       for (int x = 0; x < s.image.width; ++x) {
@@ -567,7 +571,8 @@ TEST_F(FurRenderTest, PhysicalCoatAmbientGrowsWhereTheCoatIsSeenAtAGrazingAngle)
   render(&fur, cam, opt, dark, &r);
   const Image s = r.readPixels(FrameAlpha::Straight);
   const Material mat = linearMaterial(fur.params.coats[0].material);
-  const double faceOn = luminance(0.66f * dark.ambient.cwiseProduct(coatAlbedo(mat.diffuse)));
+  const double faceOn =
+      luminance(kCoatAmbient * dark.ambient.cwiseProduct(coatAlbedo(mat.diffuse)));
   std::vector<double> fringe;
   for (int y = 0; y < s.height; ++y)
     for (int x = 0; x < s.width; ++x) {
@@ -580,7 +585,7 @@ TEST_F(FurRenderTest, PhysicalCoatAmbientGrowsWhereTheCoatIsSeenAtAGrazingAngle)
   const double median = fringe[fringe.size() / 2];
   std::printf("grazing ambient: the fringe's coat %.3f times face-on coat's k_a La A\n",
               median / faceOn);
-  EXPECT_NEAR(median / faceOn, 1.0 + 0.6 / 0.66, 0.15);
+  EXPECT_NEAR(median / faceOn, 1.0 + 0.6 / kCoatAmbient, 0.15);
 }
 
 TEST_F(FurRenderTest, PhysicalCoatAmbientIsDarkerWhereTheEyeLooksAlongTheHairs) {

@@ -50,8 +50,15 @@ constexpr float kCoatLightSpread = 0.6f;
 // The physical model's ambient by how the coat is seen (oit_composite.frag): the coat seen at a
 // grazing angle shows its outer layer, whose hairs see the whole sky, and face-on its depths, so
 // k_g La A (1 - |N.V|) more, N the skin's normal under the pixel. k_g fitted on the ambient's part
-// of the seven reference views against Cycles' (views.py parts, README).
-constexpr float kCoatGrazingAmbient = 0.6f;
+// of the seven reference views against Cycles' (views.py parts, README); 0.6 -> 0.52 with
+// Light::coatSeenDepth, as lighting.glsl's k_a (the near strands, brighter, weigh more).
+constexpr float kCoatGrazingAmbient = 0.52f;
+// How far beyond the skin's outline, in hair lengths, the transparent strands' weights inside the
+// coat (Light::coatSeenDepth) measure a fringe strand's depth from the nearest skin: the fringe's
+// hairs reach up to one hair length beyond the outline, bent or not; with the margin of the
+// search's eight directions, 1.5. Without it the weights stepped at the outline (a dark line along
+// the skin's edge against the light).
+constexpr float kFringeReach = 1.5f;
 
 }  // namespace
 
@@ -62,14 +69,19 @@ struct Renderer::Impl {
   Eigen::Vector3f background = scene::kDefaultBackground;  // the last frame's (linear)
 
   Program skinProgram, skinTexturedProgram, hairProgram, strandProgram, strandOitProgram,
-      compositeProgram, spreadProgram, depthProgram;
+      compositeProgram, spreadProgram, fringeProgram, depthProgram;
 
   Framebuffer msaaFbo, resolveFbo, shadowFbo, oitFbo;
   Renderbuffer msaaColor, msaaDepth, resolveDepth;
   Texture resolveColor, shadowMap, oitAccum, oitReveal, oitCoat;
-  // The skin's depth as a texture for the transparency resolve (the coat's grazing ambient).
+  // The skin's depth as a texture for the transparent strands' weights and the transparency
+  // resolve (the coat's grazing ambient).
   Texture skinDepth;
   Framebuffer skinDepthFbo;
+  bool skinDepthCopied = false;  // this frame's, before the transparent strands
+  // The skin's depth beyond its outline (fringe_depth.frag).
+  Texture fringeDepth;
+  Framebuffer fringeFbo;
   // The coat's spread light (coat_spread.frag): (E m, m) at half resolution or less, ping-ponged.
   Framebuffer spreadFbo[2];
   Texture spreadTarget[2];
@@ -138,6 +150,9 @@ struct Renderer::Impl {
     spreadProgram.reset(detail::buildProgram(
         "coat light spread", {ShaderStage{GL_VERTEX_SHADER, {"oit_composite.vert"}},
                               ShaderStage{GL_FRAGMENT_SHADER, {"coat_spread.frag"}}}));
+    fringeProgram.reset(detail::buildProgram(
+        "fringe depth", {ShaderStage{GL_VERTEX_SHADER, {"oit_composite.vert"}},
+                         ShaderStage{GL_FRAGMENT_SHADER, {"fringe_depth.frag"}}}));
     compositeProgram.reset(detail::buildProgram(
         "transparency resolve", {ShaderStage{GL_VERTEX_SHADER, {"oit_composite.vert"}},
                                  ShaderStage{GL_FRAGMENT_SHADER, {"oit_composite.frag"}}}));
@@ -309,6 +324,12 @@ struct Renderer::Impl {
     skinDepthFbo.reset(id);
     glNamedFramebufferTexture(id, GL_DEPTH_ATTACHMENT, skinDepth.get(), 0);
     glNamedFramebufferDrawBuffer(id, GL_NONE);
+    fringeDepth = makeTexture(GL_R32F, 1, w, h, GL_NEAREST, GL_NEAREST);
+    glCreateFramebuffers(1, &id);
+    fringeFbo.reset(id);
+    glNamedFramebufferTexture(id, GL_COLOR_ATTACHMENT0, fringeDepth.get(), 0);
+    PELAGE_CHECK(glCheckNamedFramebufferStatus(id, GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE,
+                 "fringe depth framebuffer incomplete");
     glCreateFramebuffers(1, &id);
     oitFbo.reset(id);
     glNamedFramebufferTexture(id, GL_COLOR_ATTACHMENT0, oitAccum.get(), 0);
@@ -487,6 +508,13 @@ struct Renderer::Impl {
         const float dist = creatureDistance(list);
         const float r = box.isEmpty() ? 1.0f : 0.5f * box.diagonal().norm();
         glProgramUniform2f(p, uniform(p, "uDepthRange"), std::max(dist - r, 0.0f), dist + r);
+        // Light::coatSeenDepth: lambda of the weights inside the coat (0: off; needs the skin's
+        // depth, copySkinDepth).
+        setFloat(
+            p, "uFrontDepth",
+            skinDepthCopied ? std::max(list.light.coatSeenDepth, 0.0f) * list.hairLength : 0.0f);
+        const Eigen::Matrix4f proj = list.camera.projection();
+        glProgramUniform2f(p, uniform(p, "uDepthUnproject"), proj(2, 2), proj(2, 3));
       }
     }
     drawHairs(b, p);
@@ -516,6 +544,16 @@ struct Renderer::Impl {
     l.layerEnds = {0.25f * L, 0.5f * L, L, 2.0f * L};
     l.fibreOpacity = list.light.fibreOpacity;
     return l;
+  }
+
+  // How far beyond the skin's outline the transparent strands' weights look for the skin
+  // (hair.frag's uFringeReach): kFringeReach times the longest hair seen at the creature's
+  // distance, in pixels, [1, 64].
+  float fringeReachPixels(const scene::DrawList& list) const {
+    if (!(list.hairLength > 0.0f) || list.bounds.isEmpty()) return 1.0f;
+    const float px =
+        kFringeReach * list.hairLength * projScale(list) / std::max(creatureDistance(list), 1e-6f);
+    return std::clamp(px, 1.0f, 64.0f);
   }
 
   // The coat light's spread for this frame in pixels: Light::coatSpread hair lengths seen at the
@@ -565,16 +603,38 @@ struct Renderer::Impl {
                        static_cast<float>(lh));
   }
 
-  // The physical model's grazing ambient (kCoatGrazingAmbient): the skin's depth copied for the
-  // resolve, which takes the skin's normal from it; off without the physical model or a skin.
+  // The skin's depth, as the opaque pass left it, copied for the transparent strands' weights and
+  // the resolve (skinDepthCopied; none without a skin or the longest hair's length), and the
+  // skin's depth beyond its outline for the weights (fringe_depth.frag).
+  void copySkinDepth(const scene::DrawList& list) {
+    skinDepthCopied = list.skin.positions && list.hairLength > 0.0f;
+    if (!skinDepthCopied) return;
+    glBlitNamedFramebuffer(resolveFbo.get(), skinDepthFbo.get(), 0, 0, width, height, 0, 0, width,
+                           height, GL_DEPTH_BUFFER_BIT, GL_NEAREST);
+    glBindTextureUnit(11, skinDepth.get());
+    const GLuint p = fringeProgram.get();
+    glUseProgram(p);
+    setFloat(p, "uReach", fringeReachPixels(list));
+    glBindFramebuffer(GL_FRAMEBUFFER, fringeFbo.get());
+    glDisable(GL_DEPTH_TEST);
+    glBindVertexArray(skinVao.get());  // any VAO: the triangle comes from gl_VertexID
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glEnable(GL_DEPTH_TEST);
+    glBindTextureUnit(12, fringeDepth.get());
+  }
+
+  // The physical model's grazing ambient (kCoatGrazingAmbient): the resolve takes the skin's
+  // normal from its depth; off without the physical model or a skin.
   void seeCoatGrazing(const scene::DrawList& list) {
     const GLuint composite = compositeProgram.get();
     const bool on = list.hairShading == scene::HairShading::Physical && list.skin.positions;
     setFloat(composite, "uCoatGrazing", on ? kCoatGrazingAmbient : 0.0f);
     if (!on) return;
-    glBlitNamedFramebuffer(resolveFbo.get(), skinDepthFbo.get(), 0, 0, width, height, 0, 0, width,
-                           height, GL_DEPTH_BUFFER_BIT, GL_NEAREST);
-    glBindTextureUnit(11, skinDepth.get());
+    if (!skinDepthCopied) {
+      glBlitNamedFramebuffer(resolveFbo.get(), skinDepthFbo.get(), 0, 0, width, height, 0, 0, width,
+                             height, GL_DEPTH_BUFFER_BIT, GL_NEAREST);
+      glBindTextureUnit(11, skinDepth.get());
+    }
     setMatrix(composite, "uInverseProjection", list.camera.projection().inverse());
   }
 
@@ -703,6 +763,7 @@ struct Renderer::Impl {
           msaaFbo.get(), resolveFbo.get(), 0, 0, width, height, 0, 0, width, height,
           GL_COLOR_BUFFER_BIT | (anyTransparent ? GL_DEPTH_BUFFER_BIT : 0), GL_NEAREST);
     if (anyTransparent) {
+      copySkinDepth(list);
       glBindFramebuffer(GL_FRAMEBUFFER, oitFbo.get());
       const float zero[4] = {0, 0, 0, 0}, one[4] = {1, 1, 1, 1};
       glClearNamedFramebufferfv(oitFbo.get(), GL_COLOR, 0, zero);

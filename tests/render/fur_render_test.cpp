@@ -44,6 +44,21 @@ scene::Light plainLight(bool shadows = false, bool selfShadowing = false,
   return l;
 }
 
+// Ambient light alone, bright enough for the coat's ambient to use 8 bits well.
+scene::Light brightAmbient() {
+  scene::Light l = plainLight();
+  l.color.setZero();
+  l.ambient = Eigen::Vector3f::Constant(3.0f);
+  return l;
+}
+
+// A black skin: the pixels over it are the strands' alone.
+Material blackSkin() {
+  Material m;
+  m.ambient = m.diffuse = m.specular = Eigen::Vector3f::Zero();
+  return m;
+}
+
 // The default look's drawing options: GPU hairs, the physical fur model (transparent strands).
 scene::DrawOptions physicalLook() {
   scene::DrawOptions o;
@@ -53,7 +68,9 @@ scene::DrawOptions physicalLook() {
 }
 
 // The share of the ambient the physical model's coat keeps (lighting.glsl's k_a).
-constexpr float kCoatAmbient = 0.66f;
+constexpr float kCoatAmbient = 0.575f;
+// The physical model's grazing ambient (renderer.cpp's k_g).
+constexpr float kCoatGrazing = 0.52f;
 
 // The physical model's coat albedo A = c^0.7 (1 - 0.2 c) (lighting.glsl's g and k_p) of a linear
 // colour.
@@ -456,7 +473,7 @@ TEST_F(FurRenderTest, PhysicalFurIsThePalerCoatAlbedoShadedByTheBody) {
   scene::DrawOptions opt = physicalLook();
   {
     // Ambient light alone, 1-pixel lines (no tangent: the coat term only): every fur pixel is
-    // k_a La A exactly (lighting.glsl: k_a = 0.66, A = c^0.7 (1 - 0.2 c)), c the coat's linear
+    // k_a La A exactly (lighting.glsl: k_a = 0.575, A = c^0.7 (1 - 0.2 c)), c the coat's linear
     // diffuse colour.
     SCOPED_TRACE("ambient alone");
     opt.hairWidth = scene::HairWidth::Lines;
@@ -554,8 +571,8 @@ TEST_F(FurRenderTest, PhysicalCoatSpreadsItsLightIntoTheBodysShadow) {
 
 TEST_F(FurRenderTest, PhysicalCoatAmbientGrowsWhereTheCoatIsSeenAtAGrazingAngle) {
   // Ambient light alone on transparent strands: where no skin lies behind (the fringe) the coat is
-  // all outer layer, |N.V| = 0, and gets k_a La A + k_g La A (lighting.glsl's k_a = 0.66,
-  // renderer.cpp's k_g = 0.6, oit_composite.frag), 1 + k_g / k_a = 1.91 times the k_a La A of coat
+  // all outer layer, |N.V| = 0, and gets k_a La A + k_g La A (lighting.glsl's k_a = 0.575,
+  // renderer.cpp's k_g = 0.52, oit_composite.frag), 1 + k_g / k_a = 1.90 times the k_a La A of coat
   // seen face-on (a little more: the eye sees the fringe's hairs across,
   // Light::alongFibreDarkening).
   const scene::Fur fur = scene::growFur(critter(), testFur(30000));
@@ -585,7 +602,7 @@ TEST_F(FurRenderTest, PhysicalCoatAmbientGrowsWhereTheCoatIsSeenAtAGrazingAngle)
   const double median = fringe[fringe.size() / 2];
   std::printf("grazing ambient: the fringe's coat %.3f times face-on coat's k_a La A\n",
               median / faceOn);
-  EXPECT_NEAR(median / faceOn, 1.0 + 0.6 / kCoatAmbient, 0.15);
+  EXPECT_NEAR(median / faceOn, 1.0 + kCoatGrazing / kCoatAmbient, 0.15);
 }
 
 TEST_F(FurRenderTest, PhysicalCoatAmbientIsDarkerWhereTheEyeLooksAlongTheHairs) {
@@ -599,14 +616,10 @@ TEST_F(FurRenderTest, PhysicalCoatAmbientIsDarkerWhereTheEyeLooksAlongTheHairs) 
   const scene::Fur fur = scene::growFur(critter(), params);
   const scene::Camera cam = camera(scene::CameraPreset::Side, 320, fur);
   const scene::DrawOptions opt = physicalLook();
-  scene::Light seen = plainLight(), same = plainLight();
-  seen.color.setZero();
-  same.color.setZero();
-  seen.ambient = same.ambient = Eigen::Vector3f::Constant(3.0f);  // bright enough for 8 bits
+  scene::Light seen = brightAmbient(), same = brightAmbient();
   same.alongFibreDarkening = 0.0f;
   ASSERT_EQ(seen.alongFibreDarkening, 0.6f);
-  Material black;
-  black.ambient = black.diffuse = black.specular = Eigen::Vector3f::Zero();
+  const Material black = blackSkin();
   RendererOptions ro;
   ro.samples = 0;
   Renderer r(ro);
@@ -648,6 +661,128 @@ TEST_F(FurRenderTest, PhysicalCoatAmbientIsDarkerWhereTheEyeLooksAlongTheHairs) 
   EXPECT_LT(highest, 1.0 + 0.35 * 0.6 + 0.035);
   EXPECT_LT(innerA / innerB, 0.9);
   EXPECT_GT(rimA / rimB, innerA / innerB + 0.1);
+}
+
+TEST_F(FurRenderTest, NearStrandsHideTheCoatsDepthsWithCoatSeenDepth) {
+  // A red overcoat over a short blue undercoat (relative length 0.3) on a black skin, under ambient
+  // light alone: the opaque strands (transparency off) show each pixel's nearest strand, mostly the
+  // overcoat's. The transparent strands weighted by exp(d / (coatSeenDepth x hair length)), d the
+  // depth in front of the skin (hair.frag), show the near strands as the opaque ones do, where
+  // every strand of the coat's depth counting alike (coatSeenDepth 0) lets the undercoat's blue
+  // through; the shallower the eye sees, the nearer the opaque look.
+  fur::FurParams params = testFur(60000);
+  params.coats[0].material.diffuse = Eigen::Vector3f(0.8f, 0.02f, 0.02f);
+  params.coats[1].material.diffuse = Eigen::Vector3f(0.02f, 0.02f, 0.8f);
+  ASSERT_LT(params.coats[1].lengthFactor, 0.5f);
+  const scene::Fur fur = scene::growFur(critter(), params);
+  const scene::Camera cam = camera(scene::CameraPreset::Side, 320, fur);
+  scene::DrawOptions opt = physicalLook();
+  scene::Light seen = brightAmbient(), plain = brightAmbient();
+  plain.coatSeenDepth = 0.0f;
+  ASSERT_EQ(seen.coatSeenDepth, 0.35f);
+  const Material black = blackSkin();
+  RendererOptions ro;
+  ro.samples = 0;
+  Renderer r(ro);
+  render(nullptr, cam, opt, plain, &r, &black);
+  const Image bare = r.readPixels(FrameAlpha::Straight);
+  const Image weighted = render(&fur, cam, opt, seen, &r, &black).image;
+  const Image alike = render(&fur, cam, opt, plain, &r, &black).image;
+  scene::Light shallow = seen;  // the eye sees a twentieth of a hair deep: nearly the opaque look
+  shallow.coatSeenDepth = 0.05f;
+  const Image near = render(&fur, cam, opt, shallow, &r, &black).image;
+  opt.transparency = false;
+  const Image opaque = render(&fur, cam, opt, seen, &r, &black).image;
+  // The overcoat's share of each skin pixel's colour, red / (red + blue) in linear light, averaged.
+  const auto redShare = [&](const Image& im) {
+    double sum = 0;
+    int n = 0;
+    for (int y = 0; y < im.height; ++y)
+      for (int x = 0; x < im.width; ++x) {
+        if (bare.pixel(x, y)[3] == 0) continue;  // the skin's pixels: the coat's depth behind
+        const std::uint8_t* p = im.pixel(x, y);
+        const double red = test::decoded(p[0]), blue = test::decoded(p[2]);
+        if (red + blue < 0.02) continue;
+        sum += red / (red + blue);
+        ++n;
+      }
+    EXPECT_GT(n, 2000);
+    return sum / std::max(n, 1);
+  };
+  const double w = redShare(weighted), a = redShare(alike), o = redShare(opaque);
+  const double n = redShare(near);
+  std::printf(
+      "the overcoat's share: opaque strands %.3f; transparent, coatSeenDepth 0.05 %.3f, "
+      "0.35 %.3f, 0 %.3f\n",
+      o, n, w, a);
+  EXPECT_GT(o, a + 0.1);
+  EXPECT_GT(w - a, 0.3 * (o - a));  // 0.43 on llvmpipe
+  EXPECT_GT(n, w);
+  EXPECT_LT(std::abs(n - o), 0.25 * (o - a));
+}
+
+TEST_F(FurRenderTest, CoatSeenDepthWeighsTheFringeFromTheNearestSkin) {
+  // Lit from behind. Beyond the skin's outline no skin lies under a pixel; the transparent strands'
+  // depth there is measured from the nearest skin within 1.5 hair lengths (renderer.cpp's
+  // kFringeReach), so coatSeenDepth changes the fringe's pixels as it changes the skin's (without
+  // the reach they kept the plain weights exactly, and on the reference views the light stepped at
+  // the outline: a dark line along the skin's edge against the light, README).
+  const scene::Fur fur = scene::growFur(critter(), testFur(60000));
+  const scene::Camera cam = camera(scene::CameraPreset::Side, 320, fur);
+  const scene::DrawOptions opt = physicalLook();
+  scene::Light seen = frontAndBackLights(cam).second, plain = seen;
+  seen.shadows = plain.shadows = true;
+  seen.selfShadowing = plain.selfShadowing = true;
+  seen.fibreOpacity = plain.fibreOpacity = scene::Light{}.fibreOpacity;
+  plain.coatSeenDepth = 0.0f;
+  RendererOptions ro;
+  ro.samples = 0;
+  Renderer r(ro);
+  render(nullptr, cam, opt, plain, &r);
+  const Image bare = r.readPixels(FrameAlpha::Straight);
+  const Image a = render(&fur, cam, opt, seen, &r).image;
+  const Image b = render(&fur, cam, opt, plain, &r).image;
+  // Each pixel's ring about the skin's outline (4-neighbour steps): -1 the skin's edge, -2 the next
+  // ring in, 1 the first ring beyond, 2 the next; 0 farther.
+  const int w = bare.width, h = bare.height;
+  std::vector<int> ring(static_cast<std::size_t>(w * h), 0);
+  const auto at = [&](int x, int y) -> int& { return ring[static_cast<std::size_t>(y * w + x)]; };
+  const auto skin = [&](int x, int y) { return bare.pixel(x, y)[3] != 0; };
+  for (int k = 1; k <= 4; ++k)
+    for (int y = 1; y + 1 < h; ++y)
+      for (int x = 1; x + 1 < w; ++x) {
+        if (at(x, y) != 0) continue;
+        for (const auto& [dx, dy] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}}) {
+          const bool across = skin(x + dx, y + dy) != skin(x, y);
+          const int n = at(x + dx, y + dy);
+          if (k == 1 ? across : (n != 0 && std::abs(n) == k - 1 && !across)) {
+            at(x, y) = skin(x, y) ? -k : k;
+            break;
+          }
+        }
+      }
+  // The weights' change to each ring's mean luminance: (seen - plain) per ring.
+  std::array<double, 9> sum{};
+  std::array<int, 9> count{};
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const int k = at(x, y);
+      if (k == 0) continue;
+      sum[static_cast<std::size_t>(k + 4)] += luminance(a.pixel(x, y)) - luminance(b.pixel(x, y));
+      ++count[static_cast<std::size_t>(k + 4)];
+    }
+  std::array<double, 9> change{};
+  for (std::size_t k = 0; k < 9; ++k) change[k] = count[k] ? sum[k] / count[k] : 0.0;
+  std::printf("the weights' change by ring (-4 .. -1 inside, 1 .. 4 beyond):");
+  for (const int k : {-4, -3, -2, -1, 1, 2, 3, 4})
+    std::printf(" %+.4f", change[static_cast<std::size_t>(k + 4)]);
+  std::printf("\n");
+  EXPECT_GT(count[3], 300);
+  EXPECT_GT(count[6], 300);
+  // 0.0000 in rings 1 to 4 without the reach; -0.019 to -0.036 with it (llvmpipe).
+  for (const int k : {1, 2, 3})
+    EXPECT_LT(change[static_cast<std::size_t>(k + 4)], -0.005) << "ring " << k;
+  EXPECT_GT(std::abs(change[3]), 0.002);  // the skin's edge, -1: +0.007
 }
 
 TEST_F(FurRenderTest, FrameIsTheSumOfItsKeyAndAmbientLight) {

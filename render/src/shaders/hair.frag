@@ -33,8 +33,29 @@ uniform float uCoatDirect;  // the physical model's k_d (lighting.glsl): 1 unles
 // adds its premultiplied colour times a weight to the accumulation target and multiplies the
 // revealage by (1 - alpha); a full-screen pass resolves colour = sum / weight sum over the scene
 // with alpha = 1 - revealage. The weight favours the near side of the creature (t = 0 at its
-// nearest point, 1 at its farthest).
+// nearest point, 1 at its farthest) and, inside the coat, the strands nearest the eye: a strand is
+// seen through the coat in front of it, whose transmittance falls exponentially with the depth
+// (Beer-Lambert), so its weight is also exp(d / lambda), d its depth in front of the skin under
+// the pixel (uSkinDepth, as the opaque pass left it), lambda = uFrontDepth (Light::coatSeenDepth
+// hair lengths; 0: off). The weights are a ratio, so measuring d from the skin instead of from
+// the nearest strand changes nothing but their range. Where no skin lies under the pixel (the
+// fringe, beyond the skin's outline) d is measured from the nearest skin within 1.5 hair lengths
+// (uFringeDepth, fringe_depth.frag), so that the weights do not step at the outline; farther out,
+// and beyond 30 lambda, d / lambda is 30.
 uniform vec2 uDepthRange;  // distance from the eye to the creature's bounds: near, far
+layout(binding = 11) uniform sampler2D uSkinDepth;
+layout(binding = 12) uniform sampler2D uFringeDepth;  // the skin's depth beyond its outline
+uniform float uFrontDepth;  // lambda, metres; 0: off
+uniform vec2 uDepthUnproject;  // the projection's (2, 2) and (2, 3): a depth's distance along -z
+float eyeDistance(float depth) {
+  return uDepthUnproject.y / (2.0 * depth - 1.0 + uDepthUnproject.x);
+}
+// The skin's depth under pixel p, or in the fringe the nearest skin's (fringe_depth.frag); 1 where
+// none.
+float coatBaseDepth(ivec2 p) {
+  float skin = texelFetch(uSkinDepth, p, 0).r;
+  return skin < 1.0 ? skin : texelFetch(uFringeDepth, p, 0).r;
+}
 layout(location = 0) out vec4 fAccum;
 layout(location = 1) out float fReveal;
 // Under the physical model: the coat albedo and direct irradiance E = s max(N.L, 0), weighted as
@@ -63,6 +84,13 @@ void main() {
   float t = clamp((distance(uEye, P_IN) - uDepthRange.x) / max(uDepthRange.y - uDepthRange.x, 1e-6),
                   0.0, 1.0);
   float w = a * (0.05 + 10.0 * pow(1.0 - t, 3.0));
+  if (uFrontDepth > 0.0) {
+    float skin = coatBaseDepth(ivec2(gl_FragCoord.xy));
+    float d = skin >= 1.0 ? 30.0
+                          : clamp((eyeDistance(skin) - eyeDistance(gl_FragCoord.z)) / uFrontDepth,
+                                  0.0, 30.0);
+    w *= exp(d);
+  }
   fAccum = vec4(c * a, a) * w;
   fReveal = a;
   fCoat = uShading == 3 ? vec4(coatAlbedo(kd), s * max(dot(u, uLightDir), 0.0)) * (a * w) : vec4(0.0);

@@ -176,10 +176,11 @@ vec3 marschner(vec3 T, vec3 P, vec3 Ka, vec3 Kd, vec3 Ks, float s) {
 // kCoatLightSpread) were fitted on the six committed views (docs/reference/figures.json, README);
 // k_g, the spread's width and the deep opacity map's fibre opacity on the light's two parts apart
 // against Cycles' (scripts/reference/views.py parts, README); k_p, k_v (and k_a again, 0.6 ->
-// 0.66) on the ambient part and the full frames (README).
+// 0.66) on the ambient part and the full frames, and k_a 0.66 -> 0.575 with the coat seen to its
+// depth Light::coatSeenDepth (its near strands, brighter, weigh more) on the full frames (README).
 const float kPhysGamma = 0.7;     // g: the coat's albedo exponent
 const float kPhysPaleLoss = 0.2;  // k_p: the share of a white coat's light lost to the skin
-const float kPhysAmbient = 0.66;  // k_a: the share of the ambient the coat keeps
+const float kPhysAmbient = 0.575;  // k_a: the share of the ambient the coat keeps
 const float kAlongFibrePivot = 0.35;  // t_0: the |T.V| at which the ambient is k_a La A
 // The coat's multiple-scattering albedo A = c^g (1 - k_p c).
 vec3 coatAlbedo(vec3 c) {

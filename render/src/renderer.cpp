@@ -547,7 +547,7 @@ struct Renderer::Impl {
   }
 
   // How far beyond the skin's outline the transparent strands' weights look for the skin
-  // (hair.frag's uFringeReach): kFringeReach times the longest hair seen at the creature's
+  // (fringe_depth.frag's uReach): kFringeReach times the longest hair seen at the creature's
   // distance, in pixels, [1, 64].
   float fringeReachPixels(const scene::DrawList& list) const {
     if (!(list.hairLength > 0.0f) || list.bounds.isEmpty()) return 1.0f;

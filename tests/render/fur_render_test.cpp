@@ -508,7 +508,7 @@ TEST_F(FurRenderTest, PhysicalFurIsThePalerCoatAlbedoShadedByTheBody) {
   const double b =
       furMean(render(&fur, cam, opt, back).image, render(nullptr, cam, opt, back).image).first;
   std::printf("physical: backlit / front-lit coat %.3f\n", b / f);
-  EXPECT_LT(b, 0.92 * f);  // 0.82 on llvmpipe; Marschner without the shadow map: 1.55
+  EXPECT_LT(b, 0.92 * f);  // 0.78 on llvmpipe; Marschner without the shadow map: 1.55
 }
 
 TEST_F(FurRenderTest, PhysicalCoatSpreadsItsLightIntoTheBodysShadow) {

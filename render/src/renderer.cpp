@@ -604,10 +604,10 @@ struct Renderer::Impl {
   }
 
   // The skin's depth, as the opaque pass left it, copied for the transparent strands' weights and
-  // the resolve (skinDepthCopied; none without a skin or the longest hair's length), and the
-  // skin's depth beyond its outline for the weights (fringe_depth.frag).
+  // the resolve (skinDepthCopied; none without a skin), and the skin's depth beyond its outline
+  // for the weights (fringe_depth.frag).
   void copySkinDepth(const scene::DrawList& list) {
-    skinDepthCopied = list.skin.positions && list.hairLength > 0.0f;
+    skinDepthCopied = list.skin.positions != nullptr;
     if (!skinDepthCopied) return;
     glBlitNamedFramebuffer(resolveFbo.get(), skinDepthFbo.get(), 0, 0, width, height, 0, 0, width,
                            height, GL_DEPTH_BUFFER_BIT, GL_NEAREST);
@@ -624,17 +624,12 @@ struct Renderer::Impl {
   }
 
   // The physical model's grazing ambient (kCoatGrazingAmbient): the resolve takes the skin's
-  // normal from its depth; off without the physical model or a skin.
+  // normal from its depth (copySkinDepth); off without the physical model or a skin.
   void seeCoatGrazing(const scene::DrawList& list) {
     const GLuint composite = compositeProgram.get();
-    const bool on = list.hairShading == scene::HairShading::Physical && list.skin.positions;
+    const bool on = list.hairShading == scene::HairShading::Physical && skinDepthCopied;
     setFloat(composite, "uCoatGrazing", on ? kCoatGrazingAmbient : 0.0f);
     if (!on) return;
-    if (!skinDepthCopied) {
-      glBlitNamedFramebuffer(resolveFbo.get(), skinDepthFbo.get(), 0, 0, width, height, 0, 0, width,
-                             height, GL_DEPTH_BUFFER_BIT, GL_NEAREST);
-      glBindTextureUnit(11, skinDepth.get());
-    }
     setMatrix(composite, "uInverseProjection", list.camera.projection().inverse());
   }
 

@@ -44,15 +44,18 @@ bool skinShadows(const scene::DrawList& list) {
 
 // The physical model's coat light spread sideways (Light::coatSpread, coat_spread.frag): the share
 // of the coat's direct light kept at each hair (k_d) and the share reaching the coat spread (k_s),
-// fitted with lighting.glsl's g and k_a on the six committed reference views (README).
-constexpr float kCoatLightKept = 0.5f;
-constexpr float kCoatLightSpread = 0.6f;
+// fitted with lighting.glsl's g and k_a on the six committed reference views (README); 0.5 -> 0.425
+// and 0.6 -> 0.51 with Light::lightAlongFibreDarkening (the coat's direct light was 1.2 to 1.3
+// times Cycles' on every view, views.py parts).
+constexpr float kCoatLightKept = 0.425f;
+constexpr float kCoatLightSpread = 0.51f;
 // The physical model's ambient by how the coat is seen (oit_composite.frag): the coat seen at a
 // grazing angle shows its outer layer, whose hairs see the whole sky, and face-on its depths, so
 // k_g La A (1 - |N.V|) more, N the skin's normal under the pixel. k_g fitted on the ambient's part
 // of the seven reference views against Cycles' (views.py parts, README); 0.6 -> 0.52 with
-// Light::coatSeenDepth, as lighting.glsl's k_a (the near strands, brighter, weigh more).
-constexpr float kCoatGrazingAmbient = 0.52f;
+// Light::coatSeenDepth, as lighting.glsl's k_a (the near strands, brighter, weigh more), and 0.52
+// -> 0.546 with Light::lightAlongFibreDarkening (the ambient part was 0.83 to 0.89 times Cycles').
+constexpr float kCoatGrazingAmbient = 0.546f;
 // How far beyond the skin's outline, in hair lengths, the transparent strands' weights inside the
 // coat (Light::coatSeenDepth) measure a fringe strand's depth from the nearest skin: the fringe's
 // hairs reach up to one hair length beyond the outline, bent or not; with the margin of the
@@ -464,6 +467,7 @@ struct Renderer::Impl {
     setVec3(program, "uAmbientLight", list.light.ambient);
     setVec3(program, "uEye", list.camera.eye);
     setFloat(program, "uAlongFibreDarkening", list.light.alongFibreDarkening);
+    setFloat(program, "uLightAlongFibreDarkening", list.light.lightAlongFibreDarkening);
     setInt(program, "uShadows", skinShadows(list) ? 1 : 0);
     setMatrix(program, "uLightViewProj", light.viewProj);
     setFloat(program, "uShadowBias", bias);

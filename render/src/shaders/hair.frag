@@ -58,8 +58,9 @@ float coatBaseDepth(ivec2 p) {
 }
 layout(location = 0) out vec4 fAccum;
 layout(location = 1) out float fReveal;
-// Under the physical model: the coat albedo and direct irradiance E = s max(N.L, 0), weighted as
-// the colour, that coat_spread.frag spreads sideways (a = 0 elsewhere).
+// Under the physical model: the coat albedo and direct irradiance E = s max(N.L, 0) l(T)
+// (lighting.glsl), weighted as the colour, that coat_spread.frag spreads sideways (a = 0
+// elsewhere).
 layout(location = 2) out vec4 fCoat;
 #else
 layout(location = 0) out vec4 fColor;
@@ -93,7 +94,9 @@ void main() {
   }
   fAccum = vec4(c * a, a) * w;
   fReveal = a;
-  fCoat = uShading == 3 ? vec4(coatAlbedo(kd), s * max(dot(u, uLightDir), 0.0)) * (a * w) : vec4(0.0);
+  fCoat = uShading == 3 ? vec4(coatAlbedo(kd),
+                               s * max(dot(u, uLightDir), 0.0) * coatLightCaught(T_IN)) * (a * w)
+                        : vec4(0.0);
 #else
   fColor = vec4(c, 1.0);
 #endif

@@ -5,6 +5,7 @@ uniform vec3 uLightColor;
 uniform vec3 uAmbientLight;
 uniform vec3 uEye;           // world camera position
 uniform float uAlongFibreDarkening;  // k_v below (Light::alongFibreDarkening)
+uniform float uLightAlongFibreDarkening;  // k_l below (Light::lightAlongFibreDarkening)
 uniform bool uShadows;
 uniform mat4 uLightViewProj;
 layout(binding = 0) uniform sampler2DShadow uShadowMap;
@@ -153,11 +154,16 @@ vec3 marschner(vec3 T, vec3 P, vec3 Ka, vec3 Kd, vec3 Ks, float s) {
 //   the ambient (the rest stopped by the coat and the body), less where the eye looks along the
 //   hair and more where it looks across it: along the fibres it sees deeper into the coat, which
 //   the coat's own fibres hide from the sky; across them, the fibres' sides in the coat's top;
-//     coat = A (k_a (1 + k_v (t_0 - |T.V|)) La + k_d s Ld max(N.L, 0)),
-//   k_v = Light::alongFibreDarkening (0.6), t_0 = 0.35 (the three-quarter views' mean |T.V|, where
-//   the ambient stays k_a La A; no change for lines and tubes, which carry no tangent);
+//   and so for the key light, less where it runs along the hairs (it passes between the fibres
+//   deep into the coat, to its self-shadowed depths and the skin) and more across them (a fibre
+//   intercepts light by its projected width, cos(theta_i));
+//     coat = A (k_a (1 + k_v (t_0 - |T.V|)) La + k_d s Ld max(N.L, 0) l(T)),
+//     l(T) = max(1 + k_l (t_0 - |T.L|), 0),
+//   k_v = Light::alongFibreDarkening (0.6), k_l = Light::lightAlongFibreDarkening (2), t_0 = 0.35
+//   (the three-quarter views' mean |T.V|, where the ambient stays k_a La A; no change for lines and
+//   tubes, which carry no tangent: l = 1);
 //   k_d = 1 where the strands are opaque (lines, tubes, strands without transparency); with
-//   transparent strands, k_d = 0.5 of it stays at the hair and k_s = 0.6 more reaches the coat
+//   transparent strands, k_d = 0.425 of it stays at the hair and k_s = 0.51 more reaches the coat
 //   spread sideways over 0.7 hair lengths, as light scattered many times among the hairs
 //   leaves the coat away from where it entered (coat_spread.frag, Light::coatSpread), and the
 //   coat seen at a grazing angle, its outer layer, gets k_g La A (1 - |N.V|) more ambient, N the
@@ -176,15 +182,24 @@ vec3 marschner(vec3 T, vec3 P, vec3 Ka, vec3 Kd, vec3 Ks, float s) {
 // kCoatLightSpread) were fitted on the six committed views (docs/reference/figures.json, README);
 // k_g, the spread's width and the deep opacity map's fibre opacity on the light's two parts apart
 // against Cycles' (scripts/reference/views.py parts, README); k_p, k_v (and k_a again, 0.6 ->
-// 0.66) on the ambient part and the full frames, and k_a 0.66 -> 0.575 with the coat seen to its
-// depth Light::coatSeenDepth (its near strands, brighter, weigh more) on the full frames (README).
+// 0.66) on the ambient part and the full frames, k_a 0.66 -> 0.575 with the coat seen to its
+// depth Light::coatSeenDepth (its near strands, brighter, weigh more) on the full frames, and k_l
+// on the key light's part with k_d, k_s, k_a (0.575 -> 0.604) and k_g on the full frames (README).
 const float kPhysGamma = 0.7;     // g: the coat's albedo exponent
 const float kPhysPaleLoss = 0.2;  // k_p: the share of a white coat's light lost to the skin
-const float kPhysAmbient = 0.575;  // k_a: the share of the ambient the coat keeps
+const float kPhysAmbient = 0.604;  // k_a: the share of the ambient the coat keeps
 const float kAlongFibrePivot = 0.35;  // t_0: the |T.V| at which the ambient is k_a La A
 // The coat's multiple-scattering albedo A = c^g (1 - k_p c).
 vec3 coatAlbedo(vec3 c) {
   return pow(max(c, vec3(1e-4)), vec3(kPhysGamma)) * (1.0 - kPhysPaleLoss * c);
+}
+// The share of the key light the coat catches by the hairs' direction, l(T) above (1 without a
+// tangent).
+float coatLightCaught(vec3 T) {
+  return dot(T, T) < 0.5
+             ? 1.0
+             : max(1.0 + uLightAlongFibreDarkening * (kAlongFibrePivot - abs(dot(T, uLightDir))),
+                   0.0);
 }
 // The physical model's colour for a hair point: coatDirect is k_d above.
 vec3 physicalFur(vec3 N, vec3 T, vec3 P, vec3 c, float s, float coatDirect) {
@@ -195,7 +210,7 @@ vec3 physicalFur(vec3 N, vec3 T, vec3 P, vec3 c, float s, float coatDirect) {
                    ? 1.0
                    : 1.0 + uAlongFibreDarkening * (kAlongFibrePivot - abs(dot(T, V)));
   vec3 color = albedo * (kPhysAmbient * seen * uAmbientLight +
-                         coatDirect * s * uLightColor * max(dot(N, L), 0.0));
+                         coatDirect * s * uLightColor * max(dot(N, L), 0.0) * coatLightCaught(T));
   if (dot(T, T) < 0.5) return color;
   const float r = 0.3;
   const float beta = 0.726 * r + 0.812 * r * r;

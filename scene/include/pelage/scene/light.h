@@ -51,6 +51,16 @@ struct Light {
   // reference views against Cycles' (Cycles' over pelage's ambient, by each pixel's mean |T.V|:
   // up to 1.12 below 0.2, 0.64 to 0.89 above 0.8) and on the full frames.
   float alongFibreDarkening = 0.6f;
+  // How much of the physical fur model's direct light the coat loses where the light runs along
+  // its hairs, k_l: the coat's direct light is A s Ld max(N.L, 0) max(1 + k_l (0.35 - |T.L|), 0)
+  // (lighting.glsl; the light the coat spreads sideways too), T the hair's tangent: light along the
+  // fibres passes between them deep into the coat, to the self-shadowed depths and the skin, where
+  // across them the fibres' sides in the coat's top catch it (the share of the light a fibre
+  // intercepts is its projected width, cos(theta_i)). 0 = the same whatever the hairs' direction.
+  // 2 fitted on the key light's part of the reference views against Cycles' (views.py parts: the
+  // blurred key part's correlation with Cycles' 0.77 -> 0.83 over the six views) and on the full
+  // frames with the coat's direct and ambient shares (README).
+  float lightAlongFibreDarkening = 2.0f;
   // How deep the eye sees into the coat, in hair lengths (the longest hair's; transparent strands
   // only): a strand is seen through the strands in front of it, so the renderer weights it by
   // exp(d / (coatSeenDepth x hair length)), d its depth in front of the skin under its pixel

@@ -468,6 +468,7 @@ struct Renderer::Impl {
     setVec3(program, "uEye", list.camera.eye);
     setFloat(program, "uAlongFibreDarkening", list.light.alongFibreDarkening);
     setFloat(program, "uLightAlongFibreDarkening", list.light.lightAlongFibreDarkening);
+    setFloat(program, "uCoatBacklitDarkening", list.light.coatBacklitDarkening);
     setInt(program, "uShadows", skinShadows(list) ? 1 : 0);
     setMatrix(program, "uLightViewProj", light.viewProj);
     setFloat(program, "uShadowBias", bias);

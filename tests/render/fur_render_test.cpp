@@ -731,6 +731,50 @@ TEST_F(FurRenderTest, PhysicalCoatDirectLightIsDarkerWhereTheLightRunsAlongTheHa
   EXPECT_EQ(lines.on.rgba, lines.off.rgba);
 }
 
+TEST_F(FurRenderTest, PhysicalCoatDirectLightIsDarkerSeenAgainstTheLight) {
+  // The key light alone: the coat's direct light times b(V) = max(1 - k_b max(-L.V, 0), 0)
+  // (lighting.glsl, Light::coatBacklitDarkening = k_b) against the same frame with k_b = 0, over a
+  // black skin (the skin's pixels: the strands' alone), on opaque strands (k_d = 1, nothing
+  // spread). Lit from behind and above (L.V about -0.5) the coat's light keeps about 1 - 0.5 k_b =
+  // 0.65 of itself and the fibres' lobes all of theirs: no pixel brighter, the frame between 0.65
+  // and 1 times (from above: the coat on the creature's back catches it; llvmpipe: x 0.92). Lit
+  // from the eye's side and above (L.V about 0.5) b = 1: the same frame, bit for bit.
+  const scene::Fur fur = scene::growFur(critter(), testFur(30000));
+  const scene::Camera cam = camera(scene::CameraPreset::Side, 320, fur);
+  scene::DrawOptions opt = physicalLook();
+  opt.transparency = false;
+  const Eigen::Vector3f toEye = (cam.eye - cam.target).normalized();
+  // Up, square to the line of sight (the side camera looks a little down).
+  const Eigen::Vector3f up =
+      (Eigen::Vector3f::UnitZ() - Eigen::Vector3f::UnitZ().dot(toEye) * toEye).normalized();
+  scene::Light against = plainLight();
+  against.direction = (-0.5f * toEye + 0.866f * up).normalized();
+  against.ambient.setZero();
+  scene::Light same = against;
+  same.coatBacklitDarkening = 0.0f;
+  ASSERT_EQ(against.coatBacklitDarkening, 0.7f);
+  const OnAndOff f = onBlackSkin(fur, cam, opt, against, same);
+  double sumOn = 0, sumOff = 0, highest = 0;
+  int lit = 0;
+  for (int y = 0; y < f.on.height; ++y)
+    for (int x = 0; x < f.on.width; ++x) {
+      if (f.bare.pixel(x, y)[3] == 0) continue;  // the skin's pixels only (opaque)
+      const double on = luminance(f.on.pixel(x, y)), off = luminance(f.off.pixel(x, y));
+      sumOn += on, sumOff += off;
+      if (off > 0.05) ++lit, highest = std::max(highest, on / off);  // 8 bits: 1.6 % at most
+    }
+  ASSERT_GT(lit, 1000);
+  std::printf("coat lit from behind: x%.3f of its light with k_b, pixels at most x%.3f\n",
+              sumOn / sumOff, highest);
+  EXPECT_LT(highest, 1.017);
+  EXPECT_GT(sumOn / sumOff, 0.6);
+  EXPECT_LT(sumOn / sumOff, 0.95);
+  scene::Light facing = against, facingSame = same;
+  facing.direction = facingSame.direction = (0.5f * toEye + 0.866f * up).normalized();
+  const OnAndOff g = onBlackSkin(fur, cam, opt, facing, facingSame);
+  EXPECT_EQ(g.on.rgba, g.off.rgba);
+}
+
 TEST_F(FurRenderTest, NearStrandsHideTheCoatsDepthsWithCoatSeenDepth) {
   // A red overcoat over a short blue undercoat (relative length 0.3) on a black skin, under ambient
   // light alone: the opaque strands (transparency off) show each pixel's nearest strand, mostly the

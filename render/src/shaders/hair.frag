@@ -58,7 +58,7 @@ float coatBaseDepth(ivec2 p) {
 }
 layout(location = 0) out vec4 fAccum;
 layout(location = 1) out float fReveal;
-// Under the physical model: the coat albedo and direct irradiance E = s max(N.L, 0) l(T)
+// Under the physical model: the coat albedo and direct irradiance E = s max(N.L, 0) l(T) b(V)
 // (lighting.glsl), weighted as the colour, that coat_spread.frag spreads sideways (a = 0
 // elsewhere).
 layout(location = 2) out vec4 fCoat;
@@ -94,9 +94,8 @@ void main() {
   }
   fAccum = vec4(c * a, a) * w;
   fReveal = a;
-  fCoat = uShading == 3 ? vec4(coatAlbedo(kd),
-                               s * max(dot(u, uLightDir), 0.0) * coatLightCaught(T_IN)) * (a * w)
-                        : vec4(0.0);
+  float e = s * max(dot(u, uLightDir), 0.0) * coatLightCaught(T_IN, P_IN);
+  fCoat = uShading == 3 ? vec4(coatAlbedo(kd), e) * (a * w) : vec4(0.0);
 #else
   fColor = vec4(c, 1.0);
 #endif

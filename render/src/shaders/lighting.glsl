@@ -6,6 +6,7 @@ uniform vec3 uAmbientLight;
 uniform vec3 uEye;           // world camera position
 uniform float uAlongFibreDarkening;  // k_v below (Light::alongFibreDarkening)
 uniform float uLightAlongFibreDarkening;  // k_l below (Light::lightAlongFibreDarkening)
+uniform float uCoatBacklitDarkening;  // k_b below (Light::coatBacklitDarkening)
 uniform bool uShadows;
 uniform mat4 uLightViewProj;
 layout(binding = 0) uniform sampler2DShadow uShadowMap;
@@ -157,9 +158,12 @@ vec3 marschner(vec3 T, vec3 P, vec3 Ka, vec3 Kd, vec3 Ks, float s) {
 //   and so for the key light, less where it runs along the hairs (it passes between the fibres
 //   deep into the coat, to its self-shadowed depths and the skin) and more across them (a fibre
 //   intercepts light by its projected width, cos(theta_i));
-//     coat = A (k_a (1 + k_v (t_0 - |T.V|)) La + k_d s Ld max(N.L, 0) l(T)),
-//     l(T) = max(1 + k_l (t_0 - |T.L|), 0),
-//   k_v = Light::alongFibreDarkening (0.6), k_l = Light::lightAlongFibreDarkening (2), t_0 = 0.35
+//   and less where the eye looks against the light: a coat lit from behind shows the eye its
+//   fibres' unlit sides (what the fibres scatter forward is the fibre part's);
+//     coat = A (k_a (1 + k_v (t_0 - |T.V|)) La + k_d s Ld max(N.L, 0) l(T) b(V)),
+//     l(T) = max(1 + k_l (t_0 - |T.L|), 0),  b(V) = max(1 - k_b max(-L.V, 0), 0),
+//   k_v = Light::alongFibreDarkening (0.6), k_l = Light::lightAlongFibreDarkening (2),
+//   k_b = Light::coatBacklitDarkening (0.7), t_0 = 0.35
 //   (the three-quarter views' mean |T.V|, where the ambient stays k_a La A; no change for lines and
 //   tubes, which carry no tangent: l = 1);
 //   k_d = 1 where the strands are opaque (lines, tubes, strands without transparency); with
@@ -193,13 +197,16 @@ const float kAlongFibrePivot = 0.35;  // t_0: the |T.V| at which the ambient is 
 vec3 coatAlbedo(vec3 c) {
   return pow(max(c, vec3(1e-4)), vec3(kPhysGamma)) * (1.0 - kPhysPaleLoss * c);
 }
-// The share of the key light the coat catches by the hairs' direction, l(T) above (1 without a
-// tangent).
-float coatLightCaught(vec3 T) {
+// The share of the key light the coat catches by the hairs' direction and shows the eye at P,
+// l(T) b(P) above (l = 1 without a tangent).
+float coatLightCaught(vec3 T, vec3 P) {
+  float against = max(-dot(uLightDir, normalize(uEye - P)), 0.0);
+  float b = max(1.0 - uCoatBacklitDarkening * against, 0.0);
   return dot(T, T) < 0.5
-             ? 1.0
-             : max(1.0 + uLightAlongFibreDarkening * (kAlongFibrePivot - abs(dot(T, uLightDir))),
-                   0.0);
+             ? b
+             : b * max(1.0 + uLightAlongFibreDarkening * (kAlongFibrePivot -
+                                                          abs(dot(T, uLightDir))),
+                       0.0);
 }
 // The physical model's colour for a hair point: coatDirect is k_d above.
 vec3 physicalFur(vec3 N, vec3 T, vec3 P, vec3 c, float s, float coatDirect) {
@@ -209,8 +216,8 @@ vec3 physicalFur(vec3 N, vec3 T, vec3 P, vec3 c, float s, float coatDirect) {
   float seen = dot(T, T) < 0.5
                    ? 1.0
                    : 1.0 + uAlongFibreDarkening * (kAlongFibrePivot - abs(dot(T, V)));
-  vec3 color = albedo * (kPhysAmbient * seen * uAmbientLight +
-                         coatDirect * s * uLightColor * max(dot(N, L), 0.0) * coatLightCaught(T));
+  float direct = coatDirect * s * max(dot(N, L), 0.0) * coatLightCaught(T, P);
+  vec3 color = albedo * (kPhysAmbient * seen * uAmbientLight + direct * uLightColor);
   if (dot(T, T) < 0.5) return color;
   const float r = 0.3;
   const float beta = 0.726 * r + 0.812 * r * r;

@@ -61,6 +61,15 @@ struct Light {
   // blurred key part's correlation with Cycles' 0.77 -> 0.83 over the six views) and on the full
   // frames with the coat's direct and ambient shares (README).
   float lightAlongFibreDarkening = 2.0f;
+  // How much of the physical fur model's coat direct light the eye loses where it looks against
+  // the light, k_b: the coat's direct light (and the light it spreads) is also multiplied by
+  // max(1 - k_b max(-L.V, 0), 0) (lighting.glsl), V towards the eye: a coat lit from behind shows
+  // the eye its fibres' unlit sides (the light scattered forward through the fibres is the fibre
+  // lobes' part). 0 = the coat's direct light the same from every side; no change where the eye
+  // and the light are on the same side (L.V >= 0). 0.7 fitted on the views lit from behind against
+  // Cycles' (README: pelage lit a band 10 to 20 pixels wide inside the outline there, Cycles a
+  // rim).
+  float coatBacklitDarkening = 0.7f;
   // How deep the eye sees into the coat, in hair lengths (the longest hair's; transparent strands
   // only): a strand is seen through the strands in front of it, so the renderer weights it by
   // exp(d / (coatSeenDepth x hair length)), d its depth in front of the skin under its pixel

@@ -187,18 +187,19 @@ vec3 marschner(vec3 T, vec3 P, vec3 Ka, vec3 Kd, vec3 Ks, float s) {
 // k_g, the spread's width and the deep opacity map's fibre opacity on the light's two parts apart
 // against Cycles' (scripts/reference/views.py parts, README); k_p, k_v (and k_a again, 0.6 ->
 // 0.66) on the ambient part and the full frames, k_a 0.66 -> 0.575 with the coat seen to its
-// depth Light::coatSeenDepth (its near strands, brighter, weigh more) on the full frames, and k_l
-// on the key light's part with k_d, k_s, k_a (0.575 -> 0.604) and k_g on the full frames (README).
+// depth Light::coatSeenDepth (its near strands, brighter, weigh more) on the full frames, k_l on
+// the key light's part with k_d, k_s, k_a (0.575 -> 0.604) and k_g on the full frames, and k_b on
+// the views lit from behind (README).
 const float kPhysGamma = 0.7;     // g: the coat's albedo exponent
 const float kPhysPaleLoss = 0.2;  // k_p: the share of a white coat's light lost to the skin
 const float kPhysAmbient = 0.604;  // k_a: the share of the ambient the coat keeps
-const float kAlongFibrePivot = 0.35;  // t_0: the |T.V| at which the ambient is k_a La A
+const float kAlongFibrePivot = 0.35;  // t_0: the |T.V| (|T.L|) at which k_v (k_l) change nothing
 // The coat's multiple-scattering albedo A = c^g (1 - k_p c).
 vec3 coatAlbedo(vec3 c) {
   return pow(max(c, vec3(1e-4)), vec3(kPhysGamma)) * (1.0 - kPhysPaleLoss * c);
 }
 // The share of the key light the coat catches by the hairs' direction and shows the eye at P,
-// l(T) b(P) above (l = 1 without a tangent).
+// l(T) b(V) above (l = 1 without a tangent).
 float coatLightCaught(vec3 T, vec3 P) {
   float against = max(-dot(uLightDir, normalize(uEye - P)), 0.0);
   float b = max(1.0 - uCoatBacklitDarkening * against, 0.0);

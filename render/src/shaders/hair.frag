@@ -94,8 +94,11 @@ void main() {
   }
   fAccum = vec4(c * a, a) * w;
   fReveal = a;
-  float e = s * max(dot(u, uLightDir), 0.0) * coatLightCaught(T_IN, P_IN);
-  fCoat = uShading == 3 ? vec4(coatAlbedo(kd), e) * (a * w) : vec4(0.0);
+  fCoat = vec4(0.0);
+  if (uShading == 3) {
+    float e = s * max(dot(u, uLightDir), 0.0) * coatLightCaught(T_IN, normalize(uEye - P_IN));
+    fCoat = vec4(coatAlbedo(kd), e) * (a * w);
+  }
 #else
   fColor = vec4(c, 1.0);
 #endif

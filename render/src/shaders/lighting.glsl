@@ -198,10 +198,10 @@ const float kAlongFibrePivot = 0.35;  // t_0: the |T.V| (|T.L|) at which k_v (k_
 vec3 coatAlbedo(vec3 c) {
   return pow(max(c, vec3(1e-4)), vec3(kPhysGamma)) * (1.0 - kPhysPaleLoss * c);
 }
-// The share of the key light the coat catches by the hairs' direction and shows the eye at P,
-// l(T) b(V) above (l = 1 without a tangent).
-float coatLightCaught(vec3 T, vec3 P) {
-  float against = max(-dot(uLightDir, normalize(uEye - P)), 0.0);
+// The share of the key light the coat catches by the hairs' direction and shows the eye (V,
+// unit, towards it), l(T) b(V) above (l = 1 without a tangent).
+float coatLightCaught(vec3 T, vec3 V) {
+  float against = max(-dot(uLightDir, V), 0.0);
   float b = max(1.0 - uCoatBacklitDarkening * against, 0.0);
   return dot(T, T) < 0.5
              ? b
@@ -217,7 +217,7 @@ vec3 physicalFur(vec3 N, vec3 T, vec3 P, vec3 c, float s, float coatDirect) {
   float seen = dot(T, T) < 0.5
                    ? 1.0
                    : 1.0 + uAlongFibreDarkening * (kAlongFibrePivot - abs(dot(T, V)));
-  float direct = coatDirect * s * max(dot(N, L), 0.0) * coatLightCaught(T, P);
+  float direct = coatDirect * s * max(dot(N, L), 0.0) * coatLightCaught(T, V);
   vec3 color = albedo * (kPhysAmbient * seen * uAmbientLight + direct * uLightColor);
   if (dot(T, T) < 0.5) return color;
   const float r = 0.3;

@@ -467,6 +467,7 @@ struct Renderer::Impl {
     setVec3(program, "uAmbientLight", list.light.ambient);
     setVec3(program, "uEye", list.camera.eye);
     setFloat(program, "uAlongFibreDarkening", list.light.alongFibreDarkening);
+    setFloat(program, "uAlongFibreSaturation", list.light.alongFibreSaturation);
     setFloat(program, "uLightAlongFibreDarkening", list.light.lightAlongFibreDarkening);
     setFloat(program, "uCoatBacklitDarkening", list.light.coatBacklitDarkening);
     setInt(program, "uShadows", skinShadows(list) ? 1 : 0);

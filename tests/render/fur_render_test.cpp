@@ -8,6 +8,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <vector>
 
 #include "pelage/fur/preset.h"
@@ -683,6 +684,76 @@ TEST_F(FurRenderTest, PhysicalCoatAmbientIsDarkerWhereTheEyeLooksAlongTheHairs) 
   EXPECT_LT(highest, 1.0 + 0.35 * 0.6 + 0.035);
   EXPECT_LT(innerA / innerB, 0.9);
   EXPECT_GT(rimA / rimB, innerA / innerB + 0.1);
+}
+
+TEST_F(FurRenderTest, PhysicalCoatAmbientIsMoreSaturatedWhereTheEyeLooksAlongTheHairs) {
+  // Ambient light alone, the coat's ambient colour A_v = Y(A) (A / Y(A))^k, k = 1 + k_c (|T.V| -
+  // 0.35) (lighting.glsl, Light::alongFibreSaturation = k_c) against the same frame with k_c = 0,
+  // over a black skin (the pixels are the strands' alone), both coats one orange: a pixel's
+  // green/red ratio is A's to the power k (mixed with the grazing ambient's plain A and with other
+  // strands: between A's to the powers of the lowest and the highest k), so log(g/r) / log(g/r
+  // with k_c = 0) lies in [1 - 0.35 k_c, 1 + 0.65 k_c]. Stiff hairs stand along the skin's normal:
+  // where the skin faces the eye it looks along them (more saturated), near the outline across
+  // them (paler). A grey coat has nothing to saturate: the same frame to a level; lines (no
+  // tangent) bit-identical.
+  fur::FurParams params = stiffFur();
+  for (fur::CoatParams& c : params.coats) c.material.diffuse = Eigen::Vector3f(0.6f, 0.3f, 0.1f);
+  const scene::Fur fur = scene::growFur(critter(), params);
+  const scene::Camera cam = camera(scene::CameraPreset::Side, 320, fur);
+  scene::Light seen = brightAmbient();
+  seen.ambient = Eigen::Vector3f::Ones();  // the reddest pixel below 1: no clipping
+  scene::Light same = seen;
+  same.alongFibreSaturation = 0.0f;
+  const float kc = seen.alongFibreSaturation;
+  ASSERT_EQ(kc, 1.25f);
+  const OnAndOff f = onBlackSkin(fur, cam, physicalLook(), seen, same);
+  auto linear = [](const std::uint8_t* p) {
+    return Eigen::Vector3d(test::decoded(p[0]), test::decoded(p[1]), test::decoded(p[2]));
+  };
+  Eigen::Vector3d innerA = Eigen::Vector3d::Zero(), innerB = innerA, rimA = innerA, rimB = innerA;
+  double lowest = 9, highest = -9;
+  int inner = 0, bright = 0;
+  for (int y = 0; y < f.on.height; ++y)
+    for (int x = 0; x < f.on.width; ++x) {
+      if (f.bare.pixel(x, y)[3] == 0) continue;  // the skin's pixels only (opaque)
+      const Eigen::Vector3d a = linear(f.on.pixel(x, y)), b = linear(f.off.pixel(x, y));
+      if (b.y() > 0.04 && a.y() > 0.04 && a.x() < 0.95) {  // 8 bits: log(g/r) within 0.05
+        ++bright;
+        const double k = std::log(a.y() / a.x()) / std::log(b.y() / b.x());
+        lowest = std::min(lowest, k);
+        highest = std::max(highest, k);
+      }
+      if (skinAround(f.bare, x, y, 7))  // where the skin faces the eye
+        innerA += a, innerB += b, ++inner;
+      else
+        rimA += a, rimB += b;
+    }
+  ASSERT_GT(inner, 2000);
+  ASSERT_GT(bright, 1000);
+  auto power = [](const Eigen::Vector3d& on, const Eigen::Vector3d& off) {
+    return std::log(on.y() / on.x()) / std::log(off.y() / off.x());
+  };
+  const double kInner = power(innerA, innerB), kRim = power(rimA, rimB);
+  std::printf("ambient's saturation by the hairs: inside ^%.3f, rim ^%.3f, pixels ^%.3f to ^%.3f\n",
+              kInner, kRim, lowest, highest);
+  EXPECT_GT(lowest, 1.0 - 0.35 * kc - 0.1);
+  EXPECT_LT(highest, 1.0 + 0.65 * kc + 0.1);
+  EXPECT_GT(kInner, 1.15);
+  EXPECT_LT(kRim, kInner - 0.15);
+  // A grey coat: the same frame to a level.
+  for (fur::CoatParams& c : params.coats) c.material.diffuse = Eigen::Vector3f::Constant(0.5f);
+  const scene::Fur grey = scene::growFur(critter(), params);
+  const OnAndOff g = onBlackSkin(grey, cam, physicalLook(), seen, same);
+  int most = 0;
+  for (std::size_t i = 0; i < g.on.rgba.size(); ++i)
+    most =
+        std::max(most, std::abs(static_cast<int>(g.on.rgba[i]) - static_cast<int>(g.off.rgba[i])));
+  EXPECT_LE(most, 1);
+  // Lines: the same frame whatever k_c.
+  scene::DrawOptions lines = physicalLook();
+  lines.hairWidth = scene::HairWidth::Lines;
+  const OnAndOff l = onBlackSkin(fur, cam, lines, seen, same);
+  EXPECT_EQ(l.on.rgba, l.off.rgba);
 }
 
 TEST_F(FurRenderTest, PhysicalCoatDirectLightIsDarkerWhereTheLightRunsAlongTheHairs) {

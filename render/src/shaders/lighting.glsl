@@ -5,6 +5,7 @@ uniform vec3 uLightColor;
 uniform vec3 uAmbientLight;
 uniform vec3 uEye;           // world camera position
 uniform float uAlongFibreDarkening;  // k_v below (Light::alongFibreDarkening)
+uniform float uAlongFibreSaturation;  // k_c below (Light::alongFibreSaturation)
 uniform float uLightAlongFibreDarkening;  // k_l below (Light::lightAlongFibreDarkening)
 uniform float uCoatBacklitDarkening;  // k_b below (Light::coatBacklitDarkening)
 uniform bool uShadows;
@@ -155,17 +156,21 @@ vec3 marschner(vec3 T, vec3 P, vec3 Ka, vec3 Kd, vec3 Ks, float s) {
 //   the ambient (the rest stopped by the coat and the body), less where the eye looks along the
 //   hair and more where it looks across it: along the fibres it sees deeper into the coat, which
 //   the coat's own fibres hide from the sky; across them, the fibres' sides in the coat's top;
+//   and more saturated looking along the hairs, paler across them: the light seen along them
+//   went deeper, through more fibres, each absorbing more of the colours the hair absorbs
+//   (the colour's luminance Y(A) kept, its hue kept: A_v below);
 //   and so for the key light, less where it runs along the hairs (it passes between the fibres
 //   deep into the coat, to its self-shadowed depths and the skin) and more across them (a fibre
 //   intercepts light by its projected width, cos(theta_i));
 //   and less where the eye looks against the light: a coat lit from behind shows the eye its
 //   fibres' unlit sides (what the fibres scatter forward is the fibre part's);
-//     coat = A (k_a (1 + k_v (t_0 - |T.V|)) La + k_d s Ld max(N.L, 0) l(T) b(V)),
+//     coat = k_a (1 + k_v (t_0 - |T.V|)) La A_v + k_d s Ld max(N.L, 0) l(T) b(V) A,
+//     A_v = Y(A) (A / Y(A))^(1 + k_c (|T.V| - t_0)),
 //     l(T) = max(1 + k_l (t_0 - |T.L|), 0),  b(V) = max(1 - k_b max(-L.V, 0), 0),
-//   k_v = Light::alongFibreDarkening (0.6), k_l = Light::lightAlongFibreDarkening (2),
-//   k_b = Light::coatBacklitDarkening (0.7), t_0 = 0.35
+//   k_v = Light::alongFibreDarkening (0.6), k_c = Light::alongFibreSaturation (1.25),
+//   k_l = Light::lightAlongFibreDarkening (2), k_b = Light::coatBacklitDarkening (0.7), t_0 = 0.35
 //   (the three-quarter views' mean |T.V|, where the ambient stays k_a La A; no change for lines and
-//   tubes, which carry no tangent: l = 1);
+//   tubes, which carry no tangent: A_v = A, l = 1);
 //   k_d = 1 where the strands are opaque (lines, tubes, strands without transparency); with
 //   transparent strands, k_d = 0.425 of it stays at the hair and k_s = 0.51 more reaches the coat
 //   spread sideways over 0.7 hair lengths, as light scattered many times among the hairs
@@ -188,15 +193,23 @@ vec3 marschner(vec3 T, vec3 P, vec3 Ka, vec3 Kd, vec3 Ks, float s) {
 // against Cycles' (scripts/reference/views.py parts, README); k_p, k_v (and k_a again, 0.6 ->
 // 0.66) on the ambient part and the full frames, k_a 0.66 -> 0.575 with the coat seen to its
 // depth Light::coatSeenDepth (its near strands, brighter, weigh more) on the full frames, k_l on
-// the key light's part with k_d, k_s, k_a (0.575 -> 0.604) and k_g on the full frames, and k_b on
-// the views lit from behind (README).
+// the key light's part with k_d, k_s, k_a (0.575 -> 0.604) and k_g on the full frames, k_b on
+// the views lit from behind and k_c on the full frames (README).
 const float kPhysGamma = 0.7;     // g: the coat's albedo exponent
 const float kPhysPaleLoss = 0.2;  // k_p: the share of a white coat's light lost to the skin
 const float kPhysAmbient = 0.604;  // k_a: the share of the ambient the coat keeps
-const float kAlongFibrePivot = 0.35;  // t_0: the |T.V| (|T.L|) at which k_v (k_l) change nothing
+const float kAlongFibrePivot = 0.35;  // t_0: where k_v, k_c (|T.V|), k_l (|T.L|) do nothing
 // The coat's multiple-scattering albedo A = c^g (1 - k_p c).
 vec3 coatAlbedo(vec3 c) {
   return pow(max(c, vec3(1e-4)), vec3(kPhysGamma)) * (1.0 - kPhysPaleLoss * c);
+}
+// The coat's albedo A as its ambient light shows it to the eye (V, unit, towards it) by the hairs'
+// direction T, A_v above (A without a tangent).
+vec3 coatSeenAlbedo(vec3 A, vec3 T, vec3 V) {
+  if (dot(T, T) < 0.5) return A;
+  float k = max(1.0 + uAlongFibreSaturation * (abs(dot(T, V)) - kAlongFibrePivot), 0.0);
+  float y = max(dot(A, vec3(0.2126, 0.7152, 0.0722)), 1e-4);
+  return y * pow(max(A / y, vec3(1e-4)), vec3(k));
 }
 // The share of the key light the coat catches by the hairs' direction and shows the eye (V,
 // unit, towards it), l(T) b(V) above (l = 1 without a tangent).
@@ -218,7 +231,8 @@ vec3 physicalFur(vec3 N, vec3 T, vec3 P, vec3 c, float s, float coatDirect) {
                    ? 1.0
                    : 1.0 + uAlongFibreDarkening * (kAlongFibrePivot - abs(dot(T, V)));
   float direct = coatDirect * s * max(dot(N, L), 0.0) * coatLightCaught(T, V);
-  vec3 color = albedo * (kPhysAmbient * seen * uAmbientLight + direct * uLightColor);
+  vec3 color = kPhysAmbient * seen * uAmbientLight * coatSeenAlbedo(albedo, T, V) +
+               direct * uLightColor * albedo;
   if (dot(T, T) < 0.5) return color;
   const float r = 0.3;
   const float beta = 0.726 * r + 0.812 * r * r;

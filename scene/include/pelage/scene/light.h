@@ -51,6 +51,15 @@ struct Light {
   // reference views against Cycles' (Cycles' over pelage's ambient, by each pixel's mean |T.V|:
   // up to 1.12 below 0.2, 0.64 to 0.89 above 0.8) and on the full frames.
   float alongFibreDarkening = 0.6f;
+  // How much more saturated the physical fur model's ambient gets where the eye looks along the
+  // coat's hairs, k_c: the coat's ambient colour is A's luminance times (A / its luminance) to the
+  // power 1 + k_c (|T.V| - 0.35) (lighting.glsl), T the hair's tangent: looking along the fibres
+  // the eye sees light that went deeper into the coat, through more fibres, each taking more of
+  // the colours the hair absorbs; across them, light from the coat's top, paler. The hue and
+  // (nearly) the luminance stay; a grey coat is unchanged. 0 = the same colour from every side.
+  // 1.25 fitted on the seven reference views against Cycles' (README: Cycles' ambient part on the
+  // Fox's back goes from blue/red 0.39 where |T.V| is 0.2 to 0.05 where it is 0.8).
+  float alongFibreSaturation = 1.25f;
   // How much of the physical fur model's direct light the coat loses where the light runs along
   // its hairs, k_l: the coat's direct light is A s Ld max(N.L, 0) max(1 + k_l (0.35 - |T.L|), 0)
   // (lighting.glsl; the light the coat spreads sideways too), T the hair's tangent: light along the

@@ -87,9 +87,11 @@ inline double coverage(const render::Image& img, const float bg[3]) {
   return static_cast<double>(n) / (static_cast<double>(img.width) * img.height);
 }
 
-// Bit-identical images; on a difference, how many pixels differ, by how much at most and the first
-// one (not the pixel arrays, which would bury the log).
-inline ::testing::AssertionResult sameImage(const render::Image& a, const render::Image& b) {
+// Bit-identical images (or no channel more than `tolerance` codes apart); on a difference, how many
+// pixels differ, by how much at most and the first one (not the pixel arrays, which would bury the
+// log).
+inline ::testing::AssertionResult sameImage(const render::Image& a, const render::Image& b,
+                                            int tolerance = 0) {
   if (a.width != b.width || a.height != b.height || a.rgba.size() != b.rgba.size())
     return ::testing::AssertionFailure() << "sizes differ: " << a.width << "x" << a.height << " vs "
                                          << b.width << "x" << b.height;
@@ -99,15 +101,16 @@ inline ::testing::AssertionResult sameImage(const render::Image& a, const render
     int d = 0;
     for (std::size_t c = 0; c < 4; ++c)
       d = std::max(d, std::abs(static_cast<int>(a.rgba[i + c]) - static_cast<int>(b.rgba[i + c])));
-    if (d == 0) continue;
+    if (d <= tolerance) continue;
     if (first < 0) first = static_cast<std::int64_t>(i / 4);
     ++differing;
     maxDiff = std::max(maxDiff, d);
   }
   if (differing == 0) return ::testing::AssertionSuccess();
   return ::testing::AssertionFailure()
-         << differing << " of " << a.rgba.size() / 4 << " pixels differ, by up to " << maxDiff
-         << "/255; the first at (" << first % a.width << ", " << first / a.width << ")";
+         << differing << " of " << a.rgba.size() / 4 << " pixels differ by more than " << tolerance
+         << ", by up to " << maxDiff << "/255; the first at (" << first % a.width << ", "
+         << first / a.width << ")";
 }
 
 }  // namespace pelage::test

@@ -203,13 +203,15 @@ const float kAlongFibrePivot = 0.35;  // t_0: where k_v, k_c (|T.V|), k_l (|T.L|
 vec3 coatAlbedo(vec3 c) {
   return pow(max(c, vec3(1e-4)), vec3(kPhysGamma)) * (1.0 - kPhysPaleLoss * c);
 }
-// The coat's albedo A as its ambient light shows it to the eye (V, unit, towards it) by the hairs'
-// direction T, A_v above (A without a tangent).
-vec3 coatSeenAlbedo(vec3 A, vec3 T, vec3 V) {
+// The coat of albedo A as its ambient light shows it to the eye (V, unit, towards it) by the
+// hairs' direction T: (1 + k_v (t_0 - |T.V|)) A_v above (A without a tangent).
+vec3 coatAmbientSeen(vec3 A, vec3 T, vec3 V) {
   if (dot(T, T) < 0.5) return A;
-  float k = max(1.0 + uAlongFibreSaturation * (abs(dot(T, V)) - kAlongFibrePivot), 0.0);
+  float tv = abs(dot(T, V));
+  float k = max(1.0 + uAlongFibreSaturation * (tv - kAlongFibrePivot), 0.0);
   float y = max(dot(A, vec3(0.2126, 0.7152, 0.0722)), 1e-4);
-  return y * pow(max(A / y, vec3(1e-4)), vec3(k));
+  float seen = 1.0 + uAlongFibreDarkening * (kAlongFibrePivot - tv);
+  return seen * y * pow(max(A / y, vec3(1e-4)), vec3(k));
 }
 // The share of the key light the coat catches by the hairs' direction and shows the eye (V,
 // unit, towards it), l(T) b(V) above (l = 1 without a tangent).
@@ -227,11 +229,8 @@ vec3 physicalFur(vec3 N, vec3 T, vec3 P, vec3 c, float s, float coatDirect) {
   vec3 L = uLightDir;
   vec3 V = normalize(uEye - P);
   vec3 albedo = coatAlbedo(c);
-  float seen = dot(T, T) < 0.5
-                   ? 1.0
-                   : 1.0 + uAlongFibreDarkening * (kAlongFibrePivot - abs(dot(T, V)));
   float direct = coatDirect * s * max(dot(N, L), 0.0) * coatLightCaught(T, V);
-  vec3 color = kPhysAmbient * seen * uAmbientLight * coatSeenAlbedo(albedo, T, V) +
+  vec3 color = kPhysAmbient * uAmbientLight * coatAmbientSeen(albedo, T, V) +
                direct * uLightColor * albedo;
   if (dot(T, T) < 0.5) return color;
   const float r = 0.3;

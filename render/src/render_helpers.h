@@ -17,6 +17,9 @@ namespace pelage::render::detail {
 inline void setMatrix(GLuint program, const char* name, const Eigen::Matrix4f& m) {
   glProgramUniformMatrix4fv(program, uniform(program, name), 1, GL_FALSE, m.data());
 }
+inline void setMatrix3(GLuint program, const char* name, const Eigen::Matrix3f& m) {
+  glProgramUniformMatrix3fv(program, uniform(program, name), 1, GL_FALSE, m.data());
+}
 inline void setVec3(GLuint program, const char* name, const Eigen::Vector3f& v) {
   glProgramUniform3f(program, uniform(program, name), v.x(), v.y(), v.z());
 }

@@ -28,6 +28,7 @@ using detail::setFloat;
 using detail::setInt;
 using detail::setMaterial;
 using detail::setMatrix;
+using detail::setMatrix3;
 using detail::setVec3;
 using detail::Texture;
 using detail::uniform;
@@ -46,9 +47,10 @@ bool skinShadows(const scene::DrawList& list) {
 // of the coat's direct light kept at each hair (k_d) and the share reaching the coat spread (k_s),
 // fitted with lighting.glsl's g and k_a on the six committed reference views (README); 0.5 -> 0.425
 // and 0.6 -> 0.51 with Light::lightAlongFibreDarkening (the coat's direct light was 1.2 to 1.3
-// times Cycles' on every view, views.py parts).
-constexpr float kCoatLightKept = 0.425f;
-constexpr float kCoatLightSpread = 0.51f;
+// times Cycles' on every view, views.py parts); x 1.05 (0.446, 0.536) with
+// Light::coatSpreadSkinNormal, which took 2 to 4 % off the front views' luminance.
+constexpr float kCoatLightKept = 0.446f;
+constexpr float kCoatLightSpread = 0.536f;
 // The physical model's ambient by how the coat is seen (oit_composite.frag): the coat seen at a
 // grazing angle shows its outer layer, whose hairs see the whole sky, and face-on its depths, so
 // k_g La A (1 - |N.V|) more, N the skin's normal under the pixel. k_g fitted on the ambient's part
@@ -139,14 +141,16 @@ struct Renderer::Impl {
         {ShaderStage{GL_VERTEX_SHADER, {"skin_textured.vert"}},
          ShaderStage{GL_FRAGMENT_SHADER, {"lighting.glsl", "skin_textured.frag"}}}));
     hairProgram.reset(detail::buildProgram(
-        "hair", {ShaderStage{GL_VERTEX_SHADER, {"color.glsl", "hair.vert"}},
-                 ShaderStage{GL_FRAGMENT_SHADER, {"lighting.glsl", "hair.frag"}}}));
+        "hair",
+        {ShaderStage{GL_VERTEX_SHADER, {"color.glsl", "hair.vert"}},
+         ShaderStage{GL_FRAGMENT_SHADER, {"lighting.glsl", "skin_depth.glsl", "hair.frag"}}}));
     const auto strand = [](const char* name, const char* defines) {
-      return detail::buildProgram(name,
-                                  {ShaderStage{GL_VERTEX_SHADER, {"color.glsl", "hair.vert"}},
-                                   ShaderStage{GL_GEOMETRY_SHADER, {"hair_strand.geom"}},
-                                   ShaderStage{GL_FRAGMENT_SHADER, {"lighting.glsl", "hair.frag"}}},
-                                  defines);
+      return detail::buildProgram(
+          name,
+          {ShaderStage{GL_VERTEX_SHADER, {"color.glsl", "hair.vert"}},
+           ShaderStage{GL_GEOMETRY_SHADER, {"hair_strand.geom"}},
+           ShaderStage{GL_FRAGMENT_SHADER, {"lighting.glsl", "skin_depth.glsl", "hair.frag"}}},
+          defines);
     };
     strandProgram.reset(strand("hair strands", "#define STRAND 1"));
     strandOitProgram.reset(strand("hair strands (transparent)", "#define STRAND 1\n#define OIT 1"));
@@ -157,8 +161,9 @@ struct Renderer::Impl {
         "fringe depth", {ShaderStage{GL_VERTEX_SHADER, {"oit_composite.vert"}},
                          ShaderStage{GL_FRAGMENT_SHADER, {"fringe_depth.frag"}}}));
     compositeProgram.reset(detail::buildProgram(
-        "transparency resolve", {ShaderStage{GL_VERTEX_SHADER, {"oit_composite.vert"}},
-                                 ShaderStage{GL_FRAGMENT_SHADER, {"oit_composite.frag"}}}));
+        "transparency resolve",
+        {ShaderStage{GL_VERTEX_SHADER, {"oit_composite.vert"}},
+         ShaderStage{GL_FRAGMENT_SHADER, {"skin_depth.glsl", "oit_composite.frag"}}}));
     depthProgram.reset(
         detail::buildProgram("depth", {ShaderStage{GL_VERTEX_SHADER, {"depth.vert"}},
                                        ShaderStage{GL_FRAGMENT_SHADER, {"depth.frag"}}}));
@@ -521,6 +526,14 @@ struct Renderer::Impl {
             skinDepthCopied ? std::max(list.light.coatSeenDepth, 0.0f) * list.hairLength : 0.0f);
         const Eigen::Matrix4f proj = list.camera.projection();
         glProgramUniform2f(p, uniform(p, "uDepthUnproject"), proj(2, 2), proj(2, 3));
+        // Light::coatSpreadSkinNormal: the spread light's normal turned towards the skin's, from
+        // its depth (needs the skin's depth, copySkinDepth).
+        const bool skinNormal = skinDepthCopied && list.hairShading == scene::HairShading::Physical;
+        setFloat(p, "uSpreadSkinNormal",
+                 skinNormal ? std::clamp(list.light.coatSpreadSkinNormal, 0.0f, 1.0f) : 0.0f);
+        setMatrix(p, "uInverseProjection", proj.inverse());
+        const Eigen::Matrix3f eyeToWorld = list.camera.view().topLeftCorner<3, 3>().inverse();
+        setMatrix3(p, "uEyeToWorld", eyeToWorld);
       }
     }
     drawHairs(b, p);

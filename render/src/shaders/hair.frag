@@ -43,7 +43,6 @@ uniform float uCoatDirect;  // the physical model's k_d (lighting.glsl): 1 unles
 // (uFringeDepth, fringe_depth.frag), so that the weights do not step at the outline; farther out,
 // and beyond 30 lambda, d / lambda is 30.
 uniform vec2 uDepthRange;  // distance from the eye to the creature's bounds: near, far
-layout(binding = 11) uniform sampler2D uSkinDepth;
 layout(binding = 12) uniform sampler2D uFringeDepth;  // the skin's depth beyond its outline
 uniform float uFrontDepth;  // lambda, metres; 0: off
 uniform vec2 uDepthUnproject;  // the projection's (2, 2) and (2, 3): a depth's distance along -z
@@ -56,11 +55,24 @@ float coatBaseDepth(ivec2 p) {
   float skin = texelFetch(uSkinDepth, p, 0).r;
   return skin < 1.0 ? skin : texelFetch(uFringeDepth, p, 0).r;
 }
+// The normal the physical model's spread light takes (lighting.glsl, Light::coatSpreadSkinNormal):
+// the hair's own normal u turned by uSpreadSkinNormal towards the skin's under the pixel (from its
+// depth, skin_depth.glsl; uEyeToWorld the view's rotation inverted); u where no skin lies under the
+// pixel (the fringe) or without the skin's depth (uSpreadSkinNormal 0).
+uniform float uSpreadSkinNormal;
+uniform mat3 uEyeToWorld;
+vec3 spreadNormal(vec3 u) {
+  if (uSpreadSkinNormal <= 0.0) return u;
+  vec3 n = skinNormal(ivec2(gl_FragCoord.xy));
+  if (dot(n, n) == 0.0) return u;
+  vec3 m = mix(u, uEyeToWorld * n, uSpreadSkinNormal);
+  return dot(m, m) > 1e-12 ? normalize(m) : u;
+}
 layout(location = 0) out vec4 fAccum;
 layout(location = 1) out float fReveal;
 // Under the physical model: the coat albedo and direct irradiance E = s max(N.L, 0) l(T) b(V)
-// (lighting.glsl), weighted as the colour, that coat_spread.frag spreads sideways (a = 0
-// elsewhere).
+// (lighting.glsl; N = spreadNormal(u)), weighted as the colour, that coat_spread.frag spreads
+// sideways (a = 0 elsewhere).
 layout(location = 2) out vec4 fCoat;
 #else
 layout(location = 0) out vec4 fColor;
@@ -96,7 +108,8 @@ void main() {
   fReveal = a;
   fCoat = vec4(0.0);
   if (uShading == 3) {
-    float e = s * max(dot(u, uLightDir), 0.0) * coatLightCaught(T_IN, normalize(uEye - P_IN));
+    float e = s * max(dot(spreadNormal(u), uLightDir), 0.0) *
+              coatLightCaught(T_IN, normalize(uEye - P_IN));
     fCoat = vec4(coatAlbedo(kd), e) * (a * w);
   }
 #else

@@ -172,9 +172,12 @@ vec3 marschner(vec3 T, vec3 P, vec3 Ka, vec3 Kd, vec3 Ks, float s) {
 //   (the three-quarter views' mean |T.V|, where the ambient stays k_a La A; no change for lines and
 //   tubes, which carry no tangent: A_v = A, l = 1);
 //   k_d = 1 where the strands are opaque (lines, tubes, strands without transparency); with
-//   transparent strands, k_d = 0.425 of it stays at the hair and k_s = 0.51 more reaches the coat
-//   spread sideways over 0.7 hair lengths, as light scattered many times among the hairs
-//   leaves the coat away from where it entered (coat_spread.frag, Light::coatSpread), and the
+//   transparent strands, k_d = 0.446 of it stays at the hair and k_s = 0.536 more reaches the
+//   coat spread sideways over 0.7 hair lengths, as light scattered many times among the hairs
+//   leaves the coat away from where it entered (coat_spread.frag, Light::coatSpread); that light
+//   lights the coat as a layer over the body, so its N is the skin's under the pixel (from its
+//   depth, hair.frag's spreadNormal, Light::coatSpreadSkinNormal) where the light a hair keeps
+//   takes the hair's own normal; and the
 //   coat seen at a grazing angle, its outer layer, gets k_g La A (1 - |N.V|) more ambient, N the
 //   skin's normal (oit_composite.frag, renderer.cpp's kCoatGrazingAmbient);
 // - the fibre, about the strand's tangent T (absent for lines and tubes, which carry none):
@@ -194,7 +197,8 @@ vec3 marschner(vec3 T, vec3 P, vec3 Ka, vec3 Kd, vec3 Ks, float s) {
 // 0.66) on the ambient part and the full frames, k_a 0.66 -> 0.575 with the coat seen to its
 // depth Light::coatSeenDepth (its near strands, brighter, weigh more) on the full frames, k_l on
 // the key light's part with k_d, k_s, k_a (0.575 -> 0.604) and k_g on the full frames, k_b on
-// the views lit from behind and k_c on the full frames (README).
+// the views lit from behind, k_c on the full frames, and k_d, k_s x 1.05 with the spread light's
+// normal the skin's (README).
 const float kPhysGamma = 0.7;     // g: the coat's albedo exponent
 const float kPhysPaleLoss = 0.2;  // k_p: the share of a white coat's light lost to the skin
 const float kPhysAmbient = 0.604;  // k_a: the share of the ambient the coat keeps

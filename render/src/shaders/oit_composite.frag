@@ -13,34 +13,18 @@ layout(binding = 3) uniform sampler2D uAccum;
 layout(binding = 4) uniform sampler2D uReveal;
 layout(binding = 9) uniform sampler2D uCoat;
 layout(binding = 10) uniform sampler2D uSpread;  // (E~ m, m) at 1 / uSpreadFactor resolution
-layout(binding = 11) uniform sampler2D uSkinDepth;  // the skin's depth (with uCoatGrazing)
 uniform float uCoatSpreadShare;                  // k_s; 0: no spread light
 uniform float uSpreadFactor;
 uniform vec2 uSpreadSize;                        // the low-resolution target's used size
 uniform vec3 uLightColor;
 uniform vec3 uAmbientLight;
 uniform float uCoatGrazing;  // k_g; 0: off
-uniform mat4 uInverseProjection;
-// The skin's point under pixel q in eye space.
-vec3 skinPoint(ivec2 q, ivec2 size) {
-  q = clamp(q, ivec2(0), size - 1);
-  vec4 ndc = vec4((vec2(q) + 0.5) / vec2(size) * 2.0 - 1.0,
-                  texelFetch(uSkinDepth, q, 0).r * 2.0 - 1.0, 1.0);
-  vec4 v = uInverseProjection * ndc;
-  return v.xyz / v.w;
-}
-// |N.V| of the skin under pixel p (0 without skin).
+// |N.V| of the skin under pixel p (0 without skin), N from its depth (skin_depth.glsl).
 float skinFacing(ivec2 p) {
+  vec3 n = skinNormal(p);
+  if (dot(n, n) == 0.0) return 0.0;
   ivec2 size = textureSize(uSkinDepth, 0);
-  if (texelFetch(uSkinDepth, p, 0).r >= 1.0) return 0.0;
-  const int o = 3;
-  vec3 P = skinPoint(p, size);
-  vec3 xp = skinPoint(p + ivec2(o, 0), size) - P, xm = P - skinPoint(p - ivec2(o, 0), size);
-  vec3 yp = skinPoint(p + ivec2(0, o), size) - P, ym = P - skinPoint(p - ivec2(0, o), size);
-  vec3 dx = abs(xp.z) < abs(xm.z) ? xp : xm;
-  vec3 dy = abs(yp.z) < abs(ym.z) ? yp : ym;
-  vec3 n = cross(dx, dy);
-  return dot(n, n) > 0.0 ? abs(dot(normalize(n), normalize(-P))) : 0.0;
+  return dot(n, normalize(-skinPoint(p, size)));
 }
 layout(location = 0) out vec4 fColor;
 void main() {

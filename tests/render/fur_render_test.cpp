@@ -597,7 +597,7 @@ TEST_F(FurRenderTest, PhysicalCoatSpreadsItsLightIntoTheBodysShadow) {
   ASSERT_GT(inner, 5000);
   // The darkest fifth without the spread (the coat in the body's shadow) gets light from the lit
   // coat beside it, more than the coat's mean, and the pixel-to-pixel contrast falls (llvmpipe:
-  // x 1.033 against the mean's x 1.000, and x 0.79).
+  // x 1.029 against the mean's x 0.999, and x 0.79).
   std::sort(pixels.begin(), pixels.end());
   const std::size_t n = pixels.size(), k = n / 5;
   double darkA = 0, darkB = 0, allA = 0, allB = 0;
@@ -665,7 +665,7 @@ TEST_F(FurRenderTest, PhysicalCoatSpreadLightFollowsTheSkinsNormal) {
       "coat spread by the skin's normal: facing the light / near the terminator x %.3f "
       "(hairs' normals) -> x %.3f; facing x %.3f, near the terminator x %.3f\n",
       ratioA, ratioB, facingB / facingA, edgeB / edgeA);
-  // llvmpipe: x 18.8 -> x 23.8; facing x 1.000, near the terminator x 0.793.
+  // llvmpipe: x 18.7 -> x 24.1; facing x 1.000, near the terminator x 0.776.
   EXPECT_GT(ratioB, 1.1 * ratioA);
   EXPECT_LT(edgeB, 0.9 * edgeA);
   EXPECT_NEAR(facingB / facingA, 1.0, 0.1);

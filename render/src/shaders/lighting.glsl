@@ -173,7 +173,7 @@ vec3 marschner(vec3 T, vec3 P, vec3 Ka, vec3 Kd, vec3 Ks, float s) {
 //   tubes, which carry no tangent: A_v = A, l = 1);
 //   k_d = 1 where the strands are opaque (lines, tubes, strands without transparency); with
 //   transparent strands, k_d = 0.446 of it stays at the hair and k_s = 0.536 more reaches the
-//   coat spread sideways over 0.7 hair lengths, as light scattered many times among the hairs
+//   coat spread sideways over 0.35 hair lengths, as light scattered many times among the hairs
 //   leaves the coat away from where it entered (coat_spread.frag, Light::coatSpread); that light
 //   lights the coat as a layer over the body, so its N is the skin's under the pixel (from its
 //   depth, hair.frag's spreadNormal, Light::coatSpreadSkinNormal) where the light a hair keeps

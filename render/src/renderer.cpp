@@ -74,7 +74,7 @@ struct Renderer::Impl {
   Eigen::Vector3f background = scene::kDefaultBackground;  // the last frame's (linear)
 
   Program skinProgram, skinTexturedProgram, hairProgram, strandProgram, strandOitProgram,
-      compositeProgram, spreadProgram, fringeProgram, depthProgram;
+      compositeProgram, spreadProgram, skinMapsProgram, depthProgram;
 
   Framebuffer msaaFbo, resolveFbo, shadowFbo, oitFbo;
   Renderbuffer msaaColor, msaaDepth, resolveDepth;
@@ -84,9 +84,9 @@ struct Renderer::Impl {
   Texture skinDepth;
   Framebuffer skinDepthFbo;
   bool skinDepthCopied = false;  // this frame's, before the transparent strands
-  // The skin's depth beyond its outline (fringe_depth.frag).
-  Texture fringeDepth;
-  Framebuffer fringeFbo;
+  // The skin's depth beyond its outline and the skin's normal under each pixel (skin_maps.frag).
+  Texture fringeDepth, skinNormal;
+  Framebuffer skinMapsFbo;
   // The coat's spread light (coat_spread.frag): (E m, m) at half resolution or less, ping-ponged.
   Framebuffer spreadFbo[2];
   Texture spreadTarget[2];
@@ -141,29 +141,26 @@ struct Renderer::Impl {
         {ShaderStage{GL_VERTEX_SHADER, {"skin_textured.vert"}},
          ShaderStage{GL_FRAGMENT_SHADER, {"lighting.glsl", "skin_textured.frag"}}}));
     hairProgram.reset(detail::buildProgram(
-        "hair",
-        {ShaderStage{GL_VERTEX_SHADER, {"color.glsl", "hair.vert"}},
-         ShaderStage{GL_FRAGMENT_SHADER, {"lighting.glsl", "skin_depth.glsl", "hair.frag"}}}));
+        "hair", {ShaderStage{GL_VERTEX_SHADER, {"color.glsl", "hair.vert"}},
+                 ShaderStage{GL_FRAGMENT_SHADER, {"lighting.glsl", "hair.frag"}}}));
     const auto strand = [](const char* name, const char* defines) {
-      return detail::buildProgram(
-          name,
-          {ShaderStage{GL_VERTEX_SHADER, {"color.glsl", "hair.vert"}},
-           ShaderStage{GL_GEOMETRY_SHADER, {"hair_strand.geom"}},
-           ShaderStage{GL_FRAGMENT_SHADER, {"lighting.glsl", "skin_depth.glsl", "hair.frag"}}},
-          defines);
+      return detail::buildProgram(name,
+                                  {ShaderStage{GL_VERTEX_SHADER, {"color.glsl", "hair.vert"}},
+                                   ShaderStage{GL_GEOMETRY_SHADER, {"hair_strand.geom"}},
+                                   ShaderStage{GL_FRAGMENT_SHADER, {"lighting.glsl", "hair.frag"}}},
+                                  defines);
     };
     strandProgram.reset(strand("hair strands", "#define STRAND 1"));
     strandOitProgram.reset(strand("hair strands (transparent)", "#define STRAND 1\n#define OIT 1"));
     spreadProgram.reset(detail::buildProgram(
         "coat light spread", {ShaderStage{GL_VERTEX_SHADER, {"oit_composite.vert"}},
                               ShaderStage{GL_FRAGMENT_SHADER, {"coat_spread.frag"}}}));
-    fringeProgram.reset(detail::buildProgram(
-        "fringe depth", {ShaderStage{GL_VERTEX_SHADER, {"oit_composite.vert"}},
-                         ShaderStage{GL_FRAGMENT_SHADER, {"fringe_depth.frag"}}}));
+    skinMapsProgram.reset(
+        detail::buildProgram("skin maps", {ShaderStage{GL_VERTEX_SHADER, {"oit_composite.vert"}},
+                                           ShaderStage{GL_FRAGMENT_SHADER, {"skin_maps.frag"}}}));
     compositeProgram.reset(detail::buildProgram(
-        "transparency resolve",
-        {ShaderStage{GL_VERTEX_SHADER, {"oit_composite.vert"}},
-         ShaderStage{GL_FRAGMENT_SHADER, {"skin_depth.glsl", "oit_composite.frag"}}}));
+        "transparency resolve", {ShaderStage{GL_VERTEX_SHADER, {"oit_composite.vert"}},
+                                 ShaderStage{GL_FRAGMENT_SHADER, {"oit_composite.frag"}}}));
     depthProgram.reset(
         detail::buildProgram("depth", {ShaderStage{GL_VERTEX_SHADER, {"depth.vert"}},
                                        ShaderStage{GL_FRAGMENT_SHADER, {"depth.frag"}}}));
@@ -333,11 +330,15 @@ struct Renderer::Impl {
     glNamedFramebufferTexture(id, GL_DEPTH_ATTACHMENT, skinDepth.get(), 0);
     glNamedFramebufferDrawBuffer(id, GL_NONE);
     fringeDepth = makeTexture(GL_R32F, 1, w, h, GL_NEAREST, GL_NEAREST);
+    skinNormal = makeTexture(GL_RGBA32F, 1, w, h, GL_NEAREST, GL_NEAREST);
     glCreateFramebuffers(1, &id);
-    fringeFbo.reset(id);
+    skinMapsFbo.reset(id);
     glNamedFramebufferTexture(id, GL_COLOR_ATTACHMENT0, fringeDepth.get(), 0);
+    glNamedFramebufferTexture(id, GL_COLOR_ATTACHMENT1, skinNormal.get(), 0);
+    const GLenum skinMaps[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+    glNamedFramebufferDrawBuffers(id, 2, skinMaps);
     PELAGE_CHECK(glCheckNamedFramebufferStatus(id, GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE,
-                 "fringe depth framebuffer incomplete");
+                 "skin maps framebuffer incomplete");
     glCreateFramebuffers(1, &id);
     oitFbo.reset(id);
     glNamedFramebufferTexture(id, GL_COLOR_ATTACHMENT0, oitAccum.get(), 0);
@@ -528,10 +529,9 @@ struct Renderer::Impl {
         glProgramUniform2f(p, uniform(p, "uDepthUnproject"), proj(2, 2), proj(2, 3));
         // Light::coatSpreadSkinNormal: the spread light's normal turned towards the skin's, from
         // its depth (needs the skin's depth, copySkinDepth).
-        const bool skinNormal = skinDepthCopied && list.hairShading == scene::HairShading::Physical;
+        const bool fromSkin = skinDepthCopied && list.hairShading == scene::HairShading::Physical;
         setFloat(p, "uSpreadSkinNormal",
-                 skinNormal ? std::clamp(list.light.coatSpreadSkinNormal, 0.0f, 1.0f) : 0.0f);
-        setMatrix(p, "uInverseProjection", proj.inverse());
+                 fromSkin ? std::clamp(list.light.coatSpreadSkinNormal, 0.0f, 1.0f) : 0.0f);
         const Eigen::Matrix3f eyeToWorld = list.camera.view().topLeftCorner<3, 3>().inverse();
         setMatrix3(p, "uEyeToWorld", eyeToWorld);
       }
@@ -566,7 +566,7 @@ struct Renderer::Impl {
   }
 
   // How far beyond the skin's outline the transparent strands' weights look for the skin
-  // (fringe_depth.frag's uReach): kFringeReach times the longest hair seen at the creature's
+  // (skin_maps.frag's uReach): kFringeReach times the longest hair seen at the creature's
   // distance, in pixels, [1, 64].
   float fringeReachPixels(const scene::DrawList& list) const {
     if (!(list.hairLength > 0.0f) || list.bounds.isEmpty()) return 1.0f;
@@ -622,34 +622,34 @@ struct Renderer::Impl {
                        static_cast<float>(lh));
   }
 
-  // The skin's depth, as the opaque pass left it, copied for the transparent strands' weights and
-  // the resolve (skinDepthCopied; none without a skin), and the skin's depth beyond its outline
-  // for the weights (fringe_depth.frag).
+  // The skin's depth, as the opaque pass left it, copied for the transparent strands' weights
+  // (skinDepthCopied; none without a skin), and the skin's maps from it (skin_maps.frag): its
+  // depth beyond its outline for the weights and its normal under each pixel for the spread light
+  // and the resolve's grazing ambient, once per frame.
   void copySkinDepth(const scene::DrawList& list) {
     skinDepthCopied = list.skin.positions != nullptr;
     if (!skinDepthCopied) return;
     glBlitNamedFramebuffer(resolveFbo.get(), skinDepthFbo.get(), 0, 0, width, height, 0, 0, width,
                            height, GL_DEPTH_BUFFER_BIT, GL_NEAREST);
     glBindTextureUnit(11, skinDepth.get());
-    const GLuint p = fringeProgram.get();
+    const GLuint p = skinMapsProgram.get();
     glUseProgram(p);
     setFloat(p, "uReach", fringeReachPixels(list));
-    glBindFramebuffer(GL_FRAMEBUFFER, fringeFbo.get());
+    setMatrix(p, "uInverseProjection", list.camera.projection().inverse());
+    glBindFramebuffer(GL_FRAMEBUFFER, skinMapsFbo.get());
     glDisable(GL_DEPTH_TEST);
     glBindVertexArray(skinVao.get());  // any VAO: the triangle comes from gl_VertexID
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glEnable(GL_DEPTH_TEST);
     glBindTextureUnit(12, fringeDepth.get());
+    glBindTextureUnit(13, skinNormal.get());
   }
 
   // The physical model's grazing ambient (kCoatGrazingAmbient): the resolve takes the skin's
-  // normal from its depth (copySkinDepth); off without the physical model or a skin.
+  // normal under each pixel (copySkinDepth's skin maps); off without the physical model or a skin.
   void seeCoatGrazing(const scene::DrawList& list) {
-    const GLuint composite = compositeProgram.get();
     const bool on = list.hairShading == scene::HairShading::Physical && skinDepthCopied;
-    setFloat(composite, "uCoatGrazing", on ? kCoatGrazingAmbient : 0.0f);
-    if (!on) return;
-    setMatrix(composite, "uInverseProjection", list.camera.projection().inverse());
+    setFloat(compositeProgram.get(), "uCoatGrazing", on ? kCoatGrazingAmbient : 0.0f);
   }
 
   RenderStats render(const scene::DrawList& list) {

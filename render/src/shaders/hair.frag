@@ -40,16 +40,17 @@ uniform float uCoatDirect;  // the physical model's k_d (lighting.glsl): 1 unles
 // hair lengths; 0: off). The weights are a ratio, so measuring d from the skin instead of from
 // the nearest strand changes nothing but their range. Where no skin lies under the pixel (the
 // fringe, beyond the skin's outline) d is measured from the nearest skin within 1.5 hair lengths
-// (uFringeDepth, fringe_depth.frag), so that the weights do not step at the outline; farther out,
+// (uFringeDepth, skin_maps.frag), so that the weights do not step at the outline; farther out,
 // and beyond 30 lambda, d / lambda is 30.
 uniform vec2 uDepthRange;  // distance from the eye to the creature's bounds: near, far
+layout(binding = 11) uniform sampler2D uSkinDepth;    // the skin's depth (the opaque pass's)
 layout(binding = 12) uniform sampler2D uFringeDepth;  // the skin's depth beyond its outline
 uniform float uFrontDepth;  // lambda, metres; 0: off
 uniform vec2 uDepthUnproject;  // the projection's (2, 2) and (2, 3): a depth's distance along -z
 float eyeDistance(float depth) {
   return uDepthUnproject.y / (2.0 * depth - 1.0 + uDepthUnproject.x);
 }
-// The skin's depth under pixel p, or in the fringe the nearest skin's (fringe_depth.frag); 1 where
+// The skin's depth under pixel p, or in the fringe the nearest skin's (skin_maps.frag); 1 where
 // none.
 float coatBaseDepth(ivec2 p) {
   float skin = texelFetch(uSkinDepth, p, 0).r;
@@ -57,13 +58,14 @@ float coatBaseDepth(ivec2 p) {
 }
 // The normal the physical model's spread light takes (lighting.glsl, Light::coatSpreadSkinNormal):
 // the hair's own normal u turned by uSpreadSkinNormal towards the skin's under the pixel (from its
-// depth, skin_depth.glsl; uEyeToWorld the view's rotation inverted); u where no skin lies under the
-// pixel (the fringe) or without the skin's depth (uSpreadSkinNormal 0).
+// depth, skin_maps.frag, in eye space; uEyeToWorld the view's rotation inverted); u where no skin
+// lies under the pixel (the fringe) or without the skin's depth (uSpreadSkinNormal 0).
+layout(binding = 13) uniform sampler2D uSkinNormal;
 uniform float uSpreadSkinNormal;
 uniform mat3 uEyeToWorld;
 vec3 spreadNormal(vec3 u) {
   if (uSpreadSkinNormal <= 0.0) return u;
-  vec3 n = skinNormal(ivec2(gl_FragCoord.xy));
+  vec3 n = texelFetch(uSkinNormal, ivec2(gl_FragCoord.xy), 0).xyz;
   if (dot(n, n) == 0.0) return u;
   vec3 m = mix(u, uEyeToWorld * n, uSpreadSkinNormal);
   return dot(m, m) > 1e-12 ? normalize(m) : u;

@@ -19,13 +19,9 @@ uniform vec2 uSpreadSize;                        // the low-resolution target's 
 uniform vec3 uLightColor;
 uniform vec3 uAmbientLight;
 uniform float uCoatGrazing;  // k_g; 0: off
-// |N.V| of the skin under pixel p (0 without skin), N from its depth (skin_depth.glsl).
-float skinFacing(ivec2 p) {
-  vec3 n = skinNormal(p);
-  if (dot(n, n) == 0.0) return 0.0;
-  ivec2 size = textureSize(uSkinDepth, 0);
-  return dot(n, normalize(-skinPoint(p, size)));
-}
+// The skin's normal under each pixel from its depth and its |N.V| in a (skin_maps.frag; 0 without
+// skin).
+layout(binding = 13) uniform sampler2D uSkinNormal;
 layout(location = 0) out vec4 fColor;
 void main() {
   ivec2 p = ivec2(gl_FragCoord.xy);
@@ -39,7 +35,9 @@ void main() {
     vec2 e = texture(uSpread, q / vec2(textureSize(uSpread, 0))).rg;
     c += uCoatSpreadShare * uLightColor * (texelFetch(uCoat, p, 0).rgb / w) * (e.x / max(e.y, 1e-12));
   }
-  if (uCoatGrazing > 0.0)
-    c += uCoatGrazing * uAmbientLight * (texelFetch(uCoat, p, 0).rgb / w) * (1.0 - skinFacing(p));
+  if (uCoatGrazing > 0.0) {
+    float facing = texelFetch(uSkinNormal, p, 0).a;
+    c += uCoatGrazing * uAmbientLight * (texelFetch(uCoat, p, 0).rgb / w) * (1.0 - facing);
+  }
   fColor = vec4(c, 1.0 - reveal);
 }

@@ -528,12 +528,10 @@ struct Renderer::Impl {
         const Eigen::Matrix4f proj = list.camera.projection();
         glProgramUniform2f(p, uniform(p, "uDepthUnproject"), proj(2, 2), proj(2, 3));
         // Light::coatSpreadSkinNormal: the spread light's normal turned towards the skin's, from
-        // its depth (needs the skin's depth, copySkinDepth).
-        const bool fromSkin = skinDepthCopied && list.hairShading == scene::HairShading::Physical;
+        // its depth (needs the skin's maps, copySkinDepth).
         setFloat(p, "uSpreadSkinNormal",
-                 fromSkin ? std::clamp(list.light.coatSpreadSkinNormal, 0.0f, 1.0f) : 0.0f);
-        const Eigen::Matrix3f eyeToWorld = list.camera.view().topLeftCorner<3, 3>().inverse();
-        setMatrix3(p, "uEyeToWorld", eyeToWorld);
+                 physicalOverSkin(list) ? std::clamp(list.light.coatSpreadSkinNormal, 0.0f, 1.0f)
+                                        : 0.0f);
       }
     }
     drawHairs(b, p);
@@ -636,6 +634,7 @@ struct Renderer::Impl {
     glUseProgram(p);
     setFloat(p, "uReach", fringeReachPixels(list));
     setMatrix(p, "uInverseProjection", list.camera.projection().inverse());
+    setMatrix3(p, "uEyeToWorld", list.camera.view().topLeftCorner<3, 3>().inverse().eval());
     glBindFramebuffer(GL_FRAMEBUFFER, skinMapsFbo.get());
     glDisable(GL_DEPTH_TEST);
     glBindVertexArray(skinVao.get());  // any VAO: the triangle comes from gl_VertexID
@@ -648,8 +647,14 @@ struct Renderer::Impl {
   // The physical model's grazing ambient (kCoatGrazingAmbient): the resolve takes the skin's
   // normal under each pixel (copySkinDepth's skin maps); off without the physical model or a skin.
   void seeCoatGrazing(const scene::DrawList& list) {
-    const bool on = list.hairShading == scene::HairShading::Physical && skinDepthCopied;
-    setFloat(compositeProgram.get(), "uCoatGrazing", on ? kCoatGrazingAmbient : 0.0f);
+    setFloat(compositeProgram.get(), "uCoatGrazing",
+             physicalOverSkin(list) ? kCoatGrazingAmbient : 0.0f);
+  }
+
+  // Whether this frame's physical fur model has the skin's maps under it (copySkinDepth): its
+  // spread light and grazing ambient take the skin's normal from them.
+  bool physicalOverSkin(const scene::DrawList& list) const {
+    return skinDepthCopied && list.hairShading == scene::HairShading::Physical;
   }
 
   RenderStats render(const scene::DrawList& list) {

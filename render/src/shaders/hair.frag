@@ -58,16 +58,15 @@ float coatBaseDepth(ivec2 p) {
 }
 // The normal the physical model's spread light takes (lighting.glsl, Light::coatSpreadSkinNormal):
 // the hair's own normal u turned by uSpreadSkinNormal towards the skin's under the pixel (from its
-// depth, skin_maps.frag, in eye space; uEyeToWorld the view's rotation inverted); u where no skin
-// lies under the pixel (the fringe) or without the skin's depth (uSpreadSkinNormal 0).
+// depth, skin_maps.frag, in world space); u where no skin lies under the pixel (the fringe) or
+// without the skin's depth (uSpreadSkinNormal 0).
 layout(binding = 13) uniform sampler2D uSkinNormal;
 uniform float uSpreadSkinNormal;
-uniform mat3 uEyeToWorld;
 vec3 spreadNormal(vec3 u) {
   if (uSpreadSkinNormal <= 0.0) return u;
   vec3 n = texelFetch(uSkinNormal, ivec2(gl_FragCoord.xy), 0).xyz;
   if (dot(n, n) == 0.0) return u;
-  vec3 m = mix(u, uEyeToWorld * n, uSpreadSkinNormal);
+  vec3 m = mix(u, n, uSpreadSkinNormal);
   return dot(m, m) > 1e-12 ? normalize(m) : u;
 }
 layout(location = 0) out vec4 fAccum;

@@ -3,7 +3,8 @@
 // (uSkinDepth), the skin's depth beyond its outline and the skin's normal under each pixel.
 layout(binding = 11) uniform sampler2D uSkinDepth;
 uniform mat4 uInverseProjection;
-uniform float uReach;  // pixels
+uniform mat3 uEyeToWorld;  // the view's rotation inverted
+uniform float uReach;      // pixels
 // The skin's depth beyond its outline, for the transparent strands' weights inside the coat
 // (hair.frag, Light::coatSeenDepth): where no skin lies under a pixel (the fringe), a strand's depth
 // is measured from the nearest skin within uReach pixels (renderer.cpp's kFringeReach hair
@@ -13,7 +14,7 @@ uniform float uReach;  // pixels
 // quarter of the frame's resolution, tried, the frames' Laplacian spread against the light fell
 // from 90 and 94 % of Cycles' to 84 to 88 %, at the same MAE.)
 layout(location = 0) out float fDepth;
-// The skin's unit normal under the pixel in eye space, turned towards the eye, and its |N.V| (V
+// The skin's unit normal under the pixel, turned towards the eye, in world space, and its |N.V| (V
 // towards the eye): the coat's spread light (hair.frag's spreadNormal) and the resolve's grazing
 // ambient (oit_composite.frag) read it; (0, 0, 0, 0) where no skin lies under the pixel.
 layout(location = 1) out vec4 fNormal;
@@ -25,7 +26,7 @@ vec3 skinPoint(ivec2 q, ivec2 size) {
   vec4 v = uInverseProjection * ndc;
   return v.xyz / v.w;
 }
-// The normal from the depth: the cross product of the nearer of the two one-sided differences 3
+// The normal from the depth, in eye space: the cross product of the nearer of the two one-sided differences 3
 // pixels along x and along y (as screen-space ambient occlusion takes normals from depth, so that
 // the outline's depth step is not one of them).
 vec4 skinNormal(ivec2 p, ivec2 size) {
@@ -45,7 +46,11 @@ void main() {
   ivec2 size = textureSize(uSkinDepth, 0);
   vec2 c = gl_FragCoord.xy;
   float skin = texelFetch(uSkinDepth, ivec2(c), 0).r;
-  fNormal = skin < 1.0 ? skinNormal(ivec2(c), size) : vec4(0.0);
+  fNormal = vec4(0.0);
+  if (skin < 1.0) {
+    vec4 n = skinNormal(ivec2(c), size);
+    fNormal = vec4(uEyeToWorld * n.xyz, n.a);
+  }
   const float rings[6] = float[6](1.0, 2.0, 4.0, 6.0, 9.0, 12.0);
   for (int k = 0; k < 6 && skin >= 1.0; ++k) {
     float r = max(uReach * rings[k] / 12.0, 1.0);

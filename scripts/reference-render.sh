@@ -14,11 +14,13 @@
 #    reference's detail without its own noise, measured from the two renders' difference) and
 #    OUTDIR/side_by_side.png (pelage | Cycles | |difference| x 4), over pelage's default background.
 # Give one frame (--frames N). SAMPLES (default 256, at least 2) sets Cycles' samples per pixel in
-# all. Blender is installed here only (apt-get install blender, as root), never by make test.
+# all. PASSES=1 also writes the first render's light passes into OUTDIR/passes/
+# (cycles_render.py --passes). Blender is installed here only (apt-get install blender, as
+# root), never by make test.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 if [ $# -lt 2 ]; then
-  sed -n '2,17p' "$0" | sed 's/^# \{0,1\}//' >&2
+  sed -n '2,19p' "$0" | sed 's/^# \{0,1\}//' >&2
   exit 2
 fi
 model=$1 out=$2
@@ -39,7 +41,7 @@ if ! command -v blender > /dev/null; then
   fi
 fi
 mkdir -p "$out"
-rm -rf "$out/pelage" "$out/scene" "$out"/cycles*.png
+rm -rf "$out/pelage" "$out/scene" "$out/passes" "$out"/cycles*.png
 "$pelage" render "$model" --out "$out/pelage" --background transparent --quiet "$@"
 "$pelage" render "$model" --out "$out/scene" --background transparent --quiet --no-culling \
   --hair-source cpu --scene-files "$@"
@@ -50,7 +52,8 @@ if [ ${#scenes[@]} -ne 1 ] || [ ${#frames[@]} -ne 1 ]; then
   exit 2
 fi
 blender -b --factory-startup -noaudio --python-exit-code 1 --python scripts/reference/cycles_render.py -- \
-  "${scenes[0]}" "$out/cycles_a.png" "$out/cycles_b.png" --samples $((samples / 2)) > "$out/blender.log" 2>&1 ||
+  "${scenes[0]}" "$out/cycles_a.png" "$out/cycles_b.png" --samples $((samples / 2)) \
+  ${PASSES:+--passes "$out/passes"} > "$out/blender.log" 2>&1 ||
   { tail -20 "$out/blender.log" >&2; echo "reference-render: Blender failed" >&2; exit 1; }
 grep -E "^cycles_render" "$out/blender.log" || true
 [ -s "$out/cycles_a.png" ] && [ -s "$out/cycles_b.png" ] ||

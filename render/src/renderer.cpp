@@ -48,16 +48,20 @@ bool skinShadows(const scene::DrawList& list) {
 // fitted with lighting.glsl's g and k_a on the six committed reference views (README); 0.5 -> 0.425
 // and 0.6 -> 0.51 with Light::lightAlongFibreDarkening (the coat's direct light was 1.2 to 1.3
 // times Cycles' on every view, views.py parts); x 1.05 (0.446, 0.536) with
-// Light::coatSpreadSkinNormal, which took 2 to 4 % off the front views' luminance.
-constexpr float kCoatLightKept = 0.446f;
-constexpr float kCoatLightSpread = 0.536f;
+// Light::coatSpreadSkinNormal, which took 2 to 4 % off the front views' luminance; 0.138 and 0.607
+// with Chiang's fibre (lighting.glsl, 2026-12-07), which now carries the light a fibre scatters
+// once and forward through the coat (Cycles' light passes: the coat's direct light had stood in
+// for it, at 1.4 to 1.6 times the light Cycles scatters many times, views.py passes, README).
+constexpr float kCoatLightKept = 0.138f;
+constexpr float kCoatLightSpread = 0.607f;
 // The physical model's ambient by how the coat is seen (oit_composite.frag): the coat seen at a
 // grazing angle shows its outer layer, whose hairs see the whole sky, and face-on its depths, so
 // k_g La A (1 - |N.V|) more, N the skin's normal under the pixel. k_g fitted on the ambient's part
 // of the seven reference views against Cycles' (views.py parts, README); 0.6 -> 0.52 with
 // Light::coatSeenDepth, as lighting.glsl's k_a (the near strands, brighter, weigh more), and 0.52
-// -> 0.546 with Light::lightAlongFibreDarkening (the ambient part was 0.83 to 0.89 times Cycles').
-constexpr float kCoatGrazingAmbient = 0.546f;
+// -> 0.546 with Light::lightAlongFibreDarkening (the ambient part was 0.83 to 0.89 times Cycles'),
+// 0.412 with Chiang's fibre (lighting.glsl's k_a 0.604 -> 0.722 with it).
+constexpr float kCoatGrazingAmbient = 0.412f;
 // How far beyond the skin's outline, in hair lengths, the transparent strands' weights inside the
 // coat (Light::coatSeenDepth) measure a fringe strand's depth from the nearest skin: the fringe's
 // hairs reach up to one hair length beyond the outline, bent or not; with the margin of the
@@ -134,21 +138,25 @@ struct Renderer::Impl {
 
     using detail::ShaderStage;
     skinProgram.reset(detail::buildProgram(
-        "skin", {ShaderStage{GL_VERTEX_SHADER, {"skin.vert"}},
-                 ShaderStage{GL_FRAGMENT_SHADER, {"lighting.glsl", "skin.frag"}}}));
+        "skin",
+        {ShaderStage{GL_VERTEX_SHADER, {"skin.vert"}},
+         ShaderStage{GL_FRAGMENT_SHADER, {"hair_bsdf.glsl", "lighting.glsl", "skin.frag"}}}));
     skinTexturedProgram.reset(detail::buildProgram(
         "skin (textured)",
         {ShaderStage{GL_VERTEX_SHADER, {"skin_textured.vert"}},
-         ShaderStage{GL_FRAGMENT_SHADER, {"lighting.glsl", "skin_textured.frag"}}}));
+         ShaderStage{GL_FRAGMENT_SHADER,
+                     {"hair_bsdf.glsl", "lighting.glsl", "skin_textured.frag"}}}));
     hairProgram.reset(detail::buildProgram(
-        "hair", {ShaderStage{GL_VERTEX_SHADER, {"color.glsl", "hair.vert"}},
-                 ShaderStage{GL_FRAGMENT_SHADER, {"lighting.glsl", "hair.frag"}}}));
+        "hair",
+        {ShaderStage{GL_VERTEX_SHADER, {"color.glsl", "hair.vert"}},
+         ShaderStage{GL_FRAGMENT_SHADER, {"hair_bsdf.glsl", "lighting.glsl", "hair.frag"}}}));
     const auto strand = [](const char* name, const char* defines) {
-      return detail::buildProgram(name,
-                                  {ShaderStage{GL_VERTEX_SHADER, {"color.glsl", "hair.vert"}},
-                                   ShaderStage{GL_GEOMETRY_SHADER, {"hair_strand.geom"}},
-                                   ShaderStage{GL_FRAGMENT_SHADER, {"lighting.glsl", "hair.frag"}}},
-                                  defines);
+      return detail::buildProgram(
+          name,
+          {ShaderStage{GL_VERTEX_SHADER, {"color.glsl", "hair.vert"}},
+           ShaderStage{GL_GEOMETRY_SHADER, {"hair_strand.geom"}},
+           ShaderStage{GL_FRAGMENT_SHADER, {"hair_bsdf.glsl", "lighting.glsl", "hair.frag"}}},
+          defines);
     };
     strandProgram.reset(strand("hair strands", "#define STRAND 1"));
     strandOitProgram.reset(strand("hair strands (transparent)", "#define STRAND 1\n#define OIT 1"));
@@ -476,6 +484,12 @@ struct Renderer::Impl {
     setFloat(program, "uAlongFibreSaturation", list.light.alongFibreSaturation);
     setFloat(program, "uLightAlongFibreDarkening", list.light.lightAlongFibreDarkening);
     setFloat(program, "uCoatBacklitDarkening", list.light.coatBacklitDarkening);
+    // The fibre's light through the fur at Light::fibreLobeOpacity a crossing where the map
+    // counts Light::fibreOpacity: its transmittance to the power of their ratio (lighting.glsl).
+    setFloat(program, "uFibreLobeShadowPower",
+             list.light.fibreOpacity > 0.0f
+                 ? std::max(list.light.fibreLobeOpacity, 0.0f) / list.light.fibreOpacity
+                 : 1.0f);
     setInt(program, "uShadows", skinShadows(list) ? 1 : 0);
     setMatrix(program, "uLightViewProj", light.viewProj);
     setFloat(program, "uShadowBias", bias);

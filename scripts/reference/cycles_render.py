@@ -3,11 +3,19 @@ reference that pelage's frames are measured against (scripts/reference-render.sh
 
 Run inside Blender (3.4; its Python has no numpy):
   blender -b --factory-startup -noaudio --python scripts/reference/cycles_render.py -- \
-      SCENE.pelscene OUT.png [OUT2.png ...] [--samples N] [--as-drawn]
+      SCENE.pelscene OUT.png [OUT2.png ...] [--samples N] [--as-drawn] [--passes DIR]
 
 Each OUT is an independent render of the scene (N samples per pixel, Cycles' seed 0, 1, ...):
 two of them let the caller estimate the reference's own Monte Carlo noise from their difference
 (scripts/reference/compare.py).
+
+--passes DIR also writes the first render's light passes (Cycles' view layer passes: Diffuse,
+Glossy and Transmission, each Direct, Indirect and Color; the Principled Hair BSDF is glossy, the
+skin diffuse) into DIR as NAME.f32 (linear float32 RGBA, rows bottom-up, as Blender keeps them)
+with DIR/passes.json giving the image size and the names (scripts/reference/views.py passes reads
+them): light a hair the eye sees got straight from a light and scattered once is GlossCol x
+GlossDir, light scattered more than once GlossCol x GlossInd, the skin seen DiffCol x (DiffDir +
+DiffInd).
 
 What it builds, so that Lambert in Cycles equals pelage's Kd N.L:
 - the camera: pelage's eye, target and up, `sensor_fit` VERTICAL with `angle_y` = pelage's
@@ -26,6 +34,7 @@ What it builds, so that Lambert in Cycles equals pelage's Kd N.L:
 import array
 import json
 import math
+import os
 import struct
 import sys
 
@@ -258,13 +267,65 @@ def add_coat(scene, coat, values, as_drawn, material):
     return n
 
 
+PASSES = ("diffuse_direct", "diffuse_indirect", "diffuse_color", "glossy_direct",
+          "glossy_indirect", "glossy_color", "transmission_direct", "transmission_indirect",
+          "transmission_color")
+
+
+def enable_passes(scene, folder):
+    """Cycles' light passes written by the compositor as float EXRs into folder (one per pass)."""
+    layer = scene.view_layers[0]
+    for name in PASSES:
+        setattr(layer, "use_pass_" + name, True)
+    scene.use_nodes = True
+    tree = scene.node_tree
+    tree.nodes.clear()
+    layers = tree.nodes.new("CompositorNodeRLayers")
+    out = tree.nodes.new("CompositorNodeOutputFile")
+    out.base_path = folder
+    out.format.file_format = "OPEN_EXR"
+    out.format.color_depth = "32"
+    out.file_slots.clear()
+    names = [o.name for o in layers.outputs if o.enabled and o.name not in ("Image", "Alpha")]
+    for name in names:
+        out.file_slots.new(name)
+        tree.links.new(layers.outputs[name], out.inputs[-1])
+    composite = tree.nodes.new("CompositorNodeComposite")
+    tree.links.new(layers.outputs["Image"], composite.inputs["Image"])
+    return names
+
+
+def write_passes(folder, names, width, height):
+    """The compositor's EXRs (NAME0001.exr) as NAME.f32 and passes.json; the EXRs removed."""
+    for name in names:
+        exr = [f for f in os.listdir(folder) if f.startswith(name) and f.endswith(".exr")]
+        if len(exr) != 1:
+            fail("pass %s: expected one EXR in %s, got %d" % (name, folder, len(exr)))
+        image = bpy.data.images.load(os.path.join(folder, exr[0]))
+        pixels = array.array("f", [0.0]) * len(image.pixels)
+        image.pixels.foreach_get(pixels)
+        if len(pixels) != 4 * width * height:
+            fail("pass %s: %d values, expected %d" % (name, len(pixels), 4 * width * height))
+        with open(os.path.join(folder, name + ".f32"), "wb") as f:
+            if sys.byteorder != "little":
+                pixels.byteswap()
+            pixels.tofile(f)
+        bpy.data.images.remove(image)
+        os.remove(os.path.join(folder, exr[0]))
+    with open(os.path.join(folder, "passes.json"), "w") as f:
+        json.dump({"width": width, "height": height, "passes": names}, f)
+
+
 def main(argv):
     args = argv[argv.index("--") + 1:] if "--" in argv else []
-    samples, as_drawn, paths = 256, False, []
+    samples, as_drawn, paths, passes = 256, False, [], None
     i = 0
     while i < len(args):
         if args[i] == "--samples" and i + 1 < len(args):
             samples = int(args[i + 1])
+            i += 2
+        elif args[i] == "--passes" and i + 1 < len(args):
+            passes = args[i + 1]
             i += 2
         elif args[i] == "--as-drawn":
             as_drawn = True
@@ -274,12 +335,13 @@ def main(argv):
             i += 1
     if len(paths) < 2 or not 1 <= samples <= 65536:
         fail("usage: blender -b --python cycles_render.py -- SCENE.pelscene OUT.png "
-             "[OUT2.png ...] [--samples N (1..65536)] [--as-drawn]")
+             "[OUT2.png ...] [--samples N (1..65536)] [--as-drawn] [--passes DIR]")
     header, values = read_scene(paths[0])
     scene = setup_scene(header, samples)
     add_skin(scene, header, values)
     material = hair_material()
     hairs = sum(add_coat(scene, c, values, as_drawn, material) for c in header["coats"])
+    names = enable_passes(scene, passes) if passes else None
     for seed, out in enumerate(paths[1:]):
         print("cycles_render: %d hairs, %d skin triangles, %dx%d, %d samples, seed %d -> %s"
               % (hairs, header["skin"]["triangles"], header["camera"]["width"],
@@ -287,6 +349,9 @@ def main(argv):
         scene.cycles.seed = seed
         scene.render.filepath = out
         bpy.ops.render.render(write_still=True)
+        if names is not None:
+            write_passes(passes, names, header["camera"]["width"], header["camera"]["height"])
+            names, scene.use_nodes = None, False  # the later seeds: the image alone
 
 
 if __name__ == "__main__":

@@ -22,6 +22,13 @@
                               pelage and Cycles, their ratio and the part's MAE, and writes them
                               to OUT/parts.json. A shading model is calibrated part by part with
                               it: a wrong balance between the parts cancels in the full frame
+  views.py passes OUT [NAME...]
+                              each part again with Cycles' light passes (Blender; nothing
+                              committed; reference-render.sh with PASSES=1, into OUT/NAME_key/ and
+                              OUT/NAME_ambient/): prints the mean linear luminance over the
+                              creature of the light Cycles' hairs scatter once (straight from the
+                              light), of what they scatter more than once, and of the skin seen,
+                              beside pelage's part, and writes them to OUT/passes.json
 
 The views are scripts/reference/views.txt. Environment: PELAGE (the pelage binary, default
 build/bin/pelage), PELAGE_SHARED_MODELS_DIR (the shared models, default ../shared/models),
@@ -148,6 +155,23 @@ def part_luminance(rgba):
     return lum, alpha
 
 
+def render_part(model, options, option, folder, **env):
+    """One light part of a view path-traced and drawn by pelage (reference-render.sh into folder,
+    the other part's light off with option 0): the mean linear luminance over the creature in
+    pelage and in Cycles, and the creature's mask."""
+    env = dict(os.environ, SAMPLES=os.environ.get("SAMPLES", "256"), **env)
+    subprocess.run([os.path.join(ROOT, "scripts", "reference-render.sh"),
+                    model_path(model), folder] + options + [option, "0"],
+                   check=True, env=env, stdout=subprocess.DEVNULL)
+    pel = compare.read_rgba(only_frame(os.path.join(folder, "pelage")))
+    cyc = compare.read_rgba(os.path.join(folder, "cycles.png"))
+    (lp, ap), (lc, ac) = part_luminance(pel), part_luminance(cyc)
+    creature = (ap > 0.5) | (ac > 0.5)
+    entry = {"pelage": float((lp * ap)[creature].mean()),
+             "cycles": float((lc * ac)[creature].mean())}
+    return entry, creature
+
+
 def parts(out, names):
     chosen = selected(names)  # unknown names exit before anything is written
     os.makedirs(out, exist_ok=True)
@@ -157,23 +181,62 @@ def parts(out, names):
         table[name] = {}
         for part, option in PARTS:
             folder = os.path.join(out, "%s_%s" % (name, part))
-            env = dict(os.environ, SAMPLES=os.environ.get("SAMPLES", "256"))
-            subprocess.run([os.path.join(ROOT, "scripts", "reference-render.sh"),
-                            model_path(model), folder] + options + [option, "0"],
-                           check=True, env=env, stdout=subprocess.DEVNULL)
-            pel = compare.read_rgba(only_frame(os.path.join(folder, "pelage")))
-            cyc = compare.read_rgba(os.path.join(folder, "cycles.png"))
-            (lp, ap), (lc, ac) = part_luminance(pel), part_luminance(cyc)
-            creature = (ap > 0.5) | (ac > 0.5)
+            entry, _ = render_part(model, options, option, folder)
             with open(os.path.join(folder, "figures.json")) as f:
-                mae = json.load(f)["mae"]
-            entry = {"pelage": float((lp * ap)[creature].mean()),
-                     "cycles": float((lc * ac)[creature].mean()), "mae": mae}
+                entry["mae"] = json.load(f)["mae"]
             entry["ratio"] = entry["cycles"] / max(entry["pelage"], 1e-12)
             table[name][part] = entry
-            print("%-14s %-8s %9.4f %9.4f %7.2f %8.1f" % (name, part, entry["pelage"],
-                                                          entry["cycles"], entry["ratio"], mae))
+            print("%-14s %-8s %9.4f %9.4f %7.2f %8.1f" % (
+                name, part, entry["pelage"], entry["cycles"], entry["ratio"], entry["mae"]))
     with open(os.path.join(out, "parts.json"), "w") as f:
+        json.dump(table, f, indent=1, sort_keys=True)
+        f.write("\n")
+    return 0
+
+
+def read_passes(folder):
+    """reference-render.sh's light passes (PASSES=1) as {name: linear RGBA float array, rows
+    top-down}."""
+    with open(os.path.join(folder, "passes.json")) as f:
+        meta = json.load(f)
+    w, h = meta["width"], meta["height"]
+    out = {}
+    for name in meta["passes"]:
+        data = np.fromfile(os.path.join(folder, name + ".f32"), dtype="<f4")
+        if data.size != 4 * w * h:
+            sys.exit("views.py: %s/%s.f32 has %d values, expected %d" % (folder, name, data.size,
+                                                                         4 * w * h))
+        out[name] = data.reshape(h, w, 4)[::-1].astype(np.float64)
+    return out
+
+
+def light_paths(passes):
+    """The light of a frame by the path that brought it (linear RGB): scattered once by a hair the
+    eye sees, scattered more than once, and the skin seen."""
+    rgb = {k: v[..., :3] for k, v in passes.items()}
+    return {"once": rgb["GlossCol"] * rgb["GlossDir"], "many": rgb["GlossCol"] * rgb["GlossInd"],
+            "skin": rgb["DiffCol"] * (rgb["DiffDir"] + rgb["DiffInd"])}
+
+
+def passes(out, names):
+    chosen = selected(names)
+    os.makedirs(out, exist_ok=True)
+    table = {}
+    print("%-14s %-8s %9s %9s %9s %9s %9s" % ("view", "part", "pelage", "Cycles", "once",
+                                              "many", "skin"))
+    for name, model, options in chosen:
+        table[name] = {}
+        for part, option in PARTS:
+            folder = os.path.join(out, "%s_%s" % (name, part))
+            entry, creature = render_part(model, options, option, folder, PASSES="1")
+            paths = light_paths(read_passes(os.path.join(folder, "passes")))
+            for k, v in paths.items():
+                entry[k] = float((v @ compare.LUMA)[creature].mean())
+            table[name][part] = entry
+            print("%-14s %-8s %9.4f %9.4f %9.4f %9.4f %9.4f" % (
+                name, part, entry["pelage"], entry["cycles"], entry["once"], entry["many"],
+                entry["skin"]))
+    with open(os.path.join(out, "passes.json"), "w") as f:
         json.dump(table, f, indent=1, sort_keys=True)
         f.write("\n")
     return 0
@@ -221,13 +284,16 @@ def check(names, record=False):
 
 
 def main(argv):
-    if not argv or argv[0] not in ("render", "check", "record", "parts") or argv == ["parts"]:
+    if (not argv or argv[0] not in ("render", "check", "record", "parts", "passes")
+            or argv in (["parts"], ["passes"])):
         print(__doc__.strip(), file=sys.stderr)
         return 2
     if argv[0] == "render":
         return render(argv[1:])
     if argv[0] == "parts":
         return parts(argv[1], argv[2:])
+    if argv[0] == "passes":
+        return passes(argv[1], argv[2:])
     return check(argv[1:], record=argv[0] == "record")
 
 

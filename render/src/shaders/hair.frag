@@ -87,10 +87,11 @@ void main() {
   vec3 v = S_IN;
   float len = length(v);
   vec3 u = len > 0.0 ? v / len : vec3(0.0, 0.0, 1.0);
-  float s = shadowFactor(P_IN, uShadowBias);
+  vec2 shadow = shadowFactors(P_IN, uShadowBias);
+  float s = shadow.x * shadow.y;
   vec3 kd = uPerHairColor ? C_IN : uKd;
   vec3 ka = uPerHairColor ? C_IN * uAmbientRatio : uKa;
-  vec3 c = uShading == 3   ? physicalFur(u, T_IN, P_IN, kd, s, uCoatDirect)
+  vec3 c = uShading == 3   ? physicalFur(u, T_IN, P_IN, kd, shadow, uCoatDirect)
            : uShading == 2 ? marschner(u, P_IN, ka, kd, uKs, s)
            : uShading == 1 ? kajiyaKay(u, P_IN, ka, kd, uKs, uShininess, s)
                            : phong(u, P_IN, ka, kd, uKs, uShininess, s);

@@ -36,20 +36,26 @@ float furTransmittance(vec3 q) {
   return exp(-opacity);
 }
 
-// Fraction of the key light reaching worldPos: 3x3 percentage-closer filtering of the shadow map
-// (the skin's shadow, and the hairs' without self-shadowing), times the fur's transmittance.
-float shadowFactor(vec3 worldPos, float bias) {
-  if (!uShadows && !uSelfShadow) return 1.0;
+// The key light reaching worldPos, in two factors: the body's (3x3 percentage-closer filtering of
+// the shadow map: the skin's shadow, and the hairs' without self-shadowing) in x, the fur's
+// transmittance in y.
+vec2 shadowFactors(vec3 worldPos, float bias) {
+  if (!uShadows && !uSelfShadow) return vec2(1.0);
   vec4 p = uLightViewProj * vec4(worldPos, 1.0);
   vec3 q = p.xyz / p.w * 0.5 + 0.5;
-  if (any(lessThan(q, vec3(0.0))) || any(greaterThan(q, vec3(1.0)))) return 1.0;
+  if (any(lessThan(q, vec3(0.0))) || any(greaterThan(q, vec3(1.0)))) return vec2(1.0);
   float fur = furTransmittance(q);
-  if (!uShadows) return fur;
+  if (!uShadows) return vec2(1.0, fur);
   vec2 texel = 1.0 / vec2(textureSize(uShadowMap, 0));
   float s = 0.0;
   for (int y = -1; y <= 1; ++y)
     for (int x = -1; x <= 1; ++x) s += texture(uShadowMap, vec3(q.xy + vec2(x, y) * texel, q.z - bias));
-  return fur * s / 9.0;
+  return vec2(s / 9.0, fur);
+}
+// Fraction of the key light reaching worldPos: the two factors' product.
+float shadowFactor(vec3 worldPos, float bias) {
+  vec2 f = shadowFactors(worldPos, bias);
+  return f.x * f.y;
 }
 
 // The paper's lighting (sec. 3.2: "Hair is given a user-defined material type consisting of
@@ -172,7 +178,7 @@ vec3 marschner(vec3 T, vec3 P, vec3 Ka, vec3 Kd, vec3 Ks, float s) {
 //   (the three-quarter views' mean |T.V|, where the ambient stays k_a La A; no change for lines and
 //   tubes, which carry no tangent: A_v = A, l = 1);
 //   k_d = 1 where the strands are opaque (lines, tubes, strands without transparency); with
-//   transparent strands, k_d = 0.446 of it stays at the hair and k_s = 0.536 more reaches the
+//   transparent strands, k_d = 0.138 of it stays at the hair and k_s = 0.607 more reaches the
 //   coat spread sideways over 0.35 hair lengths, as light scattered many times among the hairs
 //   leaves the coat away from where it entered (coat_spread.frag, Light::coatSpread); that light
 //   lights the coat as a layer over the body, so its N is the skin's under the pixel (from its
@@ -181,27 +187,26 @@ vec3 marschner(vec3 T, vec3 P, vec3 Ka, vec3 Kd, vec3 Ks, float s) {
 //   coat seen at a grazing angle, its outer layer, gets k_g La A (1 - |N.V|) more ambient, N the
 //   skin's normal (oit_composite.frag, renderer.cpp's kCoatGrazingAmbient);
 // - the fibre, about the strand's tangent T (absent for lines and tubes, which carry none):
-//   Marschner's R, TT and TRT lobes with Chiang's roughness (longitudinal width beta = 0.726 r +
-//   0.812 r^2 for Cycles' default r = 0.3, cuticle tilt 2 deg), the dielectric's Fresnel
-//   reflectance F = F0 + (1 - F0)(1 - cos)^5 at IOR 1.55 (F0 = 0.0465), and Chiang's absorption
-//   from the colour, sigma_a = (ln c / 5.888)^2 (his eq. 9 at azimuthal roughness 0.3), through a
-//   fibre path of 2 / cos(theta_t): T_abs = exp(-2 sigma_a / cos(theta_t)), sin(theta_t) =
-//   sin(theta_d) / 1.55, on TT (once) and TRT (twice);
-//     fibre = s Ld cos(theta_i) (F_r M_R N_R + (1 - F_t)^2 T_abs M_TT N_TT
-//                                 + (1 - F_t)^2 F_t T_abs^2 M_TRT N_TRT) / cos^2(theta_d),
-//   M_p N_p from hairLobes(), F_r at cos(theta_d) cos(phi / 2), F_t at cos(theta_d).
-// g, k_a and the spread light's shares (k_d, k_s: renderer.cpp's kCoatLightKept and
-// kCoatLightSpread) were fitted on the six committed views (docs/reference/figures.json, README);
-// k_g, the spread's width and the deep opacity map's fibre opacity on the light's two parts apart
-// against Cycles' (scripts/reference/views.py parts, README); k_p, k_v (and k_a again, 0.6 ->
-// 0.66) on the ambient part and the full frames, k_a 0.66 -> 0.575 with the coat seen to its
-// depth Light::coatSeenDepth (its near strands, brighter, weigh more) on the full frames, k_l on
-// the key light's part with k_d, k_s, k_a (0.575 -> 0.604) and k_g on the full frames, k_b on
-// the views lit from behind, k_c on the full frames, and k_d, k_s x 1.05 with the spread light's
-// normal the skin's (README).
+//   Chiang's scattering function itself (hair_bsdf.glsl) at Cycles' defaults (roughness 0.3 both
+//   ways, cuticle tilt 2 deg), lit by the key light of irradiance pi Ld (Ld = 1 lights a white
+//   Lambert surface to N.L, as the references' sun of irradiance pi does), in two parts, as Zinke,
+//   Yuksel, Weber and Keyser 2008 ("Dual scattering approximation for fast multiple scattering in
+//   hair") split a fibre's light: what reaches it straight from the key light, scattered once
+//   (f_s), and what reaches it through the fibres in front, forward-scattered on the way so that its
+//   directions have spread (their global multiple scattering, f_G: the same function at
+//   longitudinal roughness 0.6 and azimuthal 0.85); both through the body's shadow s_b and the
+//   hairs between the fibre and the light at the fibre's opacity o_f (Light::fibreLobeOpacity,
+//   0.3 a crossing; the coat's o_c = Light::fibreOpacity, 0.15: T_c = the fur's transmittance):
+//     fibre = pi Ld s_b T_c^(o_f / o_c) (w_s f_s + w_G f_G),  w_s = 0.844, w_G = 0.735.
+//   (Until 2026-12-07: Marschner's lobes with Karis's azimuthal fits and without the pi, a third
+//   of what Cycles' light passes show a fibre scatters once facing the light, README.)
+// g, k_p, k_v, k_l, k_b, k_c were fitted on the full frames and on the light's two parts apart
+// against Cycles' (scripts/reference/views.py parts, README); k_a, k_d, k_s, k_g, w_s and w_G on
+// the six committed views' full frames with Chiang's fibre (2026-12-07), which leaves the coat the
+// light Cycles' hairs scatter many times (views.py passes, README).
 const float kPhysGamma = 0.7;     // g: the coat's albedo exponent
 const float kPhysPaleLoss = 0.2;  // k_p: the share of a white coat's light lost to the skin
-const float kPhysAmbient = 0.604;  // k_a: the share of the ambient the coat keeps
+const float kPhysAmbient = 0.722;  // k_a: the share of the ambient the coat keeps
 const float kAlongFibrePivot = 0.35;  // t_0: where k_v, k_c (|T.V|), k_l (|T.L|) do nothing
 // The coat's multiple-scattering albedo A = c^g (1 - k_p c).
 vec3 coatAlbedo(vec3 c) {
@@ -228,31 +233,29 @@ float coatLightCaught(vec3 T, vec3 V) {
                                                           abs(dot(T, uLightDir))),
                        0.0);
 }
-// The physical model's colour for a hair point: coatDirect is k_d above.
-vec3 physicalFur(vec3 N, vec3 T, vec3 P, vec3 c, float s, float coatDirect) {
+// The fibre part's weights w_s and w_G and f_G's roughness (above).
+const float kFibreOnce = 0.844;
+const float kFibreSpread = 0.735;
+const float kFibreSpreadRoughness = 0.6;
+const float kFibreSpreadAzimuthalRoughness = 0.85;
+uniform float uFibreLobeShadowPower;  // o_f / o_c (renderer.cpp; 1 without the fur's shadow)
+// The physical model's colour for a hair point: coatDirect is k_d above, shadow the body's (x) and
+// the fur's (y) factors of the key light (shadowFactors()).
+vec3 physicalFur(vec3 N, vec3 T, vec3 P, vec3 c, vec2 shadow, float coatDirect) {
   vec3 L = uLightDir;
   vec3 V = normalize(uEye - P);
   vec3 albedo = coatAlbedo(c);
+  float s = shadow.x * shadow.y;
   float direct = coatDirect * s * max(dot(N, L), 0.0) * coatLightCaught(T, V);
   vec3 color = kPhysAmbient * uAmbientLight * coatAmbientSeen(albedo, T, V) +
                direct * uLightColor * albedo;
   if (dot(T, T) < 0.5) return color;
-  const float r = 0.3;
-  const float beta = 0.726 * r + 0.812 * r * r;
-  const float alphaR = radians(-2.0);  // Cycles' default cuticle tilt
-  const float f0 = 0.0465;             // ((1.55 - 1) / (1.55 + 1))^2
-  HairAngles a = hairAngles(T, L, V);
-  // Fresnel at the R lobe's angle of incidence on the fibre, cos = cos(theta_d) cos(phi / 2).
-  float fr = f0 + (1.0 - f0) * pow(1.0 - a.cosD * sqrt(0.5 + 0.5 * a.cosPhi), 5.0);
-  float ft = f0 + (1.0 - f0) * pow(1.0 - a.cosD, 5.0);
-  vec3 lnc = log(max(c, vec3(1e-4)));
-  vec3 sigmaA = lnc * lnc / (5.888 * 5.888);
-  // theta_t: the refracted longitudinal angle, sin(theta_t) = sin(theta_d) / 1.55.
-  float sinT = sin(a.thetaD) / 1.55;
-  float cosT = sqrt(max(1.0 - sinT * sinT, 1e-4));
-  vec3 tAbs = exp(-2.0 * sigmaA / cosT);
-  vec3 m = hairLobes(a, alphaR, beta);
-  float t2 = (1.0 - ft) * (1.0 - ft);
-  vec3 S = vec3(fr * m.x) + tAbs * (t2 * m.y) + tAbs * tAbs * (t2 * ft * m.z);
-  return color + s * uLightColor * a.cosI * S / max(a.cosD * a.cosD, 0.04);
+  float fibreShadow = shadow.x * pow(shadow.y, uFibreLobeShadowPower);
+  if (!(fibreShadow > 0.0)) return color;
+  vec3 once, spread;
+  hairScattering(T, L, V, hairSigmaA(c, 0.3), radians(2.0), hairRoughness(0.3, 0.3),
+                 hairRoughness(kFibreSpreadRoughness, kFibreSpreadAzimuthalRoughness), once,
+                 spread);
+  return color +
+         kHairPi * fibreShadow * uLightColor * (kFibreOnce * once + kFibreSpread * spread);
 }

@@ -37,6 +37,14 @@ struct Light {
   // light's part of the seven reference views against Cycles' (scripts/reference/views.py parts:
   // Cycles' luminance 0.83 to 1.16 times pelage's; 0.1 left pelage's 1.2 to 1.6 times too bright).
   float fibreOpacity = 0.15f;
+  // The share of the key light a hair stops for the light the physical fur model's fibres scatter
+  // themselves (lighting.glsl's fibre part: Chiang's scattering function, once and forward through
+  // the coat), [0, 1], where fibreOpacity is the coat's: the light a fibre sends the eye straight
+  // from the key light fades faster with the hairs in front than the coat's many-times-scattered
+  // light does. 0.3 fitted on the reference views against Cycles' light passes (scripts/reference/
+  // views.py passes, README: at 0.15 the light Cycles' fibres scatter once was 0.51 to 0.63 times
+  // pelage's lit from behind; at 0.3, 0.93 to 1.22 times).
+  float fibreLobeOpacity = 0.3f;
   // How far the physical fur model's coat spreads its direct light sideways, in hair lengths (the
   // standard deviation of the spread; transparent strands only): light scattered many times among
   // the hairs leaves the coat away from where it entered, so the body's shadow edges are soft and

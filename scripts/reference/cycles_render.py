@@ -324,7 +324,9 @@ def main(argv):
         if args[i] == "--samples" and i + 1 < len(args):
             samples = int(args[i + 1])
             i += 2
-        elif args[i] == "--passes" and i + 1 < len(args):
+        elif args[i] == "--passes":
+            if i + 1 >= len(args):
+                fail("--passes needs a folder")
             passes = args[i + 1]
             i += 2
         elif args[i] == "--as-drawn":

@@ -32,7 +32,8 @@
 
 The views are scripts/reference/views.txt. Environment: PELAGE (the pelage binary, default
 build/bin/pelage), PELAGE_SHARED_MODELS_DIR (the shared models, default ../shared/models),
-SAMPLES (Cycles samples per pixel for render, both renders together; default 1024; parts: 256).
+SAMPLES (Cycles samples per pixel for render, both renders together; default 1024; parts and
+passes: 256).
 """
 import json
 import os
@@ -197,12 +198,23 @@ def parts(out, names):
 def read_passes(folder):
     """reference-render.sh's light passes (PASSES=1) as {name: linear RGBA float array, rows
     top-down}."""
-    with open(os.path.join(folder, "passes.json")) as f:
-        meta = json.load(f)
-    w, h = meta["width"], meta["height"]
+    index = os.path.join(folder, "passes.json")
+    try:
+        with open(index) as f:
+            meta = json.load(f)
+        w, h, names = int(meta["width"]), int(meta["height"]), list(meta["passes"])
+    except (OSError, ValueError, KeyError, TypeError) as e:
+        sys.exit("views.py: %s: no light passes' index (written by cycles_render.py --passes): %s"
+                 % (index, e))
+    missing = {"GlossCol", "GlossDir", "GlossInd", "DiffCol", "DiffDir", "DiffInd"} - set(names)
+    if missing:
+        sys.exit("views.py: %s lists no %s pass" % (index, ", ".join(sorted(missing))))
     out = {}
-    for name in meta["passes"]:
-        data = np.fromfile(os.path.join(folder, name + ".f32"), dtype="<f4")
+    for name in names:
+        path = os.path.join(folder, name + ".f32")
+        if not os.path.isfile(path):
+            sys.exit("views.py: %s is missing (listed in %s)" % (path, index))
+        data = np.fromfile(path, dtype="<f4")
         if data.size != 4 * w * h:
             sys.exit("views.py: %s/%s.f32 has %d values, expected %d" % (folder, name, data.size,
                                                                          4 * w * h))

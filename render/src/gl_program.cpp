@@ -46,6 +46,12 @@ GLuint buildProgram(const std::string& name, std::initializer_list<ShaderStage> 
       text += "\n";
       files += std::string(f) + " ";
     }
+    if (!stage.source.empty()) {
+      text += "#line 1\n";
+      text += stage.source;
+      text += "\n";
+      files += "(own source) ";
+    }
     const GLuint s = glCreateShader(stage.type);
     const char* src = text.c_str();
     glShaderSource(s, 1, &src, nullptr);

@@ -17,6 +17,7 @@ namespace pelage::render::detail {
 struct ShaderStage {
   GLenum type;
   std::vector<std::string_view> files;
+  std::string_view source = {};  // more text after the files (a test's own entry point)
 };
 
 // Compiles and links; on failure PELAGE_CHECK fails with the file names and the driver's log

@@ -13,7 +13,6 @@
 #include "gl_program.h"
 #include "pelage/render/gl.h"
 #include "pelage/render/gl_context.h"
-#include "shader_sources.h"
 
 namespace pelage::render {
 namespace {
@@ -61,25 +60,10 @@ class HairBsdfTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
     context_ = createHeadlessContext();
-    const std::string text = "#version 450 core\n#define NTHETA " + std::to_string(kTheta) +
-                             "\n#define NPHI " + std::to_string(kPhi) + "\n#line 1\n" +
-                             std::string(detail::shaderSource("hair_bsdf.glsl")) + "\n" +
-                             kIntegrate;
-    const GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
-    const char* src = text.c_str();
-    glShaderSource(shader, 1, &src, nullptr);
-    glCompileShader(shader);
-    GLint ok = 0;
-    glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-    if (ok != GL_TRUE) {
-      std::array<char, 4096> log{};
-      glGetShaderInfoLog(shader, static_cast<GLsizei>(log.size()), nullptr, log.data());
-      ADD_FAILURE() << "hair_bsdf.glsl does not compile:\n" << log.data();
-    }
-    program_ = glCreateProgram();
-    glAttachShader(program_, shader);
-    glLinkProgram(program_);
-    glDeleteShader(shader);
+    program_ = detail::buildProgram(
+        "hair_bsdf.glsl's integral",
+        {detail::ShaderStage{GL_COMPUTE_SHADER, {"hair_bsdf.glsl"}, kIntegrate}},
+        "#define NTHETA " + std::to_string(kTheta) + "\n#define NPHI " + std::to_string(kPhi));
   }
   static void TearDownTestSuite() {
     glDeleteProgram(program_);

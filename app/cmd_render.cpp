@@ -15,6 +15,7 @@
 #include "pelage/render/gl_context.h"
 #include "pelage/render/render_sequence.h"
 #include "pelage/render/video_encoder.h"
+#include "pelage/scene/draw_list.h"
 #include "pelage/scene/frame.h"
 #include "pelage/util/atomic_file.h"
 #include "pelage/util/error.h"
@@ -34,6 +35,7 @@ struct RenderArgs {
   std::string out;
   std::string video;
   std::string cameraFile;
+  std::string pass{scene::lightPassName(scene::LightPass::All)};
   bool resume = false;
   bool sceneFiles = false;
   int encoders = 0;
@@ -101,6 +103,13 @@ void runRender(RenderArgs& a) {
     o.camera.preset = a.view.cameraPreset();
   o.playback.hairSource = a.view.source();
   o.look.hairShading = a.view.hairShading();
+  o.look.lightPass = scene::parseLightPass(a.pass);
+  if ((o.look.lightPass == scene::LightPass::Fibre || o.look.lightPass == scene::LightPass::Coat) &&
+      o.look.hairShading != scene::HairShading::Physical)
+    inputError("--pass ", a.pass,
+               " is a part of the physical model's hair light: it needs "
+               "--shading physical (the default), not ",
+               a.view.shading);
   o.look.hairWidth = a.view.hairWidth();
   o.look.transparency = a.view.transparent();
   o.shadows = a.view.shadows;
@@ -203,6 +212,11 @@ void addRenderCommand(CLI::App& app) {
   cmd->add_flag("--scene-files", a->sceneFiles,
                 "Also write each frame as DIR/frame_NNNNN.pelscene: camera, light, skin and hairs "
                 "for a path tracer (scripts/reference/; needs --hair-source cpu)");
+  cmd->add_option("--pass", a->pass,
+                  "Which light the frames show, as a path tracer's light passes: all (default), "
+                  "hair, fibre or coat (the physical model's parts of the hairs' light), or skin; "
+                  "same coverage in each, so in linear light, premultiplied by alpha, all = hair + "
+                  "skin and hair = fibre + coat (give --background transparent)");
   cmd->add_option("--encoders", a->encoders, "PNG encoder threads [0, 256] (default 0: --threads)");
   a->common.add(*cmd, true);
   cmd->callback([a, cmd] {

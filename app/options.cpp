@@ -45,7 +45,7 @@ int& sharedThreads() {
 }  // namespace
 
 std::string_view optionForField(std::string_view field) {
-  static constexpr std::array<std::pair<std::string_view, std::string_view>, 32> kOptions{{
+  static constexpr std::array<std::pair<std::string_view, std::string_view>, 33> kOptions{{
       {"ambient", "--ambient"},
       {"benchmark frames", "--benchmark-frames"},
       {"benchmark hairs", "--benchmark-hairs"},
@@ -63,6 +63,7 @@ std::string_view optionForField(std::string_view field) {
       {"hold", "--hold"},
       {"no fur", "--no-fur"},
       {"out", "--out"},
+      {"pass", "--pass"},
       {"plot", "--plot"},
       {"preroll", "--preroll"},
       {"resume", "--resume"},

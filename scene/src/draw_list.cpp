@@ -14,6 +14,11 @@ constexpr auto kHairShadingNames =
                                 {HairShading::KajiyaKay, "kajiya-kay"},
                                 {HairShading::Marschner, "marschner"},
                                 {HairShading::Physical, "physical"}});
+constexpr auto kLightPassNames = makeEnumNames<LightPass>({{LightPass::All, "all"},
+                                                           {LightPass::Hair, "hair"},
+                                                           {LightPass::Fibre, "fibre"},
+                                                           {LightPass::Coat, "coat"},
+                                                           {LightPass::Skin, "skin"}});
 constexpr auto kHairSourceNames =
     makeEnumNames<HairSource>({{HairSource::Gpu, "gpu"}, {HairSource::Cpu, "cpu"}});
 
@@ -27,6 +32,16 @@ HairShading parseHairShading(std::string_view name, std::string_view field) {
   if (const auto s = kHairShadingNames.find(name)) return *s;
   fieldError(std::string(field), ": unknown hair shading '", excerpt(name),
              "' (accepted: ", kHairShadingNames.list(), ")");
+}
+
+std::string_view lightPassName(LightPass pass) {
+  return kLightPassNames.name(pass);
+}
+
+LightPass parseLightPass(std::string_view name, std::string_view field) {
+  if (const auto s = kLightPassNames.find(name)) return *s;
+  fieldError(std::string(field), ": unknown light pass '", excerpt(name),
+             "' (accepted: ", kLightPassNames.list(), ")");
 }
 
 std::string_view hairSourceName(HairSource source) {
@@ -59,6 +74,7 @@ void buildDrawList(const Model& model, const FrameState& frame, const Fur* fur,
   list.light = light;
   list.background = options.background;
   list.hairShading = options.hairShading;
+  list.lightPass = options.lightPass;
   list.hairWidth = options.hairWidth;
   list.transparency = options.transparency;
   list.bounds = frame.skinBounds;

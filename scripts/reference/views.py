@@ -28,7 +28,9 @@
                               OUT/NAME_ambient/): prints the mean linear luminance over the
                               creature of the light Cycles' hairs scatter once (straight from the
                               light), of what they scatter more than once, and of the skin seen,
-                              beside pelage's part, and writes them to OUT/passes.json
+                              beside pelage's part and its light passes (pelage render --pass
+                              fibre, coat, skin: the physical model's fibre part, its coat part,
+                              the skin), and writes them to OUT/passes.json
 
 The views are scripts/reference/views.txt. Environment: PELAGE (the pelage binary, default
 build/bin/pelage), PELAGE_SHARED_MODELS_DIR (the shared models, default ../shared/models),
@@ -230,12 +232,29 @@ def light_paths(passes):
             "skin": rgb["DiffCol"] * (rgb["DiffDir"] + rgb["DiffInd"])}
 
 
+# pelage's light passes (pelage render --pass) set beside Cycles' light paths by `passes`.
+PELAGE_PASSES = ("fibre", "coat", "skin")
+
+
+def pelage_passes(model, options, option, creature):
+    """pelage's fibre, coat and skin passes of one light part (the other part's light off with
+    option 0): each one's mean linear luminance over the creature, premultiplied."""
+    out = {}
+    with tempfile.TemporaryDirectory() as tmp:
+        for p in PELAGE_PASSES:
+            folder = os.path.join(tmp, p)
+            lum, alpha = part_luminance(compare.read_rgba(render_pelage(
+                model, options + [option, "0", "--pass", p], folder)))
+            out["pelage_" + p] = float((lum * alpha)[creature].mean())
+    return out
+
+
 def passes(out, names):
     chosen = selected(names)
     os.makedirs(out, exist_ok=True)
     table = {}
-    print("%-14s %-8s %9s %9s %9s %9s %9s" % ("view", "part", "pelage", "Cycles", "once",
-                                              "many", "skin"))
+    print("%-14s %-8s %8s %8s | %8s %8s %8s | %8s %8s %8s" % (
+        "view", "part", "pelage", "Cycles", "fibre", "coat", "skin", "once", "many", "skin"))
     for name, model, options in chosen:
         table[name] = {}
         for part, option in PARTS:
@@ -244,9 +263,11 @@ def passes(out, names):
             paths = light_paths(read_passes(os.path.join(folder, "passes")))
             for k, v in paths.items():
                 entry[k] = float((v @ compare.LUMA)[creature].mean())
+            entry.update(pelage_passes(model, options, option, creature))
             table[name][part] = entry
-            print("%-14s %-8s %9.4f %9.4f %9.4f %9.4f %9.4f" % (
-                name, part, entry["pelage"], entry["cycles"], entry["once"], entry["many"],
+            print("%-14s %-8s %8.4f %8.4f | %8.4f %8.4f %8.4f | %8.4f %8.4f %8.4f" % (
+                name, part, entry["pelage"], entry["cycles"], entry["pelage_fibre"],
+                entry["pelage_coat"], entry["pelage_skin"], entry["once"], entry["many"],
                 entry["skin"]))
     with open(os.path.join(out, "passes.json"), "w") as f:
         json.dump(table, f, indent=1, sort_keys=True)

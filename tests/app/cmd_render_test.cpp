@@ -161,6 +161,32 @@ TEST_F(RenderCommand, VideoFileThroughFfmpeg) {
   EXPECT_EQ(readText(dir.file("clip.mp4")).substr(4, 4), "ftyp");
 }
 
+TEST_F(RenderCommand, LightPassesAreFramesOfTheirOwnAndBadOnesSaySo) {
+  // --pass draws part of the light (scene::LightPass; their sums are render_tests' business):
+  // the fibre pass is another frame than the whole, the skin pass darker still.
+  for (const char* pass : {"all", "fibre", "skin"}) {
+    const RunResult r = runPelage("render " + args("2", dir.file(pass)) + " --pass " + pass);
+    ASSERT_EQ(r.exitCode, 0) << pass << ": " << r.output;
+  }
+  const std::string all = readText(dir.file("all/frame_00002.png"));
+  EXPECT_NE(readText(dir.file("fibre/frame_00002.png")), all);
+  EXPECT_NE(readText(dir.file("skin/frame_00002.png")), all);
+  // A pass that is not one, or a part of the physical model's light under another shading: exit 2
+  // with the accepted values, and no output folder left behind.
+  const std::pair<const char*, const char*> bad[] = {
+      {"--pass glossy",
+       "--pass: unknown light pass 'glossy' (accepted: all, hair, fibre, coat, skin)"},
+      {"--pass coat --shading paper",
+       "--pass coat is a part of the physical model's hair light: it "
+       "needs --shading physical (the default), not paper"}};
+  for (const auto& [options, expect] : bad) {
+    const RunResult r = runPelage("render " + args("2", dir.file("bad")) + " " + options);
+    EXPECT_EQ(r.exitCode, 2) << options << ": " << r.output;
+    EXPECT_NE(r.output.find(expect), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(dir.file("bad"))) << options;
+  }
+}
+
 TEST_F(RenderCommand, SceneFilesBesideTheFrames) {
   // --scene-files: each frame also as a reference scene (scene/reference_scene.h), the frames
   // themselves unchanged.

@@ -1073,6 +1073,76 @@ TEST_F(FurRenderTest, FrameIsTheSumOfItsKeyAndAmbientLight) {
   EXPECT_LT(worst, 0.02);
 }
 
+TEST_F(FurRenderTest, LightPassesAddUpToTheFrame) {
+  // scene::LightPass: each pass draws the same coverage with part of the light, so over black, in
+  // linear light, all = hair + skin and, under the physical model, hair = fibre + coat (pelage
+  // render --pass). The default look, key and ambient light, shadows and self-shadowing.
+  const scene::Fur fur = scene::growFur(critter(), testFur(30000));
+  const scene::Camera cam = camera(scene::CameraPreset::ThreeQuarter, 160, fur);
+  scene::DrawOptions opt = physicalLook();
+  opt.background = Eigen::Vector3f::Zero();
+  const scene::Light light = plainLight(true, true, 0.15f);
+  std::array<Image, 5> pass;  // scene::LightPass's order
+  std::array<Image, 5> alpha;
+  RendererOptions ro;
+  ro.samples = 0;
+  Renderer r(ro);
+  for (int i = 0; i < 5; ++i) {
+    opt.lightPass = static_cast<scene::LightPass>(i);
+    pass[i] = render(&fur, cam, opt, light, &r).image;
+    alpha[i] = r.readPixels(FrameAlpha::Straight);
+  }
+  const auto at = [&](scene::LightPass p, int x, int y, int c) {
+    return test::decoded(pass[static_cast<std::size_t>(p)].pixel(x, y)[c]);
+  };
+  using P = scene::LightPass;
+  double sum[5] = {}, errorAll = 0, errorHair = 0, worst = 0;
+  int n = 0, alphaDiffers = 0;
+  for (int y = 0; y < cam.height; ++y)
+    for (int x = 0; x < cam.width; ++x) {
+      for (int i = 1; i < 5; ++i)
+        alphaDiffers =
+            std::max(alphaDiffers, std::abs(alpha[i].pixel(x, y)[3] - alpha[0].pixel(x, y)[3]));
+      for (int c = 0; c < 3; ++c) {
+        for (int i = 0; i < 5; ++i) sum[i] += at(static_cast<P>(i), x, y, c);
+        const double a = at(P::All, x, y, c) - at(P::Hair, x, y, c) - at(P::Skin, x, y, c);
+        const double h = at(P::Hair, x, y, c) - at(P::Fibre, x, y, c) - at(P::Coat, x, y, c);
+        errorAll += std::abs(a);
+        errorHair += std::abs(h);
+        worst = std::max({worst, std::abs(a), std::abs(h)});
+        ++n;
+      }
+    }
+  std::printf(
+      "light passes of the frame: hair %.3f (fibre %.3f, coat %.3f), skin %.3f; mean "
+      "|all - hair - skin| %.5f, |hair - fibre - coat| %.5f, max %.4f\n",
+      sum[1] / sum[0], sum[2] / sum[0], sum[3] / sum[0], sum[4] / sum[0], errorAll / n,
+      errorHair / n, worst);
+  EXPECT_LE(alphaDiffers, 1);  // the same coverage in every pass (to the read-back's rounding)
+  // Every part lights the frame, and the parts add up to within 8-bit rounding (as the key and
+  // ambient parts do above).
+  EXPECT_GT(sum[2], 0.05 * sum[1]);
+  EXPECT_GT(sum[3], 0.3 * sum[1]);
+  EXPECT_GT(sum[4], 0.005 * sum[0]);
+  EXPECT_LT(sum[4], 0.9 * sum[0]);  // this sparse coat shows much of its skin (0.71 measured)
+  EXPECT_LT(errorAll / n, 0.002);
+  EXPECT_LT(errorHair / n, 0.002);
+  EXPECT_LT(worst, 0.02);
+
+  // Kajiya-Kay's hair light has no fibre and coat parts: its fibre pass is black, its coat pass
+  // the hairs' whole light.
+  opt.hairShading = scene::HairShading::KajiyaKay;
+  opt.lightPass = scene::LightPass::Hair;
+  const Image hair = render(&fur, cam, opt, light, &r).image;
+  opt.lightPass = scene::LightPass::Coat;
+  const Image coat = render(&fur, cam, opt, light, &r).image;
+  opt.lightPass = scene::LightPass::Fibre;
+  const Image fibre = render(&fur, cam, opt, light, &r).image;
+  EXPECT_EQ(coat.rgba, hair.rgba);
+  EXPECT_EQ(std::count(fibre.rgba.begin(), fibre.rgba.end(), std::uint8_t{0}),
+            static_cast<std::ptrdiff_t>(fibre.rgba.size()) / 4 * 3);
+}
+
 TEST_F(FurRenderTest, CpuAndGpuHairsGiveTheSameImage) {
   const scene::Fur fur = scene::growFur(critter(), testFur(20000));
   const scene::Camera cam = camera(scene::CameraPreset::Front, 200, fur);

@@ -33,6 +33,20 @@ TEST(Names, ShadingsParseAndRejectUnknownNames) {
   EXPECT_THROW(parseHairShading("pbr"), InputError);
 }
 
+TEST(Names, LightPassesParseAndRejectUnknownNames) {
+  const std::pair<LightPass, const char*> passes[] = {{LightPass::All, "all"},
+                                                      {LightPass::Hair, "hair"},
+                                                      {LightPass::Fibre, "fibre"},
+                                                      {LightPass::Coat, "coat"},
+                                                      {LightPass::Skin, "skin"}};
+  for (const auto& [pass, name] : passes) {
+    EXPECT_EQ(parseLightPass(name), pass);
+    EXPECT_EQ(lightPassName(pass), name);
+  }
+  EXPECT_THROW(parseLightPass("glossy"), InputError);
+  EXPECT_THROW(parseLightPass(""), InputError);
+}
+
 TEST(BuildDrawList, SkinAndOneItemPerCoat) {
   const Model& m = sceneCritter();
   const Fur& fur = sceneFur();
@@ -44,8 +58,10 @@ TEST(BuildDrawList, SkinAndOneItemPerCoat) {
   light.shadows = true;
   DrawList list;
   DrawOptions o;
+  o.lightPass = LightPass::Coat;
   buildDrawList(m, f, &fur, cam, light, o, list);
   EXPECT_EQ(list.camera.width, 640);
+  EXPECT_EQ(list.lightPass, LightPass::Coat);
   EXPECT_TRUE(list.light.shadows);
   EXPECT_EQ(list.skin.vertices, m.skin.numVertices());
   EXPECT_EQ(list.skin.triangleCount, m.skin.numTriangles());

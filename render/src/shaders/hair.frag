@@ -92,9 +92,9 @@ void main() {
   vec3 kd = uPerHairColor ? C_IN : uKd;
   vec3 ka = uPerHairColor ? C_IN * uAmbientRatio : uKa;
   vec3 c = uShading == 3   ? physicalFur(u, T_IN, P_IN, kd, shadow, uCoatDirect)
-           : uShading == 2 ? marschner(u, P_IN, ka, kd, uKs, s)
-           : uShading == 1 ? kajiyaKay(u, P_IN, ka, kd, uKs, uShininess, s)
-                           : phong(u, P_IN, ka, kd, uKs, uShininess, s);
+           : hairPassed(uShading == 2   ? marschner(u, P_IN, ka, kd, uKs, s)
+                        : uShading == 1 ? kajiyaKay(u, P_IN, ka, kd, uKs, uShininess, s)
+                                        : phong(u, P_IN, ka, kd, uKs, uShininess, s));
 #ifdef OIT
   float t = clamp((distance(uEye, P_IN) - uDepthRange.x) / max(uDepthRange.y - uDepthRange.x, 1e-6),
                   0.0, 1.0);

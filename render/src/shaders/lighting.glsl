@@ -8,6 +8,23 @@ uniform float uAlongFibreDarkening;  // k_v below (Light::alongFibreDarkening)
 uniform float uAlongFibreSaturation;  // k_c below (Light::alongFibreSaturation)
 uniform float uLightAlongFibreDarkening;  // k_l below (Light::lightAlongFibreDarkening)
 uniform float uCoatBacklitDarkening;  // k_b below (Light::coatBacklitDarkening)
+// Which of the frame's light it shows (scene::LightPass): 0 all, 1 the hairs', 2 the physical
+// model's fibre part, 3 its coat part, 4 the skin's. Every pass keeps the coverage.
+uniform int uLightPass;
+const int kPassAll = 0;
+const int kPassHair = 1;
+const int kPassFibre = 2;
+const int kPassCoat = 3;
+const int kPassSkin = 4;
+// The skin's light c as the pass shows it.
+vec3 skinPassed(vec3 c) {
+  return uLightPass == kPassAll || uLightPass == kPassSkin ? c : vec3(0.0);
+}
+// A hair's light c under a shading without the physical model's parts as the pass shows it (its
+// fibre pass black, its coat pass the whole hair's).
+vec3 hairPassed(vec3 c) {
+  return uLightPass == kPassSkin || uLightPass == kPassFibre ? vec3(0.0) : c;
+}
 uniform bool uShadows;
 uniform mat4 uLightViewProj;
 layout(binding = 0) uniform sampler2DShadow uShadowMap;
@@ -247,9 +264,12 @@ vec3 physicalFur(vec3 N, vec3 T, vec3 P, vec3 c, vec2 shadow, float coatDirect) 
   vec3 albedo = coatAlbedo(c);
   float s = shadow.x * shadow.y;
   float direct = coatDirect * s * max(dot(N, L), 0.0) * coatLightCaught(T, V);
-  vec3 color = kPhysAmbient * uAmbientLight * coatAmbientSeen(albedo, T, V) +
-               direct * uLightColor * albedo;
-  if (dot(T, T) < 0.5) return color;
+  if (uLightPass == kPassSkin) return vec3(0.0);
+  vec3 color = uLightPass == kPassFibre
+                   ? vec3(0.0)
+                   : kPhysAmbient * uAmbientLight * coatAmbientSeen(albedo, T, V) +
+                         direct * uLightColor * albedo;
+  if (dot(T, T) < 0.5 || uLightPass == kPassCoat) return color;
   float fibreShadow = shadow.x * pow(shadow.y, uFibreLobeShadowPower);
   if (!(fibreShadow > 0.0)) return color;
   vec3 once, spread;

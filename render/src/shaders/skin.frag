@@ -10,5 +10,5 @@ void main() {
   vec3 N = normalize(vNormal);
   if (!gl_FrontFacing) N = -N;
   float s = shadowFactor(vPosition, uShadowBias);
-  fColor = vec4(phong(N, vPosition, uKa, uKd, uKs, uShininess, s), 1.0);
+  fColor = vec4(skinPassed(phong(N, vPosition, uKa, uKd, uKs, uShininess, s)), 1.0);
 }

@@ -13,5 +13,5 @@ void main() {
   if (!gl_FrontFacing) N = -N;
   vec3 base = vColor.rgb * (uTextured ? texture(uBaseColor, vUv).rgb : vec3(1.0));
   float s = shadowFactor(vPosition, uShadowBias);
-  fColor = vec4(phong(N, vPosition, base, base, uKs, uShininess, s), 1.0);
+  fColor = vec4(skinPassed(phong(N, vPosition, base, base, uKs, uShininess, s)), 1.0);
 }

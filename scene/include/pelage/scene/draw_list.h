@@ -49,6 +49,20 @@ std::string_view hairShadingName(HairShading shading);
 // Parses a shading name; InputError naming `field` and the accepted names.
 HairShading parseHairShading(std::string_view name, std::string_view field = "shading");
 
+// Which of the frame's light a frame shows, as a path tracer's light passes do (Cycles' Glossy and
+// Diffuse passes): everything, the hairs' light alone, or one of its parts under the physical
+// model (the light its fibres scatter themselves, lighting.glsl's fibre part, or the coat's light
+// scattered many times: its ambient, kept and spread direct light and grazing ambient), or the
+// skin's alone. Every pass draws the same coverage (hairs and skin hide what they always hide; the
+// hairs of the skin's pass are black), so in linear light, premultiplied by alpha, the passes add
+// up: all = hair + skin, and under the physical model hair = fibre + coat. Under the other
+// shadings the hairs' light has no such parts: fibre draws them black and coat as hair.
+enum class LightPass { All = 0, Hair = 1, Fibre = 2, Coat = 3, Skin = 4 };
+// "all", "hair", "fibre", "coat", "skin".
+std::string_view lightPassName(LightPass pass);
+// Parses a pass name; InputError naming `field` and the accepted names.
+LightPass parseLightPass(std::string_view name, std::string_view field = "pass");
+
 // How 1-D hairs (lines, polylines, curves) are drawn: as the paper's 1-pixel lines (sec. 3.3), or
 // as strands of their physical width (fur::StrandWidth, tapering root to tip): a strand narrower
 // than a pixel is drawn one pixel wide with its coverage (true width / drawn width) as alpha, with
@@ -129,6 +143,7 @@ struct DrawList {
   SkinDrawItem skin;
   std::vector<FurDrawItem> fur;  // 0, 1 or 2 coats
   HairShading hairShading = kDefaultHairShading;
+  LightPass lightPass = LightPass::All;
   HairWidth hairWidth = HairWidth::Strands;
   // Strands blended in any order (weighted blended order-independent transparency); off: drawn
   // opaque at their drawn width.
@@ -144,6 +159,7 @@ struct DrawList {
 struct DrawOptions {
   HairSource hairSource = HairSource::Cpu;
   HairShading hairShading = kDefaultHairShading;
+  LightPass lightPass = LightPass::All;
   HairWidth hairWidth = HairWidth::Strands;
   bool transparency = true;
   bool drawFur = true;

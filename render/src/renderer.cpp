@@ -603,8 +603,9 @@ struct Renderer::Impl {
   // targets into spreadTarget[0]; sets the resolve's uniforms.
   void spreadCoatLight(const scene::DrawList& list) {
     const GLuint composite = compositeProgram.get();
-    setFloat(composite, "uCoatSpreadShare",
-             spreadPixels > 0.0f && coatPassed(list) ? kCoatLightSpread : 0.0f);
+    setFloat(
+        composite, "uCoatSpreadShare",
+        spreadPixels > 0.0f && scene::showsCoatLight(list.lightPass) ? kCoatLightSpread : 0.0f);
     setVec3(composite, "uLightColor", list.light.color);
     setVec3(composite, "uAmbientLight", list.light.ambient);
     glBindTextureUnit(9, oitCoat.get());
@@ -664,14 +665,8 @@ struct Renderer::Impl {
   // normal under each pixel (copySkinDepth's skin maps); off without the physical model or a skin.
   void seeCoatGrazing(const scene::DrawList& list) {
     setFloat(compositeProgram.get(), "uCoatGrazing",
-             physicalOverSkin(list) && coatPassed(list) ? kCoatGrazingAmbient : 0.0f);
-  }
-
-  // Whether this frame's light pass shows the physical model's coat part (the resolve's spread
-  // light and grazing ambient are the coat's; scene::LightPass).
-  static bool coatPassed(const scene::DrawList& list) {
-    return list.lightPass == scene::LightPass::All || list.lightPass == scene::LightPass::Hair ||
-           list.lightPass == scene::LightPass::Coat;
+             physicalOverSkin(list) && scene::showsCoatLight(list.lightPass) ? kCoatGrazingAmbient
+                                                                             : 0.0f);
   }
 
   // Whether this frame's physical fur model has the skin's maps under it (copySkinDepth): its

@@ -16,15 +16,16 @@ const int kPassHair = 1;
 const int kPassFibre = 2;
 const int kPassCoat = 3;
 const int kPassSkin = 4;
+// Whether the pass shows the skin's light, the coat's (the physical model's coat part; under the
+// other shadings, the hair's whole light; scene::showsCoatLight) and the physical model's fibre
+// part.
+bool skinShown() { return uLightPass == kPassAll || uLightPass == kPassSkin; }
+bool coatShown() { return uLightPass <= kPassHair || uLightPass == kPassCoat; }
+bool fibreShown() { return uLightPass <= kPassHair || uLightPass == kPassFibre; }
 // The skin's light c as the pass shows it.
-vec3 skinPassed(vec3 c) {
-  return uLightPass == kPassAll || uLightPass == kPassSkin ? c : vec3(0.0);
-}
-// A hair's light c under a shading without the physical model's parts as the pass shows it (its
-// fibre pass black, its coat pass the whole hair's).
-vec3 hairPassed(vec3 c) {
-  return uLightPass == kPassSkin || uLightPass == kPassFibre ? vec3(0.0) : c;
-}
+vec3 skinPassed(vec3 c) { return skinShown() ? c : vec3(0.0); }
+// A hair's light c under a shading without the physical model's parts as the pass shows it.
+vec3 hairPassed(vec3 c) { return coatShown() ? c : vec3(0.0); }
 uniform bool uShadows;
 uniform mat4 uLightViewProj;
 layout(binding = 0) uniform sampler2DShadow uShadowMap;
@@ -264,12 +265,10 @@ vec3 physicalFur(vec3 N, vec3 T, vec3 P, vec3 c, vec2 shadow, float coatDirect) 
   vec3 albedo = coatAlbedo(c);
   float s = shadow.x * shadow.y;
   float direct = coatDirect * s * max(dot(N, L), 0.0) * coatLightCaught(T, V);
-  if (uLightPass == kPassSkin) return vec3(0.0);
-  vec3 color = uLightPass == kPassFibre
-                   ? vec3(0.0)
-                   : kPhysAmbient * uAmbientLight * coatAmbientSeen(albedo, T, V) +
-                         direct * uLightColor * albedo;
-  if (dot(T, T) < 0.5 || uLightPass == kPassCoat) return color;
+  vec3 color = coatShown() ? kPhysAmbient * uAmbientLight * coatAmbientSeen(albedo, T, V) +
+                                direct * uLightColor * albedo
+                          : vec3(0.0);
+  if (dot(T, T) < 0.5 || !fibreShown()) return color;
   float fibreShadow = shadow.x * pow(shadow.y, uFibreLobeShadowPower);
   if (!(fibreShadow > 0.0)) return color;
   vec3 once, spread;

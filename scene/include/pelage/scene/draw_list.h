@@ -58,6 +58,12 @@ HairShading parseHairShading(std::string_view name, std::string_view field = "sh
 // up: all = hair + skin, and under the physical model hair = fibre + coat. Under the other
 // shadings the hairs' light has no such parts: fibre draws them black and coat as hair.
 enum class LightPass { All = 0, Hair = 1, Fibre = 2, Coat = 3, Skin = 4 };
+// Whether `pass` shows the coat's light (the physical model's coat part, and the resolve's spread
+// light and grazing ambient with it; under the other shadings the hairs' whole light), as
+// lighting.glsl's coatShown.
+inline bool showsCoatLight(LightPass pass) {
+  return pass == LightPass::All || pass == LightPass::Hair || pass == LightPass::Coat;
+}
 // "all", "hair", "fibre", "coat", "skin".
 std::string_view lightPassName(LightPass pass);
 // Parses a pass name; InputError naming `field` and the accepted names.

@@ -547,6 +547,9 @@ struct Renderer::Impl {
         setFloat(p, "uSpreadSkinNormal",
                  physicalOverSkin(list) ? std::clamp(list.light.coatSpreadSkinNormal, 0.0f, 1.0f)
                                         : 0.0f);
+        // Whether the skin's depth tells the fibre's terminator where the skin lies behind a
+        // hair (lighting.glsl; needs the skin's depth, copySkinDepth).
+        setInt(p, "uSkinBehindKnown", physicalOverSkin(list) ? 1 : 0);
       }
     }
     drawHairs(b, p);

@@ -4,9 +4,9 @@
 // subsurface scattering is (Jimenez, Sundstedt and Gutierrez 2009, "Screen-space perceptual
 // rendering of human skin": the diffuse irradiance blurred in screen space by a separable kernel
 // whose width is a distance on the surface): the strands' mean direct irradiance per pixel,
-// E = s max(N.L, 0) l(T) b(V) (the coat term of lighting.glsl's physicalFur, N the skin's normal
-// under the pixel: hair.frag's spreadNormal), weighted as the transparent strands weight their
-// colour, is
+// E = s k_n max(N.L, 0)^p l(T) b(V) (the coat term of lighting.glsl's physicalFur, N the skin's
+// normal under the pixel: hair.frag's spreadNormal), weighted as the transparent strands weight
+// their colour, is
 // - pass 0: averaged over uFactor x uFactor pixels into (E m, m), m the share of them with strands;
 // - passes 1, 2: blurred along x, then y, by a Gaussian of uSigma low-resolution pixels.
 // The resolve (oit_composite.frag) reads E~ = (E m)~ / m~: the mean over the coat's pixels alone.

@@ -46,6 +46,7 @@ uniform vec2 uDepthRange;  // distance from the eye to the creature's bounds: ne
 layout(binding = 11) uniform sampler2D uSkinDepth;    // the skin's depth (the opaque pass's)
 layout(binding = 12) uniform sampler2D uFringeDepth;  // the skin's depth beyond its outline
 uniform float uFrontDepth;  // lambda, metres; 0: off
+uniform bool uSkinBehindKnown;  // uSkinDepth is this frame's, under the physical model
 uniform vec2 uDepthUnproject;  // the projection's (2, 2) and (2, 3): a depth's distance along -z
 float eyeDistance(float depth) {
   return uDepthUnproject.y / (2.0 * depth - 1.0 + uDepthUnproject.x);
@@ -71,7 +72,7 @@ vec3 spreadNormal(vec3 u) {
 }
 layout(location = 0) out vec4 fAccum;
 layout(location = 1) out float fReveal;
-// Under the physical model: the coat albedo and direct irradiance E = s max(N.L, 0) l(T) b(V)
+// Under the physical model: the coat albedo and direct irradiance E = s k_n max(N.L, 0)^p l(T) b(V)
 // (lighting.glsl; N = spreadNormal(u)), weighted as the colour, that coat_spread.frag spreads
 // sideways (a = 0 elsewhere).
 layout(location = 2) out vec4 fCoat;
@@ -91,7 +92,15 @@ void main() {
   float s = shadow.x * shadow.y;
   vec3 kd = uPerHairColor ? C_IN : uKd;
   vec3 ka = uPerHairColor ? C_IN * uAmbientRatio : uKa;
-  vec3 c = uShading == 3   ? physicalFur(u, T_IN, P_IN, kd, shadow, uCoatDirect)
+#ifdef OIT
+  // Whether the skin lies behind the hair under its pixel (the physical model's fibre terminator
+  // applies; lighting.glsl): not in the fringe, beyond the skin's outline.
+  float skinBehind =
+      uSkinBehindKnown && texelFetch(uSkinDepth, ivec2(gl_FragCoord.xy), 0).r < 1.0 ? 1.0 : 0.0;
+#else
+  float skinBehind = 0.0;  // unknown without the skin's depth: no terminator
+#endif
+  vec3 c = uShading == 3   ? physicalFur(u, T_IN, P_IN, kd, shadow, uCoatDirect, skinBehind)
            : hairPassed(uShading == 2   ? marschner(u, P_IN, ka, kd, uKs, s)
                         : uShading == 1 ? kajiyaKay(u, P_IN, ka, kd, uKs, uShininess, s)
                                         : phong(u, P_IN, ka, kd, uKs, uShininess, s));
@@ -110,7 +119,7 @@ void main() {
   fReveal = a;
   fCoat = vec4(0.0);
   if (uShading == 3) {
-    float e = s * max(dot(spreadNormal(u), uLightDir), 0.0) *
+    float e = s * coatIncidence(spreadNormal(u)) *
               coatLightCaught(T_IN, normalize(uEye - P_IN));
     fCoat = vec4(coatAlbedo(kd), e) * (a * w);
   }

@@ -84,11 +84,12 @@ struct Light {
   // Fox's back goes from blue/red 0.39 where |T.V| is 0.2 to 0.05 where it is 0.8).
   float alongFibreSaturation = 1.25f;
   // How much of the physical fur model's direct light the coat loses where the light runs along
-  // its hairs, k_l: the coat's direct light is A s Ld max(N.L, 0) max(1 + k_l (0.35 - |T.L|), 0)
-  // (lighting.glsl; the light the coat spreads sideways too), T the hair's tangent: light along the
-  // fibres passes between them deep into the coat, to the self-shadowed depths and the skin, where
-  // across them the fibres' sides in the coat's top catch it (the share of the light a fibre
-  // intercepts is its projected width, cos(theta_i)). 0 = the same whatever the hairs' direction.
+  // its hairs, k_l: the coat's direct light is A s Ld k_n max(N.L, 0)^p max(1 + k_l (0.35 -
+  // |T.L|), 0) (lighting.glsl, k_n = 0.8, p = 0.4; the light the coat spreads sideways too), T the
+  // hair's tangent: light along the fibres passes between them deep into the coat, to the
+  // self-shadowed depths and the skin, where across them the fibres' sides in the coat's top catch
+  // it (the share of the light a fibre intercepts is its projected width, cos(theta_i)). 0 = the
+  // same whatever the hairs' direction.
   // 2 fitted on the key light's part of the reference views against Cycles' (views.py parts: the
   // blurred key part's correlation with Cycles' 0.77 -> 0.83 over the six views) and on the full
   // frames with the coat's direct and ambient shares (README).

@@ -51,10 +51,9 @@ uniform vec2 uDepthUnproject;  // the projection's (2, 2) and (2, 3): a depth's 
 float eyeDistance(float depth) {
   return uDepthUnproject.y / (2.0 * depth - 1.0 + uDepthUnproject.x);
 }
-// The skin's depth under pixel p, or in the fringe the nearest skin's (skin_maps.frag); 1 where
-// none.
-float coatBaseDepth(ivec2 p) {
-  float skin = texelFetch(uSkinDepth, p, 0).r;
+// The skin's depth under pixel p (skin, uSkinDepth's texel there), or in the fringe the nearest
+// skin's (skin_maps.frag); 1 where none.
+float coatBaseDepth(ivec2 p, float skin) {
   return skin < 1.0 ? skin : texelFetch(uFringeDepth, p, 0).r;
 }
 // The normal the physical model's spread light takes (lighting.glsl, Light::coatSpreadSkinNormal):
@@ -93,10 +92,14 @@ void main() {
   vec3 kd = uPerHairColor ? C_IN : uKd;
   vec3 ka = uPerHairColor ? C_IN * uAmbientRatio : uKa;
 #ifdef OIT
+  // The skin's depth under the pixel (1 where none), read once for the terminator and the weights
+  // (both need this frame's, copySkinDepth).
+  float skinHere = uSkinBehindKnown || uFrontDepth > 0.0
+                       ? texelFetch(uSkinDepth, ivec2(gl_FragCoord.xy), 0).r
+                       : 1.0;
   // Whether the skin lies behind the hair under its pixel (the physical model's fibre terminator
   // applies; lighting.glsl): not in the fringe, beyond the skin's outline.
-  float skinBehind =
-      uSkinBehindKnown && texelFetch(uSkinDepth, ivec2(gl_FragCoord.xy), 0).r < 1.0 ? 1.0 : 0.0;
+  float skinBehind = uSkinBehindKnown && skinHere < 1.0 ? 1.0 : 0.0;
 #else
   float skinBehind = 0.0;  // unknown without the skin's depth: no terminator
 #endif
@@ -109,7 +112,7 @@ void main() {
                   0.0, 1.0);
   float w = a * (0.05 + 10.0 * pow(1.0 - t, 3.0));
   if (uFrontDepth > 0.0) {
-    float skin = coatBaseDepth(ivec2(gl_FragCoord.xy));
+    float skin = coatBaseDepth(ivec2(gl_FragCoord.xy), skinHere);
     float d = skin >= 1.0 ? 30.0
                           : clamp((eyeDistance(skin) - eyeDistance(gl_FragCoord.z)) / uFrontDepth,
                                   0.0, 30.0);

@@ -229,7 +229,7 @@ vec3 marschner(vec3 T, vec3 P, vec3 Ka, vec3 Kd, vec3 Ks, float s) {
 //   the skin's depth, hair.frag): the light reaching a hair on the body's
 //   unlit side crosses the coat at a grazing angle, through more fibres than the opacity map's
 //   low-pass and its subsample of the hairs count (on the views lit from behind, over the unlit
-//   skin, pelage's fibre part without t was 4-10 times Cycles' light scattered once there), while
+//   skin, pelage's fibre part without t was 5-10 times Cycles' light scattered once there), while
 //   the fringe's hairs stand out in the light.
 //   (Until 2026-12-07: Marschner's lobes with Karis's azimuthal fits and without the pi, a third
 //   of what Cycles' light passes show a fibre scatters once facing the light, README.)
